@@ -1,0 +1,205 @@
+#pragma once
+// Thresholded kinetic Delaunay triangulation with tolerance-based reinsertion
+// (thesis ch. 6–8, 10; SPEC §2). Points move linearly in the projected plane; the
+// triangulation is kept Delaunay for their positions as time advances by processing
+// certificate failures (edge flips) in time order.
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "kew/geometry/vector2.hpp"
+#include "kew/kinetic/polynomial.hpp"
+#include "kew/triangulation/delaunay.hpp"
+
+namespace kew::kinetic {
+
+using geometry::Point2;
+using geometry::Vector2;
+using PointId = triangulation::VertexIndex;
+inline constexpr PointId kNoPoint = triangulation::kNoVertex;
+inline constexpr double kNever = std::numeric_limits<double>::infinity();
+
+/// How the reinsertion tolerance τ is measured (thesis Eq. 10.1).
+enum class ToleranceMode {
+  Absolute,  ///< |measured − predicted| ≤ τ metres (SPEC §2.3, the default)
+  Relative,  ///< |measured − predicted| / |measured| ≤ τ (the thesis' form, unitless)
+};
+
+struct KineticConfig {
+  /// Event-time threshold H (s, > 0): failures later than now + H are not computed;
+  /// the certificate is re-examined at now + H instead (thesis §10.4, SPEC §2.4).
+  double horizon_s = kNever;
+  /// Reinsertion tolerance τ (metres, or unitless in Relative mode), ≥ 0.
+  double tolerance = 0.0;
+  ToleranceMode tolerance_mode = ToleranceMode::Absolute;
+  /// Solve a new certificate only up to the earliest event of its two triangles (§8.3).
+  bool reduce_redundant_events = true;
+  /// Coincident points are kept as twins of one triangulation vertex until they are
+  /// this far apart (metres, > 0).
+  double twin_release_distance_m = 1e-3;
+};
+
+/// Counters an engine user can read. Events are certificate failures.
+struct KineticStatistics {
+  std::uint64_t certificates_solved = 0;  ///< Sturm solves run
+  std::uint64_t events_computed = 0;      ///< failures found and scheduled
+  std::uint64_t events_executed = 0;      ///< failures that flipped an edge
+  std::uint64_t events_discarded = 0;     ///< scheduled failures descheduled before their time
+  std::uint64_t events_early = 0;         ///< popped before the exact predicate agreed; re-solved
+  std::uint64_t tangencies_ignored = 0;   ///< even-multiplicity roots (no event, Lemma 6)
+  std::uint64_t renewals = 0;             ///< expired windows re-examined (threshold or §8.3 clip)
+  std::uint64_t insertions = 0;
+  std::uint64_t removals = 0;
+  std::uint64_t updates = 0;
+  std::uint64_t velocity_updates = 0;     ///< updates within τ: velocity changed, position kept
+  std::uint64_t reinsertions = 0;         ///< updates beyond τ: removed and reinserted
+  std::uint64_t repairs = 0;              ///< defects found by audits or degenerate events and fixed
+  std::uint64_t repair_flips = 0;
+  std::uint64_t repair_reinsertions = 0;
+  std::uint64_t rebuilds = 0;             ///< full retriangulations (last-resort repair)
+  std::uint64_t twins_created = 0;        ///< points found at exactly another point's position
+  std::uint64_t twins_released = 0;
+  std::size_t queue_now = 0;              ///< failures scheduled now
+  std::size_t queue_max = 0;
+  std::size_t renewals_queued = 0;        ///< renewal entries scheduled now
+  double queue_sum = 0.0;                 ///< Σ queue_now over samples (one per advance)
+  std::uint64_t queue_samples = 0;
+  double queue_mean() const { return queue_samples ? queue_sum / static_cast<double>(queue_samples) : 0.0; }
+};
+
+/// What update() did.
+enum class UpdateKind { VelocityOnly, Reinserted };
+
+/// Result of an audit at the current time.
+struct KineticAudit {
+  std::size_t violations_found = 0;
+  std::size_t violations_unrepaired = 0;
+};
+
+class KineticDelaunay final : private triangulation::FaceObserver {
+ public:
+  /// `start_time` in seconds, on any epoch the caller keeps consistently.
+  explicit KineticDelaunay(const KineticConfig& config = {}, double start_time = 0.0);
+  KineticDelaunay(const KineticDelaunay&) = delete;
+  KineticDelaunay& operator=(const KineticDelaunay&) = delete;
+
+  /// Processes every event up to time t (s, ≥ now()) in time order; now() becomes t.
+  void advance(double t);
+  double now() const { return now_; }
+
+  /// Adds a point at position p (m) moving at velocity v (m/s) at time t (≥ now()).
+  PointId insert(double t, Point2 p, Vector2 v);
+  /// Removes a point at time t (≥ now()).
+  void remove(PointId id, double t);
+  /// A new measurement of a point at time t (≥ now()): within the tolerance the
+  /// predicted position is kept and only the velocity changes; beyond it the point is
+  /// removed and reinserted at p (Eq. 10.1).
+  UpdateKind update(PointId id, double t, Point2 p, Vector2 v);
+
+  bool contains(PointId id) const;
+  std::size_t size() const { return live_points_; }
+  /// Model position at time t (m): the last accepted position extrapolated linearly.
+  Point2 position(PointId id, double t) const { return dt_.trajectory(id).at(t); }
+  Point2 position_now(PointId id) const { return dt_.trajectory(id).at(now_); }
+  Vector2 velocity(PointId id) const { return dt_.trajectory(id).velocity; }
+
+  /// Calls f(neighbour) for every Delaunay neighbour of id, counting twins (points at
+  /// the same place, not yet separated) as neighbours of each other and of the
+  /// neighbours of their host.
+  template <class F>
+  void for_each_neighbor(PointId id, F&& f) const {
+    const PointId vertex = host_of(id);
+    if (vertex != id) f(vertex);
+    dt_.neighbors(vertex, scratch_neighbors_);
+    for (const PointId w : scratch_neighbors_) {
+      f(w);
+      for (const PointId t : twins_of(w)) f(t);
+    }
+    for (const PointId t : twins_of(vertex))
+      if (t != id) f(t);
+  }
+  /// The triangulation vertex that stands for id (id itself unless it is a twin).
+  PointId host_of(PointId id) const { return twin_host_[id] == kNoPoint ? id : twin_host_[id]; }
+  const std::vector<PointId>& twins_of(PointId vertex) const;
+
+  /// Checks the triangulation at now() with exact predicates (every face positively
+  /// oriented, every edge locally Delaunay, hull convex) and repairs what it finds.
+  KineticAudit audit_and_repair();
+  /// Combinatorial and geometric validity at now(), without repairing.
+  bool is_valid() const;
+
+  const KineticStatistics& statistics() const { return stats_; }
+  const KineticConfig& config() const { return config_; }
+  const triangulation::DelaunayTriangulation& triangulation() const { return dt_; }
+  /// Finite Delaunay edges at now() between triangulation vertices.
+  std::vector<std::pair<PointId, PointId>> edges() const { return dt_.finite_edges(); }
+
+ private:
+  enum class EntryKind : std::uint8_t { None, Failure, Renewal, TwinRelease };
+  struct Entry {
+    double time;
+    std::uint64_t seq;
+    std::uint32_t subject;  // face, or point for TwinRelease
+    std::uint8_t edge;
+    EntryKind kind;
+    std::uint16_t retries;
+  };
+  struct EntryLater {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.time > b.time || (a.time == b.time && a.seq > b.seq);
+    }
+  };
+  /// Per-face record of what is scheduled for each of its edges (both faces of an
+  /// edge hold the same record).
+  struct FaceSchedule {
+    std::array<double, 3> time{kNever, kNever, kNever};
+    std::array<std::uint64_t, 3> seq{0, 0, 0};
+    std::array<EntryKind, 3> kind{EntryKind::None, EntryKind::None, EntryKind::None};
+  };
+
+  void face_created(triangulation::FaceIndex f) override;
+  void face_destroyed(triangulation::FaceIndex f) override;
+
+  void set_now(double t);
+  void execute(const Entry& e);
+  void execute_failure(const Entry& e);
+  void schedule_dirty_faces();
+  void solve_edge(triangulation::FaceIndex f, int i, double from_offset, std::uint16_t retries);
+  Polynomial edge_certificate(triangulation::FaceIndex f, int i) const;
+  double earliest_failure(triangulation::FaceIndex f) const;
+  void clear_edge(triangulation::FaceIndex f, int i, bool count_discard);
+  void push(double time, std::uint32_t subject, int edge, EntryKind kind, std::uint16_t retries);
+  bool is_live(const Entry& e) const;
+  void compact_queue();
+  void reschedule_star(PointId vertex);
+  void attach_point(PointId id);
+  void detach_point(PointId id);
+  void make_twin(PointId id, PointId host);
+  void unlink_twin(PointId id);
+  void schedule_twin_release(PointId id);
+  void repair_around(const std::vector<PointId>& vertices);
+  void adopt_evicted_duplicates();
+  void mark_all_faces_dirty();
+
+  KineticConfig config_;
+  double now_;
+  triangulation::DelaunayTriangulation dt_;
+  std::vector<FaceSchedule> schedule_;
+  std::vector<Entry> heap_;
+  std::uint64_t next_seq_ = 1;
+  std::vector<std::pair<triangulation::FaceIndex, std::uint32_t>> dirty_faces_;
+  std::vector<std::uint32_t> dirty_mark_;
+  std::uint32_t dirty_round_ = 0;
+  std::vector<PointId> twin_host_;
+  std::vector<std::vector<PointId>> twins_;
+  std::vector<std::uint64_t> release_seq_;
+  std::vector<bool> live_;
+  std::size_t live_points_ = 0;
+  KineticStatistics stats_;
+  mutable std::vector<PointId> scratch_neighbors_;
+  std::vector<triangulation::FaceIndex> scratch_faces_;
+};
+
+}  // namespace kew::kinetic

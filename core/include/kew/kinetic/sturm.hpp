@@ -1,0 +1,140 @@
+#pragma once
+// Real-root isolation for certificate polynomials (degree ≤ 4) with Sturm sequences
+// (thesis §7.4.3, Table 8.1, Alg. 4). The engine only ever asks one question, "when does
+// this certificate first become violated?", so the design answers it by counting roots
+// before computing any, and by computing at most the one root that is the answer.
+//
+// Time is the engine's local time in seconds (SPEC §4): t = 0 is "now".
+//
+// Tolerance model. Coefficients are doubles, so a polynomial that "should" have a double
+// root (a tangency, Lemma 6) usually has, as stored, two very close roots or a very narrow
+// complex pair. The Sturm sequence decides: a remainder coefficient that is smaller than
+// kSturmRelativeTolerance times the magnitude of the terms that cancelled to produce it is
+// rounding noise and is set to zero. Consequently two real roots closer than roughly
+// sqrt(kSturmRelativeTolerance) times the polynomial's root scale (≈ 1e-5 relative) are
+// treated as one double root: no crossing. Either reading is a valid description of the
+// stored coefficients up to their rounding; this one never flips on a tangency.
+
+#include <array>
+#include <vector>
+
+#include "kew/kinetic/polynomial.hpp"
+
+namespace kew::kinetic {
+
+/// A remainder coefficient below this fraction of the magnitude of the terms that
+/// produced it (cancellation scale) is treated as zero. Exact double roots expanded in
+/// double and scaled by up to 1e±20 leave remainders ~1e-13 of that scale; genuinely
+/// distinct roots 1e-4 apart (relative) leave ~1e-8. See tests/unit/test_sturm.cpp.
+inline constexpr double kSturmRelativeTolerance = 2e-10;
+
+/// A leading coefficient whose term stays below this fraction of the others on the disk
+/// holding their roots is dropped: it only places a root ~1e10 times farther out than the
+/// rest, and is in practice the rounding residue of a term that cancels exactly.
+inline constexpr double kNegligibleLeadingTermTolerance = 1e-10;
+
+/// Roots in (lo, lo + kStartToleranceSeconds] are treated as roots exactly at lo by
+/// first_positive_crossing: a certificate rebuilt at an event time has a root at 0 that
+/// rounding may push a few femtoseconds into the future, and that root must not be
+/// reported as a new event nor make the certificate look violated.
+inline constexpr double kStartToleranceSeconds = 1e-9;
+
+/// Sturm sequence of a polynomial of degree ≤ 4 (thesis Eq. 7.8), built with a relative
+/// tolerance so that remainders that vanish up to rounding are treated as zero.
+///
+/// Each stored element is a positive multiple of the textbook element (scaled so its
+/// largest |coefficient| is 1), which leaves every sign, and so every count, unchanged.
+/// The variable is the caller's t (seconds). No heap allocation.
+class SturmSequence {
+ public:
+  static constexpr int kMaxSize = Polynomial::kMaxDegree + 1;
+
+  /// p: any polynomial of degree ≤ 4 with finite coefficients (any magnitude).
+  /// The zero polynomial gives a one-element sequence {0} that counts no roots;
+  /// a nonzero constant gives {c}.
+  explicit SturmSequence(const Polynomial& p);
+
+  /// Number of polynomials m (1..5).
+  int size() const { return size_; }
+  /// f_{i+1} for i in [0, size()): operator[](0) is f (normalised), operator[](1) is f'.
+  const Polynomial& operator[](int i) const;
+  /// f_m, the gcd of f and f' up to a constant: its roots are exactly the multiple roots
+  /// of f, each with multiplicity decreased by one.
+  const Polynomial& last() const { return (*this)[size_ - 1]; }
+
+  /// Degree of f (-1 for the zero polynomial).
+  int degree() const { return degrees_[0]; }
+  /// Degree of f_m: 0 when every root of f (real or complex) is simple, -1 for f = 0.
+  int gcd_degree() const { return degrees_[size_ - 1]; }
+  /// Every real root of f lies in the open interval (-root_bound(), root_bound()); seconds.
+  /// Fujiwara's bound rounded up to a power of two.
+  double root_bound() const { return root_bound_; }
+
+  /// Number of sign changes V(x) in the sequence evaluated at x (zeros ignored); x in
+  /// seconds, may be ±infinity. Non-increasing in x; it drops by one at each distinct root.
+  int sign_changes(double x) const;
+  /// Number of distinct real roots in the half-open interval (a, b] (seconds; a, b may be
+  /// infinite). 0 when a ≥ b.
+  int count_distinct_roots(double a, double b) const;
+
+  /// Sign (-1, 0, +1) of the leading coefficient of f.
+  int leading_sign() const { return leading_sign_; }
+
+ private:
+  void compute_changes_at_infinity();
+
+  std::array<Polynomial, kMaxSize> elements_{};
+  std::array<int, kMaxSize> degrees_{-1, -1, -1, -1, -1};
+  // f_i / f_m, filled only when gcd_degree() > 0 (left uninitialised otherwise: this
+  // constructor runs for every certificate).
+  std::array<std::array<double, Polynomial::kMaxDegree + 1>, kMaxSize> reduced_;
+  std::array<int, kMaxSize> reduced_degrees_;
+  int size_ = 1;
+  int changes_at_plus_infinity_ = 0;
+  int changes_at_minus_infinity_ = 0;
+  int leading_sign_ = 0;
+  double root_bound_ = 1.0;
+};
+
+/// A distinct real root: t in seconds, multiplicity in 1..4.
+struct Root {
+  double t;
+  int multiplicity;
+};
+
+/// All distinct real roots of p in (a, b] (seconds; a, b may be infinite) with their
+/// multiplicities, ascending. Empty for the zero polynomial and for constants.
+/// Used by tests and diagnostics; the engine uses first_positive_crossing.
+std::vector<Root> real_roots(const Polynomial& p, double a, double b);
+
+/// Multiset of the multiplicities of all real roots of p, sorted descending, derived as
+/// in Table 8.1 from the Sturm sequence and the roots of f_m (e.g. {2,1} for
+/// (t-1)^2 (t-3), {} for (t^2+1)^2). Empty for the zero polynomial and for constants.
+std::vector<int> real_root_multiplicities(const Polynomial& p);
+
+/// Result of first_positive_crossing; times in seconds.
+struct Crossing {
+  bool found = false;              // an odd-multiplicity root in (lo, hi] where p goes from < 0 to > 0
+  double time = 0.0;               // its time when found
+  bool violated_at_start = false;  // p > 0 immediately after lo (already violated): found = false then
+  int tangencies = 0;              // even-multiplicity roots met in (lo, time] (or (lo, hi] if none found)
+  int roots_counted = 0;           // distinct roots counted by the Sturm sequence on (lo, hi]
+};
+
+/// The first time in (lo, hi] at which p changes sign from negative to positive at a root
+/// of odd multiplicity (the certificate becomes violated). lo is finite (usually 0 = now),
+/// hi > lo may be +infinity; seconds.
+///
+/// - The zero polynomial never crosses and is never violated.
+/// - Even-multiplicity roots are tangencies (thesis Lemma 6): counted, never crossings.
+/// - Odd roots where p goes from positive to negative are not crossings.
+/// - Roots in (lo, lo + start_tolerance] count as roots at lo. violated_at_start tells
+///   whether p > 0 just after them; a root at lo where p goes + → - is simply ignored.
+/// - Counts roots with the Sturm sequence first and returns as soon as the answer is
+///   known: no root is computed when (lo, hi] holds none, or when p is already violated,
+///   and at most one root is located otherwise (unless p has multiple roots).
+/// No heap allocation.
+Crossing first_positive_crossing(const Polynomial& p, double lo, double hi,
+                                 double start_tolerance = kStartToleranceSeconds);
+
+}  // namespace kew::kinetic

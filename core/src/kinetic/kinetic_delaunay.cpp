@@ -1,0 +1,572 @@
+#include "kew/kinetic/kinetic_delaunay.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "kew/kinetic/certificate.hpp"
+#include "kew/kinetic/sturm.hpp"
+
+namespace kew::kinetic {
+
+using triangulation::AttachResult;
+using triangulation::ccw;
+using triangulation::cw;
+using triangulation::EdgeState;
+using triangulation::Face;
+using triangulation::FaceIndex;
+using triangulation::kInfiniteVertex;
+using triangulation::kNoFace;
+using triangulation::Trajectory;
+
+namespace {
+/// Early pops are re-solved from now + δ, δ doubling per retry from 1 ns; after
+/// kMaxRetries the root is taken for numerical noise around a tangency.
+constexpr double kFirstRetryDelay = 1e-9;
+constexpr std::uint16_t kMaxRetries = 30;
+const std::vector<PointId> kNoTwins;
+}  // namespace
+
+KineticDelaunay::KineticDelaunay(const KineticConfig& config, double start_time)
+    : config_(config), now_(start_time) {
+  dt_.set_time(start_time);
+  dt_.tds().set_observer(this);
+  twin_host_.push_back(kNoPoint);
+  twins_.emplace_back();
+  release_seq_.push_back(0);
+  live_.push_back(false);
+}
+
+const std::vector<PointId>& KineticDelaunay::twins_of(PointId vertex) const {
+  return vertex < twins_.size() ? twins_[vertex] : kNoTwins;
+}
+
+bool KineticDelaunay::contains(PointId id) const { return id < live_.size() && live_[id]; }
+
+// ---------------------------------------------------------------------------------
+// Face bookkeeping
+
+void KineticDelaunay::face_created(FaceIndex f) {
+  if (f >= schedule_.size()) schedule_.resize(f + 1);
+  schedule_[f] = FaceSchedule{};
+  const std::uint32_t generation = dt_.tds().face(f).generation;
+  dirty_faces_.emplace_back(f, generation);
+}
+
+void KineticDelaunay::face_destroyed(FaceIndex f) {
+  for (int i = 0; i < 3; ++i) clear_edge(f, i, true);
+}
+
+void KineticDelaunay::clear_edge(FaceIndex f, int i, bool count_discard) {
+  FaceSchedule& s = schedule_[f];
+  const EntryKind kind = s.kind[static_cast<unsigned>(i)];
+  if (kind == EntryKind::None) return;
+  if (kind == EntryKind::Failure) {
+    --stats_.queue_now;
+    if (count_discard) ++stats_.events_discarded;
+  } else {
+    --stats_.renewals_queued;
+  }
+  // The mirror side holds the same record.
+  const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(i)];
+  const int j = dt_.tds().mirror_index(f, i);
+  for (auto [face, edge] : {std::pair{f, i}, std::pair{g, j}}) {
+    FaceSchedule& r = schedule_[face];
+    r.kind[static_cast<unsigned>(edge)] = EntryKind::None;
+    r.time[static_cast<unsigned>(edge)] = kNever;
+    r.seq[static_cast<unsigned>(edge)] = 0;
+  }
+}
+
+double KineticDelaunay::earliest_failure(FaceIndex f) const {
+  const FaceSchedule& s = schedule_[f];
+  double t = kNever;
+  for (int i = 0; i < 3; ++i)
+    if (s.kind[static_cast<unsigned>(i)] == EntryKind::Failure) t = std::min(t, s.time[static_cast<unsigned>(i)]);
+  return t;
+}
+
+void KineticDelaunay::push(double time, std::uint32_t subject, int edge, EntryKind kind, std::uint16_t retries) {
+  const std::uint64_t seq = next_seq_++;
+  heap_.push_back({time, seq, subject, static_cast<std::uint8_t>(edge), kind, retries});
+  std::push_heap(heap_.begin(), heap_.end(), EntryLater{});
+  if (kind == EntryKind::TwinRelease) {
+    release_seq_[subject] = seq;
+    return;
+  }
+  const FaceIndex f = subject;
+  const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(edge)];
+  const int j = dt_.tds().mirror_index(f, edge);
+  for (auto [face, e] : {std::pair{f, edge}, std::pair{g, j}}) {
+    FaceSchedule& r = schedule_[face];
+    r.kind[static_cast<unsigned>(e)] = kind;
+    r.time[static_cast<unsigned>(e)] = time;
+    r.seq[static_cast<unsigned>(e)] = seq;
+  }
+  if (kind == EntryKind::Failure) {
+    ++stats_.queue_now;
+    stats_.queue_max = std::max(stats_.queue_max, stats_.queue_now);
+  } else {
+    ++stats_.renewals_queued;
+  }
+}
+
+bool KineticDelaunay::is_live(const Entry& e) const {
+  if (e.kind == EntryKind::TwinRelease) return release_seq_[e.subject] == e.seq;
+  return dt_.tds().face(e.subject).alive && schedule_[e.subject].seq[e.edge] == e.seq;
+}
+
+void KineticDelaunay::compact_queue() {
+  const std::size_t live = stats_.queue_now + stats_.renewals_queued;
+  if (heap_.size() < 1024 || heap_.size() < 4 * live) return;
+  std::erase_if(heap_, [this](const Entry& e) { return !is_live(e); });
+  std::make_heap(heap_.begin(), heap_.end(), EntryLater{});
+}
+
+// ---------------------------------------------------------------------------------
+// Certificates
+
+Polynomial KineticDelaunay::edge_certificate(FaceIndex f, int i) const {
+  // Mirrors DelaunayTriangulation::edge_state: positive exactly when violated.
+  const auto& tds = dt_.tds();
+  const Face& face = tds.face(f);
+  const FaceIndex g = face.neighbor[static_cast<unsigned>(i)];
+  const int j = tds.mirror_index(f, i);
+  const PointId c = face.vertex[static_cast<unsigned>(i)];
+  const PointId a = face.vertex[static_cast<unsigned>(ccw(i))];
+  const PointId b = face.vertex[static_cast<unsigned>(cw(i))];
+  const PointId d = tds.face(g).vertex[static_cast<unsigned>(j)];
+  const auto& T = [this](PointId v) -> const Trajectory& { return dt_.trajectory(v); };
+  if (a == kInfiniteVertex || b == kInfiniteVertex) {
+    if (c == d) return {};
+    const PointId x = a == kInfiniteVertex ? b : a;
+    Polynomial turn = a == kInfiniteVertex ? orientation_polynomial(T(x), T(c), T(d), now_)
+                                           : orientation_polynomial(T(x), T(d), T(c), now_);
+    // Hull vertices moving on one exact line: certify their order instead.
+    if (turn.is_zero()) return dot_polynomial(T(x), T(c), T(d), now_);
+    return turn;
+  }
+  if (c == kInfiniteVertex && d == kInfiniteVertex) return {};
+  if (d == kInfiniteVertex) return -1.0 * orientation_polynomial(T(a), T(b), T(c), now_);
+  if (c == kInfiniteVertex) return -1.0 * orientation_polynomial(T(b), T(a), T(d), now_);
+  return incircle_polynomial(T(a), T(b), T(c), T(d), now_);
+}
+
+void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::uint16_t retries) {
+  const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(i)];
+  double end = now_ + config_.horizon_s;
+  if (config_.reduce_redundant_events) end = std::min({end, earliest_failure(f), earliest_failure(g)});
+  const Polynomial certificate = edge_certificate(f, i);
+  if (certificate.is_zero()) return;  // never fails (e.g. a segment of a flat chain)
+  ++stats_.certificates_solved;
+  const double window = end - now_;
+  if (!(window > from_offset)) {
+    // Nothing to examine before the window closes: re-examine when it does.
+    if (std::isfinite(end)) push(std::max(end, now_), f, i, EntryKind::Renewal, 0);
+    return;
+  }
+  const Crossing crossing = first_positive_crossing(certificate, from_offset, window);
+  stats_.tangencies_ignored += static_cast<std::uint64_t>(crossing.tangencies);
+  if (crossing.violated_at_start || crossing.found) {
+    const double at = crossing.violated_at_start ? now_ + from_offset : now_ + crossing.time;
+    ++stats_.events_computed;
+    push(at, f, i, EntryKind::Failure, retries);
+    return;
+  }
+  if (std::isfinite(end)) push(end, f, i, EntryKind::Renewal, 0);
+}
+
+void KineticDelaunay::schedule_dirty_faces() {
+  if (dirty_faces_.empty()) return;
+  ++dirty_round_;
+  if (dirty_mark_.size() < schedule_.size()) dirty_mark_.resize(schedule_.size(), 0);
+  const auto& tds = dt_.tds();
+  // Keep only faces still alive in the generation they were created in.
+  std::size_t kept = 0;
+  for (const auto& [f, generation] : dirty_faces_) {
+    if (!tds.face(f).alive || tds.face(f).generation != generation || dirty_mark_[f] == dirty_round_) continue;
+    dirty_mark_[f] = dirty_round_;
+    dirty_faces_[kept++] = {f, generation};
+  }
+  dirty_faces_.resize(kept);
+  const auto faces = std::move(dirty_faces_);
+  dirty_faces_.clear();
+  for (const auto& [f, generation] : faces) {
+    for (int i = 0; i < 3; ++i) {
+      const FaceIndex g = tds.face(f).neighbor[static_cast<unsigned>(i)];
+      // An edge between two dirty faces is solved once, from the smaller index.
+      if (dirty_mark_[g] == dirty_round_ && g < f) continue;
+      if (schedule_[f].kind[static_cast<unsigned>(i)] != EntryKind::None) clear_edge(f, i, true);
+      solve_edge(f, i, 0.0, 0);
+    }
+  }
+}
+
+void KineticDelaunay::mark_all_faces_dirty() {
+  const auto& tds = dt_.tds();
+  for (FaceIndex f = 0; f < tds.face_capacity(); ++f)
+    if (tds.face(f).alive) dirty_faces_.emplace_back(f, tds.face(f).generation);
+}
+
+// ---------------------------------------------------------------------------------
+// Time
+
+void KineticDelaunay::set_now(double t) {
+  now_ = t;
+  dt_.set_time(t);
+}
+
+void KineticDelaunay::advance(double t) {
+  assert(!(t < now_) && "the engine's clock only moves forward");
+  if (t < now_) t = now_;
+  while (!heap_.empty() && heap_.front().time <= t) {
+    std::pop_heap(heap_.begin(), heap_.end(), EntryLater{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
+    if (!is_live(e)) continue;
+    set_now(std::max(now_, e.time));
+    execute(e);
+    schedule_dirty_faces();
+  }
+  set_now(t);
+  stats_.queue_sum += static_cast<double>(stats_.queue_now);
+  ++stats_.queue_samples;
+  compact_queue();
+}
+
+void KineticDelaunay::execute(const Entry& e) {
+  switch (e.kind) {
+    case EntryKind::Failure:
+      execute_failure(e);
+      return;
+    case EntryKind::Renewal:
+      ++stats_.renewals;
+      clear_edge(e.subject, e.edge, false);
+      solve_edge(e.subject, e.edge, 0.0, 0);
+      return;
+    case EntryKind::TwinRelease: {
+      release_seq_[e.subject] = 0;
+      const PointId id = e.subject;
+      const PointId host = twin_host_[id];
+      if (host == kNoPoint) return;
+      if (dt_.position(id) == dt_.position(host)) {
+        schedule_twin_release(id);  // still coincident after rounding: look again later
+        return;
+      }
+      unlink_twin(id);
+      ++stats_.twins_released;
+      attach_point(id);
+      return;
+    }
+    case EntryKind::None:
+      return;
+  }
+}
+
+void KineticDelaunay::execute_failure(const Entry& e) {
+  const FaceIndex f = e.subject;
+  const int i = e.edge;
+  clear_edge(f, i, false);
+  const Face& quad = dt_.tds().face(f);
+  const FaceIndex across = quad.neighbor[static_cast<unsigned>(i)];
+  if (!dt_.is_positive(f) || !dt_.is_positive(across)) {
+    // A face of the quadrilateral is flat or inverted: points passed through each other
+    // (every certificate around them vanished at one instant). Repair locally.
+    std::vector<PointId> suspects(quad.vertex.begin(), quad.vertex.end());
+    suspects.push_back(dt_.tds().face(across).vertex[static_cast<unsigned>(dt_.tds().mirror_index(f, i))]);
+    repair_around(suspects);
+    return;
+  }
+  const EdgeState state = dt_.edge_state(f, i);
+  if (state != EdgeState::Violated) {
+    // The root was found a little before the exact predicates agree: look again just later.
+    ++stats_.events_early;
+    if (e.retries >= kMaxRetries) {
+      ++stats_.tangencies_ignored;
+      solve_edge(f, i, 1.0, 0);
+      return;
+    }
+    const double delay = std::ldexp(kFirstRetryDelay, e.retries);
+    solve_edge(f, i, delay, static_cast<std::uint16_t>(e.retries + 1));
+    return;
+  }
+  if (dt_.is_flippable(f, i)) {
+    dt_.tds().flip(f, i);
+    ++stats_.events_executed;
+    return;
+  }
+  // Violated but not flippable: the neighbourhood is degenerate (points passing through
+  // each other, collinear overtakes). Repair it locally.
+  const Face& face = dt_.tds().face(f);
+  const FaceIndex g = face.neighbor[static_cast<unsigned>(i)];
+  std::vector<PointId> suspects(face.vertex.begin(), face.vertex.end());
+  suspects.push_back(dt_.tds().face(g).vertex[static_cast<unsigned>(dt_.tds().mirror_index(f, i))]);
+  repair_around(suspects);
+}
+
+// ---------------------------------------------------------------------------------
+// Points
+
+PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
+  advance(t);
+  const PointId id = dt_.create_vertex(Trajectory{p, v, t});
+  if (id >= live_.size()) {
+    live_.resize(id + 1, false);
+    twin_host_.resize(id + 1, kNoPoint);
+    twins_.resize(id + 1);
+    release_seq_.resize(id + 1, 0);
+  }
+  live_[id] = true;
+  twin_host_[id] = kNoPoint;
+  twins_[id].clear();
+  release_seq_[id] = 0;
+  ++live_points_;
+  ++stats_.insertions;
+  attach_point(id);
+  return id;
+}
+
+void KineticDelaunay::remove(PointId id, double t) {
+  assert(contains(id));
+  advance(t);
+  ++stats_.removals;
+  detach_point(id);
+  live_[id] = false;
+  --live_points_;
+  dt_.destroy_vertex(id);
+}
+
+UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
+  assert(contains(id));
+  advance(t);
+  ++stats_.updates;
+  const Point2 predicted = dt_.position(id);
+  const double deviation = geometry::norm(p - predicted);
+  const double allowed =
+      config_.tolerance_mode == ToleranceMode::Absolute ? config_.tolerance : config_.tolerance * geometry::norm(p);
+  if (deviation <= allowed) {
+    // Keep the predicted position exactly, so the triangulation stays valid at now.
+    dt_.set_trajectory(id, Trajectory{predicted, v, now_});
+    ++stats_.velocity_updates;
+    if (twin_host_[id] != kNoPoint) {
+      schedule_twin_release(id);
+    } else {
+      reschedule_star(id);
+      for (const PointId w : twins_[id]) schedule_twin_release(w);
+    }
+    schedule_dirty_faces();
+    return UpdateKind::VelocityOnly;
+  }
+  ++stats_.reinsertions;
+  detach_point(id);
+  dt_.set_trajectory(id, Trajectory{p, v, now_});
+  attach_point(id);
+  return UpdateKind::Reinserted;
+}
+
+void KineticDelaunay::reschedule_star(PointId vertex) {
+  // Every certificate whose quadrilateral contains the vertex: all edges of its faces.
+  dt_.tds().incident_faces(vertex, scratch_faces_);
+  for (const FaceIndex f : scratch_faces_) {
+    for (int i = 0; i < 3; ++i) clear_edge(f, i, true);
+    dirty_faces_.emplace_back(f, dt_.tds().face(f).generation);
+  }
+}
+
+void KineticDelaunay::attach_point(PointId id) {
+  PointId same = kNoPoint;
+  AttachResult result = dt_.attach(id, &same);
+  if (result == AttachResult::NotDelaunay) {
+    // The neighbourhood is not Delaunay at now (a missed or degenerate event): repair, retry.
+    audit_and_repair();
+    result = dt_.attach(id, &same);
+    if (result == AttachResult::NotDelaunay) {
+      ++stats_.rebuilds;
+      ++stats_.repairs;
+      dt_.rebuild();
+      adopt_evicted_duplicates();
+      result = dt_.attach(id, &same);
+    }
+  }
+  if (result == AttachResult::Duplicate) make_twin(id, same);
+  adopt_evicted_duplicates();
+  schedule_dirty_faces();
+}
+
+void KineticDelaunay::detach_point(PointId id) {
+  if (twin_host_[id] != kNoPoint) {
+    unlink_twin(id);
+    return;
+  }
+  std::vector<PointId> orphans = std::move(twins_[id]);
+  twins_[id].clear();
+  if (!dt_.detach(id)) {
+    ++stats_.rebuilds;
+    ++stats_.repairs;
+  }
+  adopt_evicted_duplicates();
+  // Twins of a removed vertex take its place: the first is attached, the rest re-twin.
+  for (const PointId w : orphans) {
+    twin_host_[w] = kNoPoint;
+    release_seq_[w] = 0;
+    attach_point(w);
+  }
+  schedule_dirty_faces();
+}
+
+void KineticDelaunay::make_twin(PointId id, PointId host) {
+  host = host_of(host);
+  twin_host_[id] = host;
+  twins_[host].push_back(id);
+  ++stats_.twins_created;
+  schedule_twin_release(id);
+}
+
+void KineticDelaunay::unlink_twin(PointId id) {
+  const PointId host = twin_host_[id];
+  std::erase(twins_[host], id);
+  twin_host_[id] = kNoPoint;
+  release_seq_[id] = 0;
+}
+
+void KineticDelaunay::schedule_twin_release(PointId id) {
+  const PointId host = twin_host_[id];
+  release_seq_[id] = 0;
+  const Vector2 gap = dt_.position(id) - dt_.position(host);
+  const Vector2 drift = dt_.trajectory(id).velocity - dt_.trajectory(host).velocity;
+  const double speed2 = geometry::dot(drift, drift);
+  if (speed2 == 0.0) return;  // moving together: twins until one of them changes
+  // Smallest τ > 0 with |gap + drift·τ| = release distance.
+  const double r = config_.twin_release_distance_m;
+  const double b = geometry::dot(gap, drift);
+  const double c = geometry::dot(gap, gap) - r * r;
+  const double disc = std::max(0.0, b * b - speed2 * c);
+  const double tau = std::max((-b + std::sqrt(disc)) / speed2, kFirstRetryDelay);
+  push(now_ + tau, id, 0, EntryKind::TwinRelease, 0);
+}
+
+void KineticDelaunay::adopt_evicted_duplicates() {
+  auto& evicted = dt_.evicted_duplicates();
+  if (evicted.empty()) return;
+  const auto pairs = std::move(evicted);
+  evicted.clear();
+  for (const auto& [vertex, same] : pairs) {
+    // A rebuild found two vertices at one place: the evicted one becomes a twin, and
+    // its own twins follow it to the surviving host.
+    std::vector<PointId> carried = std::move(twins_[vertex]);
+    twins_[vertex].clear();
+    make_twin(vertex, same);
+    for (const PointId w : carried) {
+      twin_host_[w] = kNoPoint;
+      make_twin(w, same);
+      --stats_.twins_created;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// Robustness
+
+void KineticDelaunay::repair_around(const std::vector<PointId>& vertices) {
+  ++stats_.repairs;
+  auto& tds = dt_.tds();
+  std::vector<std::pair<FaceIndex, int>> seeds;
+  std::vector<PointId> reinsert;
+  for (const PointId v : vertices) {
+    if (v == kInfiniteVertex || !tds.is_attached(v)) continue;
+    tds.incident_faces(v, scratch_faces_);
+    for (const FaceIndex f : scratch_faces_) {
+      if (!dt_.is_positive(f))
+        for (const PointId w : tds.face(f).vertex)
+          if (w != kInfiniteVertex) reinsert.push_back(w);
+      for (int i = 0; i < 3; ++i) seeds.emplace_back(f, i);
+    }
+  }
+  std::sort(reinsert.begin(), reinsert.end());
+  reinsert.erase(std::unique(reinsert.begin(), reinsert.end()), reinsert.end());
+  if (reinsert.empty()) {
+    std::vector<std::pair<FaceIndex, int>> stuck;
+    stats_.repair_flips += dt_.make_locally_delaunay(seeds, &stuck);
+    if (stuck.empty()) return;
+    for (const auto& [f, i] : stuck) {
+      if (!tds.face(f).alive) continue;
+      for (const PointId w : tds.face(f).vertex)
+        if (w != kInfiniteVertex) reinsert.push_back(w);
+    }
+    std::sort(reinsert.begin(), reinsert.end());
+    reinsert.erase(std::unique(reinsert.begin(), reinsert.end()), reinsert.end());
+  }
+  // Take the suspects out one at a time, each time only while the rest of their
+  // neighbourhood is valid, then put them back at their current positions.
+  for (const PointId v : reinsert) {
+    if (!tds.is_attached(v) && !dt_.is_attached(v)) continue;
+    ++stats_.repair_reinsertions;
+    std::vector<PointId> orphans = std::move(twins_[v]);
+    twins_[v].clear();
+    if (!dt_.detach(v)) ++stats_.rebuilds;
+    adopt_evicted_duplicates();
+    PointId same = kNoPoint;
+    AttachResult result = dt_.attach(v, &same);
+    if (result == AttachResult::NotDelaunay) {
+      ++stats_.rebuilds;
+      dt_.rebuild();
+      adopt_evicted_duplicates();
+      result = dt_.attach(v, &same);
+    }
+    if (result == AttachResult::Duplicate) make_twin(v, same);
+    for (const PointId w : orphans) {
+      twin_host_[w] = kNoPoint;
+      attach_point(w);
+    }
+  }
+  adopt_evicted_duplicates();
+  if (dt_.audit().violations() != 0) {
+    ++stats_.rebuilds;
+    dt_.rebuild();
+    adopt_evicted_duplicates();
+  }
+}
+
+KineticAudit KineticDelaunay::audit_and_repair() {
+  KineticAudit result;
+  const auto report = dt_.audit();
+  result.violations_found = report.violations();
+  if (result.violations_found == 0) return result;
+  stats_.repairs += result.violations_found;
+  // Local first: Lawson flips on violated edges, reinsertion around inverted faces.
+  std::vector<PointId> suspects;
+  const auto& tds = dt_.tds();
+  if (report.combinatorially_valid) {
+    for (FaceIndex f = 0; f < tds.face_capacity(); ++f) {
+      if (!tds.face(f).alive) continue;
+      bool bad = !dt_.is_positive(f);
+      for (int i = 0; i < 3 && !bad; ++i) bad = dt_.edge_state(f, i) == EdgeState::Violated;
+      if (bad) suspects.insert(suspects.end(), tds.face(f).vertex.begin(), tds.face(f).vertex.end());
+    }
+    std::sort(suspects.begin(), suspects.end());
+    suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+    --stats_.repairs;  // repair_around counts itself
+    repair_around(suspects);
+  }
+  if (dt_.audit().violations() != 0) {
+    ++stats_.rebuilds;
+    dt_.rebuild();
+    adopt_evicted_duplicates();
+  }
+  result.violations_unrepaired = dt_.audit().violations();
+  schedule_dirty_faces();
+  return result;
+}
+
+bool KineticDelaunay::is_valid() const {
+  if (!dt_.is_valid()) return false;
+  // Every live point is either a triangulation vertex or a twin of one.
+  for (PointId id = 1; id < live_.size(); ++id) {
+    if (!live_[id]) continue;
+    const PointId host = twin_host_[id];
+    if (host == kNoPoint ? !dt_.is_attached(id) : (!live_[host] || twin_host_[host] != kNoPoint)) return false;
+  }
+  return true;
+}
+
+}  // namespace kew::kinetic
