@@ -33,10 +33,9 @@ constexpr double kNoiseTolerance = 64.0 * std::numeric_limits<double>::epsilon()
 constexpr double kCandidateTolerance = 1e-6;
 // The time scale below which "far" means nothing to the engine (see leading_term_is_negligible).
 constexpr double kUnitTimeSeconds = 1.0;
-#ifndef BT
-#define BT 1e-12
-#endif
-constexpr double kDoubleRootBackwardTolerance = BT;
+// |f(r)| below this fraction of Σ|c_i||r|^i at a critical point r of f: f has a double root
+// there up to the rounding of its coefficients (a few hundred ulps).
+constexpr double kDoubleRootBackwardTolerance = 1e-13;
 // Within this relative distance of zero, f_m's value no longer tells its sign, so the
 // sequence itself is unreliable there and the reduced one is used (see sign_changes).
 constexpr double kNearMultipleRootTolerance = 1e-8;
@@ -220,12 +219,12 @@ bool leading_term_is_negligible(const Coefficients& c, int degree) {
   return std::abs(coefficient_at(c, degree)) * bound <= kNegligibleLeadingTermTolerance * others;
 }
 
-// Whether f has a double root near `estimate` up to rounding: Newton on f' from the estimate
-// finds the critical point r, and f(r) must vanish relative to the size of its terms (the
-// backward error). Deciding this way rather than on the chain's last remainder matters
-// because the chain amplifies rounding: a double root 40 times farther from 0 than the
-// other roots leaves a remainder of ~1e-9 of its scale, yet f(r) is ~1e-16 of its terms.
-bool has_double_root_near(const Coefficients& f, int degree, double estimate) {
+// Backward error of "f has a double root near `estimate`": Newton on f' from the estimate
+// finds the critical point r, and |f(r)| relative to the size of its terms says how far f
+// is from having a double root there. Better conditioned than the chain's last remainder,
+// which amplifies rounding: a double root 40 times farther from 0 than the other roots
+// leaves a remainder of ~1e-9 of its scale, yet f(r) is ~1e-16 of its terms.
+double double_root_backward_error(const Coefficients& f, int degree, double estimate) {
   Coefficients derivative{};
   for (int i = 1; i <= degree; ++i)
     coefficient_at(derivative, i - 1) = static_cast<double>(i) * coefficient_at(f, i);
@@ -240,10 +239,11 @@ bool has_double_root_near(const Coefficients& f, int degree, double estimate) {
     if (value == 0.0 || slope == 0.0) break;
     const double step = value / slope;
     x -= step;
-    if (!std::isfinite(x)) return false;
+    if (!std::isfinite(x)) return kInfinity;
     if (std::abs(step) <= 4.0 * kEpsilon * std::abs(x)) break;
   }
-  return std::abs(evaluate(f, degree, x)) <= kDoubleRootBackwardTolerance * magnitude_of_terms(f, degree, x);
+  const double magnitude = magnitude_of_terms(f, degree, x);
+  return magnitude > 0.0 ? std::abs(evaluate(f, degree, x)) / magnitude : 0.0;
 }
 
 // Quotient of a by b (deg b ≤ deg a), remainder dropped: used only where b divides a up
@@ -304,8 +304,8 @@ SturmSequence::SturmSequence(const Polynomial& p) {
     const unsigned current = static_cast<unsigned>(size_ - 1);
     const unsigned next = static_cast<unsigned>(size_);
     // A linear current element is the gcd exactly when f has a double root at its root,
-    // which the backward-error test below decides far more reliably than the remainder;
-    // the remainder then only has to be small enough to make the test worth running.
+    // which a backward-error test on f decides more reliably than the remainder; the
+    // remainder then only has to be small enough to make the test worth running.
     const bool linear = degrees_[current] == 1;
     int next_degree = negated_remainder(chain[previous], degrees_[previous], chain[current], degrees_[current],
                                         linear ? kCandidateTolerance : kSturmRelativeTolerance, chain[next]);
@@ -313,9 +313,19 @@ SturmSequence::SturmSequence(const Polynomial& p) {
       // current looks like gcd(f, f'). A small remainder can also come from the chain's own
       // ill-conditioning, so confirm on f itself before believing it.
       Coefficients unused;
-      const bool confirmed =
-          linear ? has_double_root_near(f, degree, -coefficient_at(chain[current], 0) / coefficient_at(chain[current], 1))
-                 : negated_remainder(f, degree, chain[current], degrees_[current], kSturmRelativeTolerance, unused) < 0;
+      bool confirmed = false;
+      if (linear) {
+        // Either f is a double root up to a few hundred ulps, or the chain and f agree
+        // at the chain's own tolerance (clusters left by rounding a triple root).
+        const double backward = double_root_backward_error(
+            f, degree, -coefficient_at(chain[current], 0) / coefficient_at(chain[current], 1));
+        confirmed = backward <= kDoubleRootBackwardTolerance ||
+                    (backward <= kSturmRelativeTolerance &&
+                     negated_remainder(chain[previous], degrees_[previous], chain[current], degrees_[current],
+                                       kSturmRelativeTolerance, unused) < 0);
+      } else {
+        confirmed = negated_remainder(f, degree, chain[current], degrees_[current], kSturmRelativeTolerance, unused) < 0;
+      }
       if (confirmed) break;
       // Not a gcd: the small remainder is real. Keep all of it that is above pure noise.
       next_degree = negated_remainder(chain[previous], degrees_[previous], chain[current], degrees_[current],
