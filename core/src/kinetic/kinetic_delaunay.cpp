@@ -323,6 +323,7 @@ PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
   ++live_points_;
   ++stats_.insertions;
   attach_point(id);
+  advance(now_);  // failures found already due at now are executed before returning
   return id;
 }
 
@@ -334,6 +335,7 @@ void KineticDelaunay::remove(PointId id, double t) {
   live_[id] = false;
   --live_points_;
   dt_.destroy_vertex(id);
+  advance(now_);
 }
 
 UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
@@ -355,12 +357,14 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
       for (const PointId w : twins_[id]) schedule_twin_release(w);
     }
     schedule_dirty_faces();
+    advance(now_);
     return UpdateKind::VelocityOnly;
   }
   ++stats_.reinsertions;
   detach_point(id);
   dt_.set_trajectory(id, Trajectory{p, v, now_});
   attach_point(id);
+  advance(now_);
   return UpdateKind::Reinserted;
 }
 

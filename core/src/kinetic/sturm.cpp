@@ -29,13 +29,10 @@ constexpr int kMaxRootBoundExponent = 1000;
 // A remainder coefficient this close to its cancellation scale is indistinguishable from 0.
 constexpr double kNoiseTolerance = 64.0 * std::numeric_limits<double>::epsilon();
 // A constant remainder after a linear element below this fraction of its cancellation scale
-// is worth testing for a double root (see has_double_root_near); above it, it is not one.
+// is worth testing for a double root (see double_root_backward_error); above it, no.
 constexpr double kCandidateTolerance = 1e-6;
 // The time scale below which "far" means nothing to the engine (see leading_term_is_negligible).
 constexpr double kUnitTimeSeconds = 1.0;
-// |f(r)| below this fraction of Σ|c_i||r|^i at a critical point r of f: f has a double root
-// there up to the rounding of its coefficients (a few hundred ulps).
-constexpr double kDoubleRootBackwardTolerance = 1e-13;
 // Within this relative distance of zero, f_m's value no longer tells its sign, so the
 // sequence itself is unreliable there and the reduced one is used (see sign_changes).
 constexpr double kNearMultipleRootTolerance = 1e-8;
@@ -201,9 +198,10 @@ double magnitude_of_terms(const Coefficients& c, int degree, double x) {
 
 // A leading coefficient is negligible when, on the disk of radius B ≥ 1 s holding every
 // root of the lower-degree part, its term is below kNegligibleLeadingTermTolerance of the
-// others: its only effect is a root beyond ~B / tolerance ≥ 1e10 s. Such coefficients are what cancellation
-// leaves of terms that are exactly zero (e.g. the t^4 term of an incircle certificate when
-// only one point moves), and the far root they create would wreck the remainder chain.
+// others: its only effect is a root beyond ~B / tolerance ≥ 1e10 s. Such coefficients are
+// what cancellation leaves of terms that are exactly zero (e.g. the t^3 and t^4 terms of an
+// incircle certificate when only one point moves), and the far root they create would
+// wreck the remainder chain (a quotient of 1e18 cancels every digit of the remainder).
 bool leading_term_is_negligible(const Coefficients& c, int degree) {
   // The bound is at least one second: relative to roots near 0 every root is "far", and a
   // root at 3 s next to one at 1e-12 s is exactly the kind the engine must not lose.
