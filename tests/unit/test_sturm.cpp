@@ -161,8 +161,8 @@ TEST(SturmSequence, RootsExactlyAtIntervalEnds) {
   EXPECT_EQ(sequence.count_distinct_roots(-kInf, 1.0), 1);
   const std::vector<Root> roots = real_roots(p, 2.0, 4.0);
   ASSERT_EQ(roots.size(), 2u);
-  EXPECT_DOUBLE_EQ(roots[0].t, 3.0);
-  EXPECT_DOUBLE_EQ(roots[1].t, 4.0);
+  EXPECT_NEAR(roots[0].t, 3.0, 1e-12);
+  EXPECT_NEAR(roots[1].t, 4.0, 1e-12);
 }
 
 TEST(SturmLowDegree, Linear) {
@@ -171,12 +171,12 @@ TEST(SturmLowDegree, Linear) {
   EXPECT_EQ(real_root_multiplicities(p), std::vector<int>{1});
   const std::vector<Root> roots = real_roots(p, -kInf, kInf);
   ASSERT_EQ(roots.size(), 1u);
-  EXPECT_DOUBLE_EQ(roots[0].t, 1.5);
+  EXPECT_NEAR(roots[0].t, 1.5, 1e-12);
 
   const Crossing rising = first_positive_crossing(p, 0.0, kInf);
   EXPECT_TRUE(rising.found);
   EXPECT_FALSE(rising.violated_at_start);
-  EXPECT_DOUBLE_EQ(rising.time, 1.5);
+  EXPECT_NEAR(rising.time, 1.5, 1e-12);
   EXPECT_EQ(rising.roots_counted, 1);
 
   const Crossing falling = first_positive_crossing(-1.0 * p, 0.0, kInf);
@@ -189,7 +189,7 @@ TEST(SturmLowDegree, LinearWithExplicitLeadingZeros) {
   EXPECT_EQ(SturmSequence(p).degree(), 1);
   const Crossing c = first_positive_crossing(p, 0.0, 10.0);
   EXPECT_TRUE(c.found);
-  EXPECT_DOUBLE_EQ(c.time, 6.0);
+  EXPECT_NEAR(c.time, 6.0, 1e-12);
 }
 
 TEST(SturmLowDegree, Quadratic) {
@@ -204,7 +204,7 @@ TEST(SturmLowDegree, Quadratic) {
   EXPECT_EQ(real_root_multiplicities(touching), std::vector<int>{2});
   const std::vector<Root> roots = real_roots(touching, -kInf, kInf);
   ASSERT_EQ(roots.size(), 1u);
-  EXPECT_DOUBLE_EQ(roots[0].t, 2.0);
+  EXPECT_NEAR(roots[0].t, 2.0, 1e-12);
   EXPECT_EQ(roots[0].multiplicity, 2);
 
   EXPECT_TRUE(real_roots(complex_pair(1.0, 0.5), -kInf, kInf).empty());
@@ -230,6 +230,43 @@ TEST(SturmLowDegree, ConstantAndZero) {
   EXPECT_FALSE(c.found);
   EXPECT_FALSE(c.violated_at_start);
   EXPECT_EQ(c.roots_counted, 0);
+}
+
+TEST(SturmSequence, NegligibleLeadingTermIsRoundingResidue) {
+  // A t^3 coefficient 1e-30 of the others only adds a root near -1e30 s: dropped.
+  const Polynomial residue{2.0, -3.0, 1.0, 1e-30};
+  EXPECT_EQ(SturmSequence(residue).degree(), 2);
+  const std::vector<Root> roots = real_roots(residue, -kInf, kInf);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_NEAR(roots[0].t, 1.0, 1e-12);
+  EXPECT_NEAR(roots[1].t, 2.0, 1e-12);
+
+  // Relative to a root at 1e-12 s a root at 3 s is "far", but it is a real event: kept.
+  const Polynomial near_zero = expanded(1.0, {linear_factor(1e-12), linear_factor(3.0)});
+  EXPECT_EQ(SturmSequence(near_zero).degree(), 2);
+  EXPECT_EQ(real_roots(near_zero, -kInf, kInf).size(), 2u);
+
+  // A genuinely far root (2e5 s next to roots of a few seconds) is kept too.
+  const Polynomial far = expanded(1.0, {linear_factor(1.0), linear_factor(2.0), linear_factor(2.0e5)});
+  EXPECT_EQ(SturmSequence(far).degree(), 3);
+  EXPECT_EQ(real_roots(far, -kInf, kInf).size(), 3u);
+}
+
+TEST(SturmSequence, CloseRootsStayDistinctUntilRoundingMergesThem) {
+  // 10 ms apart at 10 s (1e-3 relative): two simple roots, a crossing at the first.
+  const Polynomial close = expanded(-1.0, {linear_factor(10.0), linear_factor(10.01), complex_pair(3.0, 4.0)});
+  EXPECT_EQ(real_root_multiplicities(close), (std::vector<int>{1, 1}));
+  const Crossing c = first_positive_crossing(close, 0.0, kInf);
+  EXPECT_TRUE(c.found);
+  EXPECT_NEAR(c.time, 10.0, 1e-9);
+  EXPECT_EQ(first_positive_crossing(close, 10.005, kInf).violated_at_start, true);
+
+  // 1 ns apart at 10 s: below what the coefficients resolve, read as one tangency.
+  const Polynomial merged = expanded(-1.0, {linear_factor(10.0), linear_factor(10.0 + 1e-9), complex_pair(3.0, 4.0)});
+  EXPECT_EQ(real_root_multiplicities(merged), std::vector<int>{2});
+  const Crossing d = first_positive_crossing(merged, 0.0, kInf);
+  EXPECT_FALSE(d.found);
+  EXPECT_EQ(d.tangencies, 1);
 }
 
 // ---------------------------------------------------------------------------------------
