@@ -272,9 +272,7 @@ void KineticDelaunay::execute_failure(const Entry& e) {
   if (!dt_.is_positive(f) || !dt_.is_positive(across)) {
     // A face of the quadrilateral is flat or inverted: points passed through each other
     // (every certificate around them vanished at one instant). Repair locally.
-    std::vector<PointId> suspects(quad.vertex.begin(), quad.vertex.end());
-    suspects.push_back(dt_.tds().face(across).vertex[static_cast<unsigned>(dt_.tds().mirror_index(f, i))]);
-    repair_around(suspects);
+    repair_quadrilateral(f, i);
     return;
   }
   const EdgeState state = dt_.edge_state(f, i);
@@ -297,10 +295,14 @@ void KineticDelaunay::execute_failure(const Entry& e) {
   }
   // Violated but not flippable: the neighbourhood is degenerate (points passing through
   // each other, collinear overtakes). Repair it locally.
-  const Face& face = dt_.tds().face(f);
-  const FaceIndex g = face.neighbor[static_cast<unsigned>(i)];
+  repair_quadrilateral(f, i);
+}
+
+void KineticDelaunay::repair_quadrilateral(FaceIndex f, int i) {
+  const auto& tds = dt_.tds();
+  const Face& face = tds.face(f);
   std::vector<PointId> suspects(face.vertex.begin(), face.vertex.end());
-  suspects.push_back(dt_.tds().face(g).vertex[static_cast<unsigned>(dt_.tds().mirror_index(f, i))]);
+  suspects.push_back(tds.face(face.neighbor[static_cast<unsigned>(i)]).vertex[static_cast<unsigned>(tds.mirror_index(f, i))]);
   repair_around(suspects);
 }
 

@@ -274,14 +274,7 @@ AttachResult DelaunayTriangulation::attach(VertexIndex v, VertexIndex* same, Fac
 
 void DelaunayTriangulation::rebuild_flat() {
   // Collect the chain's vertices plus any newly pending one and order them along the line.
-  auto& vertices = scratch_vertices_;
-  vertices.clear();
-  for (FaceIndex g = 0; g < tds_.face_capacity(); ++g) {
-    const Face& face = tds_.face(g);
-    if (!face.alive) continue;
-    for (VertexIndex w : face.vertex)
-      if (w != kInfiniteVertex) vertices.push_back(w);
-  }
+  std::vector<VertexIndex> vertices = vertices_in_faces(kInfiniteVertex);
   vertices.insert(vertices.end(), pending_.begin(), pending_.end());
   pending_.clear();
   std::sort(vertices.begin(), vertices.end());
@@ -293,8 +286,7 @@ void DelaunayTriangulation::rebuild_flat() {
   });
   tds_.clear_faces();
   if (vertices.size() >= 2) {
-    const std::vector<VertexIndex> ordered = vertices;
-    tds_.make_chain(ordered);
+    tds_.make_chain(vertices);
   } else {
     pending_ = vertices;
   }
@@ -357,30 +349,14 @@ bool DelaunayTriangulation::detach(VertexIndex v) {
   --attached_;
   if (attached_ < 2) {
     // One point left: no face can exist; keep it pending.
-    std::vector<VertexIndex> rest;
-    for (FaceIndex g = 0; g < tds_.face_capacity(); ++g) {
-      const Face& face = tds_.face(g);
-      if (!face.alive) continue;
-      for (VertexIndex w : face.vertex)
-        if (w != kInfiniteVertex && w != v) rest.push_back(w);
-    }
-    std::sort(rest.begin(), rest.end());
-    rest.erase(std::unique(rest.begin(), rest.end()), rest.end());
+    pending_ = vertices_in_faces(v);
     tds_.clear_faces();
-    pending_ = rest;
     return true;
   }
   if (is_flat()) {
     // Remove v from the chain and rebuild it.
-    std::vector<VertexIndex> rest;
-    for (FaceIndex g = 0; g < tds_.face_capacity(); ++g) {
-      const Face& face = tds_.face(g);
-      if (!face.alive) continue;
-      for (VertexIndex w : face.vertex)
-        if (w != kInfiniteVertex && w != v) rest.push_back(w);
-    }
+    pending_ = vertices_in_faces(v);
     tds_.clear_faces();
-    pending_ = rest;
     rebuild_flat();
     return true;
   }
@@ -405,7 +381,7 @@ bool DelaunayTriangulation::detach(VertexIndex v) {
   std::sort(sorted.begin(), sorted.end());
   const bool simple_link = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
   if (!simple_link || !triangulate_hole(polygon, triangles)) {
-    rebuild_without(v);
+    rebuild_without(v, nullptr);
     return false;
   }
   const std::vector<FaceIndex> region = star;
@@ -414,40 +390,33 @@ bool DelaunayTriangulation::detach(VertexIndex v) {
   return true;
 }
 
-void DelaunayTriangulation::rebuild_without(VertexIndex v) {
-  std::vector<VertexIndex> rest;
+std::vector<VertexIndex> DelaunayTriangulation::vertices_in_faces(VertexIndex except) const {
+  std::vector<VertexIndex> vertices;
   for (FaceIndex g = 0; g < tds_.face_capacity(); ++g) {
     const Face& face = tds_.face(g);
     if (!face.alive) continue;
     for (VertexIndex w : face.vertex)
-      if (w != kInfiniteVertex && w != v) rest.push_back(w);
+      if (w != kInfiniteVertex && w != except) vertices.push_back(w);
   }
-  std::sort(rest.begin(), rest.end());
-  rest.erase(std::unique(rest.begin(), rest.end()), rest.end());
-  rest.insert(rest.end(), pending_.begin(), pending_.end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return vertices;
+}
+
+void DelaunayTriangulation::rebuild_without(VertexIndex v,
+                                            std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates) {
+  std::vector<VertexIndex> rest = vertices_in_faces(v);
+  for (VertexIndex w : pending_)
+    if (w != v) rest.push_back(w);
   tds_.clear_faces();
   pending_.clear();
   attached_ = 0;
   ++rebuilds_;
-  insert_all(rest, nullptr);
+  insert_all(std::move(rest), duplicates);
 }
 
 void DelaunayTriangulation::rebuild(std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates) {
-  std::vector<VertexIndex> all;
-  for (FaceIndex g = 0; g < tds_.face_capacity(); ++g) {
-    const Face& face = tds_.face(g);
-    if (!face.alive) continue;
-    for (VertexIndex w : face.vertex)
-      if (w != kInfiniteVertex) all.push_back(w);
-  }
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
-  all.insert(all.end(), pending_.begin(), pending_.end());
-  tds_.clear_faces();
-  pending_.clear();
-  attached_ = 0;
-  ++rebuilds_;
-  insert_all(all, duplicates);
+  rebuild_without(kInfiniteVertex, duplicates);
 }
 
 void DelaunayTriangulation::insert_all(std::vector<VertexIndex> vertices,

@@ -180,6 +180,8 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void unlink_twin(PointId id);
   void schedule_twin_release(PointId id);
   void repair_around(const std::vector<PointId>& vertices);
+  /// repair_around the four vertices of the quadrilateral of edge i of face f.
+  void repair_quadrilateral(triangulation::FaceIndex f, int i);
   void adopt_evicted_duplicates();
   void mark_all_faces_dirty();
 

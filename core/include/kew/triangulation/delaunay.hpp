@@ -120,7 +120,9 @@ class DelaunayTriangulation {
   bool collinear_with_chain(Point2 p) const;
   bool in_conflict(FaceIndex f, Point2 p) const;
   void rebuild_flat();
-  void rebuild_without(VertexIndex v);
+  /// Every finite vertex of a live face but `except`, sorted, once each.
+  std::vector<VertexIndex> vertices_in_faces(VertexIndex except) const;
+  void rebuild_without(VertexIndex v, std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates);
   void insert_all(std::vector<VertexIndex> vertices, std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates);
   bool triangulate_hole(std::vector<VertexIndex>& polygon, std::vector<std::array<VertexIndex, 3>>& out) const;
 
@@ -141,7 +143,6 @@ class DelaunayTriangulation {
   mutable std::vector<FaceIndex> scratch_faces_;
   mutable std::vector<BoundaryEdge> scratch_boundary_;
   mutable std::vector<std::array<VertexIndex, 3>> scratch_triangles_;
-  mutable std::vector<VertexIndex> scratch_vertices_;
   mutable std::vector<std::uint32_t> face_mark_;
   mutable std::uint32_t mark_ = 0;
 };
