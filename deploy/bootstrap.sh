@@ -10,8 +10,11 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 build=${KEW_BUILD_DIR:-$here/build}
 jobs=$(nproc)
 
-packages=(build-essential cmake ccache libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-          libgtest-dev libgmock-dev libbenchmark-dev)
+packages=(build-essential cmake ccache
+          libcgal-dev libgmp-dev libmpfr-dev libgeographiclib-dev
+          libboost-dev libsimdjson-dev libfmt-dev zlib1g-dev
+          libgtest-dev libgmock-dev libbenchmark-dev
+          tshark clang-14 libclang-rt-14-dev)
 
 install_dependencies() {
   local missing=()

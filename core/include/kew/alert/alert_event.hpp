@@ -1,0 +1,78 @@
+#pragma once
+// What the alert manager emits and every sink encodes (SPEC §4 "Alerts", §5.3–5.5).
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace kew {
+
+/// Ordered: a higher value is more urgent. Numeric values are the Modbus "highest
+/// severity" register (SPEC §5.5).
+enum class Severity : std::uint8_t {
+  None = 0,     ///< no conflict within the look-ahead
+  Caution = 1,  ///< loss of separation predicted within T
+  Warning = 2,  ///< loss of separation predicted within 60 s
+  Loss = 3,     ///< separation is lost now
+};
+
+enum class AlertState : std::uint8_t { New, Update, End };
+
+/// Why an alert ended (End events only).
+enum class AlertEndReason : std::uint8_t {
+  None,         ///< not an End event
+  Cleared,      ///< `clear` consecutive clear evaluations
+  TrackDropped, ///< one of the two tracks was dropped (timeout, removal)
+};
+
+/// "loss", "warning", "caution", "none".
+std::string_view to_string(Severity s);
+/// "new", "update", "end".
+std::string_view to_string(AlertState s);
+/// "cleared", "track_dropped", "" for None.
+std::string_view to_string(AlertEndReason r);
+/// Inverse of to_string(Severity); false when `text` names no severity.
+bool parse_severity(std::string_view text, Severity& out);
+
+/// One aircraft of a pair as last reported (not predicted), in the canonical units.
+struct AlertParty {
+  std::string id;        ///< track id as in TrackReport::id
+  std::string source;    ///< TrackReport::source
+  std::string callsign;  ///< empty when unknown
+  /// 16-bit system track number kew assigned to the track (CAT004 I004/170, Modbus).
+  std::uint16_t track_number = 0;
+  double lat_deg = 0.0;
+  double lon_deg = 0.0;
+  double alt_ft = 0.0;
+  double gs_kt = 0.0;
+  double trk_deg = 0.0;  ///< [0, 360)
+  double vr_fpm = 0.0;
+};
+
+struct AlertEvent {
+  /// Deterministic id derived from the pair and the opening data time (hex text).
+  std::string id;
+  /// 16-bit alert number (CAT004 I004/040, Modbus table); stable for the alert's life.
+  std::uint16_t number = 0;
+  /// Per-stream sequence number, assigned by the alert manager in emission order (from 1).
+  std::uint64_t seq = 0;
+  AlertState state = AlertState::New;
+  AlertEndReason end_reason = AlertEndReason::None;
+  Severity severity = Severity::None;
+  /// Data time of the evaluation that produced the event, UTC seconds.
+  double t = 0.0;
+  /// Data time the alert opened, UTC seconds.
+  double opened_t = 0.0;
+  AlertParty a;  ///< the pair ordered by (source, id), a < b
+  AlertParty b;
+  double t_los_s = 0.0;   ///< time to loss of separation from t (0 when lost now)
+  double t_cpa_s = 0.0;   ///< time to closest horizontal approach within [0, T]
+  double cpa_h_m = 0.0;   ///< horizontal distance at CPA, geodesic-corrected, metres
+  double cpa_v_ft = 0.0;  ///< vertical distance at CPA, feet (>= 0)
+  double sep_h_m = 0.0;   ///< current horizontal separation, geodesic, metres
+  double sep_v_ft = 0.0;  ///< current vertical separation, feet (>= 0)
+  /// Acknowledged by an operator (Modbus coil 0) before this event was emitted.
+  bool acknowledged = false;
+};
+
+}  // namespace kew

@@ -1,0 +1,41 @@
+#pragma once
+// One surveillance record as every decoder produces it and the pipeline consumes it
+// (SPEC §3, §5.1). Units are those of the canonical record so that a recording
+// round-trips without conversion; the core converts to SI on entry.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace kew {
+
+struct TrackReport {
+  /// Data time, UTC seconds since the Unix epoch (fractional).
+  double t = 0.0;
+  /// Track identity within its source: the 24-bit address as 6 upper-case hex digits when
+  /// known, otherwise a track number in decimal. Never empty in a valid report.
+  std::string id;
+  /// Where the record came from ("sbs", "cat062/25.100", ...). Tracks are keyed by
+  /// source + id, so two radars' track numbers never collide. Empty is a valid source.
+  std::string source;
+  /// WGS84 geodetic latitude, degrees in [-90, 90].
+  double lat_deg = 0.0;
+  /// WGS84 longitude, degrees in [-180, 180].
+  double lon_deg = 0.0;
+  /// Pressure altitude (or geometric when that is all the source has), feet.
+  double alt_ft = 0.0;
+  /// Ground speed, knots (>= 0). Absent: the track table derives velocity from positions.
+  std::optional<double> gs_kt;
+  /// True track angle over ground, degrees clockwise from north in [0, 360).
+  std::optional<double> trk_deg;
+  /// Vertical rate, feet per minute, positive climbing. Absent: treated as 0 (level).
+  std::optional<double> vr_fpm;
+  /// Callsign / aircraft identification, trimmed; empty when unknown.
+  std::string callsign;
+  /// 12-bit Mode 3/A code when the source gives one.
+  std::optional<std::uint16_t> mode3a;
+  /// The source says the target is on the ground.
+  bool on_ground = false;
+};
+
+}  // namespace kew

@@ -1,0 +1,53 @@
+#pragma once
+// The contract every track decoder keeps (SPEC §5.1–5.2, issue "Protocol"):
+//  - incremental: bytes may be split anywhere between feed() calls, and the reports are
+//    the same as if the whole input had arrived at once;
+//  - bounded: no message larger than max_message_bytes() is buffered; a longer one is
+//    skipped and counted;
+//  - resynchronising: after garbage the decoder finds the next plausible message;
+//  - every refusal is counted by reason in rejections().
+// Decoders know nothing of sockets or files: the caller moves the bytes.
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "kew/track/track_report.hpp"
+#include "kew/util/rejections.hpp"
+
+namespace kew::protocol {
+
+using ReportSink = std::function<void(const TrackReport&)>;
+
+class Decoder {
+ public:
+  virtual ~Decoder() = default;
+
+  /// Consumes the next bytes of the stream, calling `sink` for each complete report.
+  virtual void feed(std::span<const std::byte> bytes, const ReportSink& sink) = 0;
+
+  /// End of stream: a trailing partial message is counted ("truncated") and dropped;
+  /// reports held back for merging (SBS) are emitted. The decoder may be fed again after.
+  virtual void finish(const ReportSink& sink) = 0;
+
+  /// Short stable name of the format ("ndjson", "asterix", "sbs", ...).
+  virtual std::string_view format_name() const = 0;
+
+  /// Largest message the decoder buffers, bytes.
+  virtual std::size_t max_message_bytes() const = 0;
+
+  Rejections& rejections() { return rejections_; }
+  const Rejections& rejections() const { return rejections_; }
+
+  /// Convenience for text: feed(as_bytes(text)).
+  void feed_text(std::string_view text, const ReportSink& sink) {
+    feed(std::as_bytes(std::span<const char>(text.data(), text.size())), sink);
+  }
+
+ private:
+  Rejections rejections_;
+};
+
+}  // namespace kew::protocol
