@@ -1,0 +1,129 @@
+#pragma once
+// Alert lifecycle (SPEC §4 "Alerts"): a pair's alert opens after `confirm` consecutive
+// conflicting evaluations, is updated when its severity or figures change materially,
+// and ends after `clear` consecutive clear evaluations or when one of its tracks is
+// dropped. Ids are derived from the pair and the opening data time; every emitted event
+// gets the next sequence number. Pairs are identified by the track table's slots.
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "kew/alert/alert_event.hpp"
+
+namespace kew::alert {
+
+using Slot = std::uint32_t;
+
+struct AlertConfig {
+  int confirm = 2;  ///< consecutive conflicting evaluations to open (≥ 1)
+  int clear = 2;    ///< consecutive clear evaluations to end (≥ 1)
+  double warning_s = 60.0;  ///< t_los at or below this is a warning (s)
+  /// An active alert is re-emitted (state "update") when its severity changes or when a
+  /// figure moved by at least this much from the last emitted event (t_los compared
+  /// after ageing the old one by the elapsed time).
+  double update_t_los_s = 5.0;
+  double update_cpa_h_m = 185.2;   ///< 0.1 NM
+  double update_cpa_v_ft = 100.0;
+};
+
+/// The outcome of one pair evaluation, as the manager needs it.
+struct Evaluation {
+  bool in_conflict = false;
+  Severity severity = Severity::None;  ///< meaningful when in_conflict
+};
+
+class AlertManager {
+ public:
+  explicit AlertManager(const AlertConfig& config = {});
+
+  /// Severity of a conflict from its geometry (loss now / t_los ≤ warning_s / later).
+  Severity classify(bool lost_now, double t_los_s) const;
+
+  /// Records one evaluation of pair {p, q} at data time t. When an event may be due,
+  /// `build(AlertEvent&)` is called to fill parties, severity and figures (ids, numbers,
+  /// state and sequence are the manager's), and emitted events are appended to `out`.
+  template <class Build>
+  void evaluate(Slot p, Slot q, const Evaluation& e, double t, Build&& build, std::vector<AlertEvent>& out) {
+    const std::uint64_t key = pair_key(p, q);
+    auto it = pairs_.find(key);
+    if (!e.in_conflict) {
+      if (it != pairs_.end()) record_clear(it, t, out);
+      return;
+    }
+    if (it == pairs_.end()) it = create(key);
+    PairState& s = it->second;
+    s.clears_in_row = 0;
+    if (s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
+    if (!s.active && s.conflicts_in_row < config_.confirm) return;
+    AlertEvent candidate;
+    build(candidate);
+    candidate.t = t;
+    if (!s.active) open(s, std::move(candidate), out);
+    else offer_update(s, std::move(candidate), out);
+  }
+
+  /// Ends every alert of the track in `slot` (reason TrackDropped) and forgets its pairs.
+  void drop_track(Slot slot, double t, std::vector<AlertEvent>& out);
+
+  /// Slots paired with `slot` in some state (pending confirmation or active), appended
+  /// to `out`. The probe evaluates them even when the candidate search does not return
+  /// them, so pending and active pairs always see their clear evaluations.
+  void partners_of(Slot slot, std::vector<Slot>& out) const;
+
+  /// Active alerts (their last emitted event), ordered by opening sequence.
+  std::vector<AlertEvent> snapshot() const;
+  std::size_t active_count() const { return active_; }
+  /// Highest severity among active alerts (None when there is none).
+  Severity highest_severity() const;
+
+  /// Marks every active alert acknowledged (Modbus coil 0). An alert whose severity later
+  /// rises becomes unacknowledged again.
+  void acknowledge_all();
+  std::size_t unacknowledged_count() const;
+
+  struct Counters {
+    std::uint64_t opened = 0, updated = 0, ended = 0;
+  };
+  const Counters& counters() const { return counters_; }
+  std::uint64_t last_seq() const { return seq_; }
+  const AlertConfig& config() const { return config_; }
+
+ private:
+  struct PairState {
+    Slot lo = 0, hi = 0;
+    int conflicts_in_row = 0;
+    int clears_in_row = 0;
+    bool active = false;
+    std::uint64_t opened_seq = 0;
+    AlertEvent last;  // last emitted event while active
+  };
+  using Pairs = std::unordered_map<std::uint64_t, PairState>;
+
+  static std::uint64_t pair_key(Slot p, Slot q) {
+    const Slot lo = p < q ? p : q, hi = p < q ? q : p;
+    return (std::uint64_t{lo} << 32) | hi;
+  }
+  Pairs::iterator create(std::uint64_t key);
+  void forget(Pairs::iterator it);
+  void record_clear(Pairs::iterator it, double t, std::vector<AlertEvent>& out);
+  void open(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out);
+  void offer_update(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out);
+  void end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out);
+  void emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out);
+
+  AlertConfig config_;
+  Pairs pairs_;
+  std::unordered_map<Slot, std::vector<Slot>> partners_;
+  std::uint64_t seq_ = 0;
+  std::uint16_t next_number_ = 1;
+  std::size_t active_ = 0;
+  Counters counters_;
+};
+
+/// The deterministic alert id: 16 hex digits of a 64-bit FNV-1a hash of both parties'
+/// source and id and the opening data time.
+std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opened_t);
+
+}  // namespace kew::alert

@@ -1,0 +1,123 @@
+#pragma once
+// The single-threaded heart of kew (SPEC §3): TrackReports in, alert events out.
+// record → track table (order, plausibility) → projection → kinetic engine advance(t)
+// then update(track) → probe → alert manager → sink. Deterministic: the same records
+// in the same order give the same events. Used by kew-replay and kewd alike.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "kew/alert/alert_manager.hpp"
+#include "kew/geo/projection.hpp"
+#include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/probe/cpa.hpp"
+#include "kew/probe/proximity_search.hpp"
+#include "kew/track/track_table.hpp"
+#include "kew/util/indexed_heap.hpp"
+
+namespace kew {
+
+struct PipelineConfig {
+  track::TrackTableConfig tracks;
+  /// Projection centre; default: the first plausible record's position rounded to 0.1°.
+  std::optional<geo::GeodeticPosition> reference;
+  double coverage_radius_m = 1.5e6;
+  kinetic::KineticConfig kinetic = default_kinetic();
+  probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
+  probe::SeparationMinima minima;
+  alert::AlertConfig alerts;
+
+  /// kew's kinetic defaults: absolute τ = 50 m, H = 300 s, §8.3 on.
+  static kinetic::KineticConfig default_kinetic() {
+    kinetic::KineticConfig k;
+    k.tolerance = 50.0;
+    k.horizon_s = 300.0;
+    return k;
+  }
+};
+
+struct PipelineStatistics {
+  std::uint64_t records = 0;            ///< records offered to process()
+  std::uint64_t accepted = 0;           ///< records the track table accepted
+  std::uint64_t awaiting_velocity = 0;  ///< accepted records of tracks without velocity yet
+  std::uint64_t tracks_dropped = 0;     ///< tracks dropped by the timeout
+  std::uint64_t probes = 0;             ///< probe runs (one per applied update)
+  std::uint64_t candidates = 0;         ///< pairs evaluated, Σ over probes
+  double last_data_time = 0.0;          ///< the pipeline clock (UTC s); 0 before any record
+};
+
+class Pipeline {
+ public:
+  using AlertSink = std::function<void(const AlertEvent&)>;
+
+  explicit Pipeline(const PipelineConfig& config = {});
+
+  /// Receives every alert event, in sequence order, synchronously.
+  void set_alert_sink(AlertSink sink) { sink_ = std::move(sink); }
+
+  /// Processes one record (any data time; see TrackTableConfig for what is refused).
+  void process(const TrackReport& report);
+
+  /// Moves the clock to t (UTC s) without a record — live mode's periodic tick: drops
+  /// tracks that timed out and executes kinetic events up to t. Ignored if t ≤ now().
+  void advance_to(double t);
+
+  /// Ends every alert and drops every track at the current time (end of a replay, or a
+  /// daemon shutting down), emitting the End events.
+  void drop_all();
+
+  /// Exact audit of the triangulation at now(), repairing what it finds.
+  kinetic::KineticAudit audit();
+
+  double now() const { return clock_; }
+  const PipelineStatistics& statistics() const { return stats_; }
+  const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_.statistics(); }
+  const Rejections& rejections() const { return tracks_.rejections(); }
+  Rejections& rejections() { return tracks_.rejections(); }
+  const track::TrackTable& tracks() const { return tracks_; }
+  /// Tracks in the kinetic engine (accepted with a velocity).
+  std::size_t live_tracks() const { return kdt_.size(); }
+  const alert::AlertManager& alerts() const { return alerts_; }
+  alert::AlertManager& alerts() { return alerts_; }
+  const kinetic::KineticDelaunay& kinetic() const { return kdt_; }
+  const PipelineConfig& config() const { return config_; }
+  /// The projection in use (empty until the first plausible record fixes the reference).
+  const std::optional<geo::Projection>& projection() const { return projection_; }
+
+  /// Search radius R_i of SPEC §2.1 for a track moving at plane speed `speed_mps`, in
+  /// plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute bound).
+  double search_radius(double speed_mps) const;
+
+ private:
+  void move_clock(double t);
+  void drop_track(track::TrackSlot slot);
+  void apply(track::TrackSlot slot);
+  void probe(track::TrackSlot slot);
+  void collect_candidates(track::TrackSlot slot);
+  void fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
+                  const probe::Kinematics& kp, const probe::Kinematics& kq) const;
+  void deliver();
+  double engine_time(double t) const { return t - epoch_; }
+  double tolerance_bound_m() const;
+
+  PipelineConfig config_;
+  track::TrackTable tracks_;
+  std::optional<geo::Projection> projection_;
+  kinetic::KineticDelaunay kdt_;
+  alert::AlertManager alerts_;
+  probe::ProximitySearch search_;
+  util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
+  std::vector<track::TrackSlot> slot_of_point_;
+  std::vector<kinetic::PointId> points_scratch_;
+  std::vector<track::TrackSlot> candidates_;
+  std::vector<AlertEvent> pending_events_;
+  AlertSink sink_;
+  double epoch_ = 0.0;  // engine time = data time − epoch (SPEC §4: local time frames)
+  bool started_ = false;
+  double clock_ = 0.0;
+  PipelineStatistics stats_;
+};
+
+}  // namespace kew

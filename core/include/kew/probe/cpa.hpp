@@ -1,0 +1,48 @@
+#pragma once
+// Exact linear closest-point-of-approach test of one pair (SPEC §4 "Conflict").
+// Both aircraft move in straight lines at constant velocity (horizontal in the plane,
+// vertical by vertical rate). The pair is in conflict when, for some τ' in [0, T], the
+// horizontal distance is below S_h and the vertical distance below S_v at the same τ':
+// the intersection of the two open time intervals, each from a quadratic or linear
+// inequality solved in closed form, clipped to [0, T].
+
+#include "kew/geometry/vector2.hpp"
+
+namespace kew::probe {
+
+/// One aircraft's state at the evaluation time, in the plane and SI units.
+struct Kinematics {
+  geometry::Point2 position;   ///< m
+  geometry::Vector2 velocity;  ///< m/s
+  double altitude_m = 0.0;
+  double vertical_rate_mps = 0.0;
+};
+
+struct SeparationMinima {
+  double horizontal_m = 9260.0;  ///< S_h (> 0); default 5 NM
+  double vertical_m = 304.8;     ///< S_v (> 0); default 1,000 ft
+  double lookahead_s = 120.0;    ///< T (≥ 0)
+};
+
+struct ConflictGeometry {
+  bool in_conflict = false;
+  /// Horizontal and vertical separation both below minima now (τ' = 0).
+  bool lost_now = false;
+  /// Start of the first interval in [0, T] with both separations below minima (s); only
+  /// meaningful when in_conflict.
+  double t_los_s = 0.0;
+  /// End of that interval (s), ≤ T.
+  double t_end_s = 0.0;
+  /// Time of minimum horizontal distance, clamped to [0, T] (s).
+  double t_cpa_s = 0.0;
+  double cpa_h_m = 0.0;  ///< horizontal distance at t_cpa (m)
+  double cpa_v_m = 0.0;  ///< vertical distance at t_cpa (m, ≥ 0)
+  double sep_h_m = 0.0;  ///< horizontal distance now (m)
+  double sep_v_m = 0.0;  ///< vertical distance now (m, ≥ 0)
+};
+
+/// Evaluates the pair (a, b). Symmetric: swapping a and b gives the same figures up to
+/// rounding; callers that need bit-identical results order the pair canonically.
+ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
+
+}  // namespace kew::probe

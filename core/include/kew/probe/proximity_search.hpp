@@ -1,0 +1,49 @@
+#pragma once
+// Candidate search for the conflict probe (SPEC §2.1): the kinetic Delaunay
+// triangulation used as an exact proximity index.
+//
+// Every point within distance r of a triangulation vertex p is reached by a
+// breadth-first search from p over Delaunay edges that never leaves the disk of radius
+// r around p: greedy routing toward p succeeds on a Delaunay triangulation (from any
+// vertex, some neighbour is strictly closer to p), so each point in the disk is joined
+// to p by a path that stays in the disk.
+
+#include <cstdint>
+#include <vector>
+
+#include "kew/kinetic/kinetic_delaunay.hpp"
+
+namespace kew::probe {
+
+using kinetic::PointId;
+
+enum class ProbeMode : std::uint8_t {
+  Exact,  ///< BFS within R_i (complete; the default)
+  Edges,  ///< Delaunay neighbours only (the thesis; misses stacked conflicts)
+  Brute,  ///< every live track (the oracle)
+};
+
+/// "exact", "edges", "brute".
+const char* to_string(ProbeMode mode);
+/// Inverse of to_string; false when `text` names no mode.
+bool parse_probe_mode(const char* text, ProbeMode& out);
+
+class ProximitySearch {
+ public:
+  /// Appends to `out` (not cleared) every point other than `center` whose model position
+  /// at kdt.now() is within `radius_m` of center's, plus possibly a few points slightly
+  /// farther (twins within their release distance of the disk). Order unspecified.
+  void within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m, std::vector<PointId>& out);
+
+  /// Appends the Delaunay neighbours of `center` (twins counted) — the thesis' candidates.
+  void neighbours(const kinetic::KineticDelaunay& kdt, PointId center, std::vector<PointId>& out);
+
+ private:
+  bool first_visit(PointId p);
+
+  std::vector<std::uint32_t> visited_round_;
+  std::uint32_t round_ = 0;
+  std::vector<PointId> frontier_;
+};
+
+}  // namespace kew::probe

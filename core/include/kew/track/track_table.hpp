@@ -1,0 +1,150 @@
+#pragma once
+// The table of live tracks (SPEC §4 "Tracks"): identity by source + id, per-track record
+// ordering, plausibility of every record with counted reasons, velocity derived from the
+// last two positions when a record has none, on-ground exclusion, and the timeout that
+// drops silent tracks. It turns accepted records into plane kinematics; it never talks
+// to the kinetic engine (the Pipeline does).
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "kew/geo/projection.hpp"
+#include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/probe/cpa.hpp"
+#include "kew/track/track_report.hpp"
+#include "kew/util/indexed_heap.hpp"
+#include "kew/util/rejections.hpp"
+
+namespace kew::track {
+
+using TrackSlot = std::uint32_t;
+inline constexpr TrackSlot kNoTrack = ~TrackSlot{0};
+
+struct TrackTableConfig {
+  double track_timeout_s = 30.0;          ///< drop a track this long after its last record (s, > 0)
+  double max_ground_speed_kt = 1200.0;    ///< records faster than this are rejected (kt, > 0)
+  double max_vertical_rate_fpm = 20000.0; ///< |vertical rate| above this is rejected (ft/min)
+  double min_altitude_ft = -2000.0;       ///< altitude range accepted (ft)
+  double max_altitude_ft = 100000.0;
+  bool exclude_on_ground = true;          ///< on-ground targets are not tracked (SPEC §4)
+  std::size_t max_tracks = 200000;        ///< bound on live + pending tracks (security)
+  std::size_t max_id_bytes = 64;          ///< longer ids or sources are rejected
+  /// Records older than the pipeline clock by more than this are rejected as too late
+  /// (s, ≥ 0); later ones are extrapolated to the clock with their own velocity.
+  double max_lateness_s = 10.0;
+  /// Velocity is derived from the previous position only when it is at most this old (s).
+  double max_derivation_gap_s = 60.0;
+};
+
+/// One aircraft as the table knows it. Reported values are kept in canonical units for
+/// alerts and TRACK objects; kinematics are in the plane, SI units.
+struct Track {
+  std::string source;
+  std::string id;
+  std::string callsign;
+  std::optional<std::uint16_t> mode3a;
+  std::uint16_t number = 0;  ///< 16-bit system track number for CAT004 and Modbus, ≠ 0
+
+  double t = 0.0;            ///< data time of the last accepted record (UTC s)
+  double lat_deg = 0.0, lon_deg = 0.0, alt_ft = 0.0;
+  double gs_kt = 0.0, trk_deg = 0.0, vr_fpm = 0.0;  ///< as reported, or derived
+  bool has_velocity = false;  ///< false until a velocity was reported or derived
+
+  geo::PlanePosition plane;                 ///< plane position at t
+  probe::Kinematics kinematics;             ///< plane kinematics at t
+  kinetic::PointId point = kinetic::kNoPoint;  ///< vertex in the kinetic engine, if any
+  bool in_use = false;
+
+  /// Plane kinematics extrapolated linearly to time `at` (UTC s).
+  probe::Kinematics at(double at_t) const {
+    probe::Kinematics k = kinematics;
+    const double dt = at_t - t;
+    k.position = k.position + dt * k.velocity;
+    k.altitude_m += dt * k.vertical_rate_mps;
+    return k;
+  }
+};
+
+/// What admit() decided about a record.
+enum class Admission : std::uint8_t {
+  Rejected,        ///< counted in the table's Rejections; the table is unchanged
+  AwaitingVelocity,///< position stored, but no velocity yet: not in the engine
+  Accepted,        ///< the track has kinematics at the record's time
+};
+
+struct AdmitResult {
+  Admission admission = Admission::Rejected;
+  TrackSlot slot = kNoTrack;
+  bool new_track = false;       ///< the record opened a new track
+  bool velocity_reset = false;  ///< derived speed was implausible: velocity forgotten
+};
+
+class TrackTable {
+ public:
+  explicit TrackTable(const TrackTableConfig& config = {});
+
+  /// Checks a record and, when it passes, applies it to its track. `now` is the pipeline
+  /// clock (UTC s): records older than now − max_lateness_s are refused. On refusal the
+  /// reason is counted in rejections() and nothing else changes.
+  AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection);
+
+  /// Forgets a track (its slot may be reused by a later track).
+  void drop(TrackSlot slot);
+
+  /// Drops every track whose last record is older than now − track_timeout_s, oldest
+  /// first, calling on_drop(slot, track) before each is forgotten.
+  template <class F>
+  void expire(double now, F&& on_drop) {
+    while (!deadlines_.empty() && deadlines_.top_key() < now) {
+      const TrackSlot slot = deadlines_.top_handle();
+      on_drop(slot, tracks_[slot]);
+      drop(slot);
+    }
+  }
+
+  const Track& operator[](TrackSlot slot) const { return tracks_[slot]; }
+  Track& operator[](TrackSlot slot) { return tracks_[slot]; }
+  /// Tracks in use (live or awaiting velocity).
+  std::size_t size() const { return in_use_; }
+  std::size_t max_size() const { return max_in_use_; }
+  /// One past the highest slot ever used: iterate [0, slot_end()) and test in_use.
+  TrackSlot slot_end() const { return static_cast<TrackSlot>(tracks_.size()); }
+  TrackSlot find(std::string_view source, std::string_view id) const;
+
+  /// The reason a record is implausible on its own (ranges, NaN, on ground...), or an
+  /// empty view when it is plausible. No state is read or changed.
+  std::string_view plausibility_problem(const TrackReport& r) const;
+
+  const TrackTableConfig& config() const { return config_; }
+  Rejections& rejections() { return rejections_; }
+  const Rejections& rejections() const { return rejections_; }
+  std::uint64_t velocity_resets() const { return velocity_resets_; }
+  std::uint64_t velocities_derived() const { return velocities_derived_; }
+
+ private:
+  struct StringHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
+  using IdIndex = std::unordered_map<std::string, TrackSlot, StringHash, std::equal_to<>>;
+
+  TrackSlot allocate(const TrackReport& r);
+
+  TrackTableConfig config_;
+  std::vector<Track> tracks_;
+  std::vector<TrackSlot> free_slots_;
+  std::unordered_map<std::string, IdIndex, StringHash, std::equal_to<>> index_;
+  util::IndexedHeap<std::less<double>> deadlines_;  // one per track in use: last t + timeout
+  std::size_t in_use_ = 0;
+  std::size_t max_in_use_ = 0;
+  std::uint64_t velocity_resets_ = 0;
+  std::uint64_t velocities_derived_ = 0;
+  Rejections rejections_;
+};
+
+}  // namespace kew::track

@@ -1,0 +1,190 @@
+#include "kew/alert/alert_manager.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace kew::alert {
+
+namespace {
+
+void erase_value(std::vector<Slot>& v, Slot value) {
+  const auto it = std::find(v.begin(), v.end(), value);
+  if (it != v.end()) {
+    *it = v.back();
+    v.pop_back();
+  }
+}
+
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+
+std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t n) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= bytes[i];
+    h *= kFnvPrime;
+  }
+  return h;
+}
+
+std::uint64_t fnv1a(std::uint64_t h, const std::string& s) {
+  h = fnv1a(h, s.data(), s.size());
+  const unsigned char separator = 0x1f;  // unit separator: "ab"+"c" ≠ "a"+"bc"
+  return fnv1a(h, &separator, 1);
+}
+
+}  // namespace
+
+std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opened_t) {
+  std::uint64_t h = kFnvOffset;
+  h = fnv1a(h, a.source);
+  h = fnv1a(h, a.id);
+  h = fnv1a(h, b.source);
+  h = fnv1a(h, b.id);
+  // Millisecond resolution: the ids do not depend on the last bits of a double.
+  const auto ms = static_cast<std::int64_t>(std::llround(opened_t * 1000.0));
+  h = fnv1a(h, &ms, sizeof ms);
+  return fmt::format("{:016x}", h);
+}
+
+AlertManager::AlertManager(const AlertConfig& config) : config_(config) {}
+
+Severity AlertManager::classify(bool lost_now, double t_los_s) const {
+  if (lost_now) return Severity::Loss;
+  if (t_los_s <= config_.warning_s) return Severity::Warning;
+  return Severity::Caution;
+}
+
+AlertManager::Pairs::iterator AlertManager::create(std::uint64_t key) {
+  PairState s;
+  s.lo = static_cast<Slot>(key >> 32);
+  s.hi = static_cast<Slot>(key & 0xffffffffu);
+  partners_[s.lo].push_back(s.hi);
+  partners_[s.hi].push_back(s.lo);
+  return pairs_.emplace(key, std::move(s)).first;
+}
+
+void AlertManager::forget(Pairs::iterator it) {
+  const Slot lo = it->second.lo, hi = it->second.hi;
+  for (const auto& [slot, other] : {std::pair{lo, hi}, std::pair{hi, lo}}) {
+    const auto p = partners_.find(slot);
+    if (p == partners_.end()) continue;
+    erase_value(p->second, other);
+    if (p->second.empty()) partners_.erase(p);
+  }
+  pairs_.erase(it);
+}
+
+void AlertManager::record_clear(Pairs::iterator it, double t, std::vector<AlertEvent>& out) {
+  PairState& s = it->second;
+  s.conflicts_in_row = 0;
+  if (!s.active) {
+    forget(it);
+    return;
+  }
+  if (++s.clears_in_row < config_.clear) return;
+  end(s, t, AlertEndReason::Cleared, out);
+  forget(it);
+}
+
+void AlertManager::open(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out) {
+  s.active = true;
+  ++active_;
+  ++counters_.opened;
+  candidate.state = AlertState::New;
+  candidate.opened_t = candidate.t;
+  candidate.id = make_alert_id(candidate.a, candidate.b, candidate.t);
+  candidate.number = next_number_;
+  next_number_ = static_cast<std::uint16_t>(next_number_ == 0xffff ? 1 : next_number_ + 1);
+  candidate.acknowledged = false;
+  emit(s, std::move(candidate), out);
+  s.opened_seq = s.last.seq;
+}
+
+void AlertManager::offer_update(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out) {
+  const AlertEvent& last = s.last;
+  const double aged_t_los = std::max(0.0, last.t_los_s - (candidate.t - last.t));
+  const bool changed = candidate.severity != last.severity ||
+                       std::abs(candidate.t_los_s - aged_t_los) >= config_.update_t_los_s ||
+                       std::abs(candidate.cpa_h_m - last.cpa_h_m) >= config_.update_cpa_h_m ||
+                       std::abs(candidate.cpa_v_ft - last.cpa_v_ft) >= config_.update_cpa_v_ft;
+  if (!changed) return;
+  ++counters_.updated;
+  candidate.state = AlertState::Update;
+  candidate.id = last.id;
+  candidate.number = last.number;
+  candidate.opened_t = last.opened_t;
+  candidate.acknowledged = last.acknowledged && candidate.severity <= last.severity;
+  emit(s, std::move(candidate), out);
+}
+
+void AlertManager::end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out) {
+  AlertEvent event = s.last;
+  event.state = AlertState::End;
+  event.end_reason = reason;
+  event.t = t;
+  s.active = false;
+  --active_;
+  ++counters_.ended;
+  emit(s, std::move(event), out);
+}
+
+void AlertManager::emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out) {
+  event.seq = ++seq_;
+  s.last = event;
+  out.push_back(std::move(event));
+}
+
+void AlertManager::drop_track(Slot slot, double t, std::vector<AlertEvent>& out) {
+  const auto p = partners_.find(slot);
+  if (p == partners_.end()) return;
+  std::vector<Slot> others = p->second;
+  std::sort(others.begin(), others.end());  // deterministic order of the End events
+  for (const Slot other : others) {
+    const auto it = pairs_.find(pair_key(slot, other));
+    if (it == pairs_.end()) continue;
+    if (it->second.active) end(it->second, t, AlertEndReason::TrackDropped, out);
+    forget(it);
+  }
+}
+
+void AlertManager::partners_of(Slot slot, std::vector<Slot>& out) const {
+  const auto p = partners_.find(slot);
+  if (p != partners_.end()) out.insert(out.end(), p->second.begin(), p->second.end());
+}
+
+std::vector<AlertEvent> AlertManager::snapshot() const {
+  std::vector<const PairState*> active;
+  for (const auto& [key, s] : pairs_)
+    if (s.active) active.push_back(&s);
+  std::sort(active.begin(), active.end(),
+            [](const PairState* x, const PairState* y) { return x->opened_seq < y->opened_seq; });
+  std::vector<AlertEvent> out;
+  out.reserve(active.size());
+  for (const PairState* s : active) out.push_back(s->last);
+  return out;
+}
+
+Severity AlertManager::highest_severity() const {
+  Severity highest = Severity::None;
+  for (const auto& [key, s] : pairs_)
+    if (s.active && s.last.severity > highest) highest = s.last.severity;
+  return highest;
+}
+
+void AlertManager::acknowledge_all() {
+  for (auto& [key, s] : pairs_)
+    if (s.active) s.last.acknowledged = true;
+}
+
+std::size_t AlertManager::unacknowledged_count() const {
+  std::size_t n = 0;
+  for (const auto& [key, s] : pairs_)
+    if (s.active && !s.last.acknowledged) ++n;
+  return n;
+}
+
+}  // namespace kew::alert

@@ -1,0 +1,234 @@
+#include "kew/pipeline/pipeline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kew {
+
+namespace {
+constexpr double kFootToMetre = 0.3048;
+// Widens R_i so that rounding in positions and speeds can never drop a pair whose CPA
+// test is positive (metres; far below any separation minimum).
+constexpr double kSearchSlack_m = 1.0;
+
+geo::GeodeticPosition rounded_reference(const TrackReport& r) {
+  return {std::round(r.lat_deg * 10.0) / 10.0, std::round(r.lon_deg * 10.0) / 10.0};
+}
+
+AlertParty party_of(const track::Track& t) {
+  AlertParty p;
+  p.id = t.id;
+  p.source = t.source;
+  p.callsign = t.callsign;
+  p.track_number = t.number;
+  p.lat_deg = t.lat_deg;
+  p.lon_deg = t.lon_deg;
+  p.alt_ft = t.alt_ft;
+  p.gs_kt = t.gs_kt;
+  p.trk_deg = t.trk_deg;
+  p.vr_fpm = t.vr_fpm;
+  return p;
+}
+
+bool ordered_before(const track::Track& x, const track::Track& y) {
+  return x.source != y.source ? x.source < y.source : x.id < y.id;
+}
+}  // namespace
+
+Pipeline::Pipeline(const PipelineConfig& config)
+    : config_(config), tracks_(config.tracks), kdt_(config.kinetic, 0.0), alerts_(config.alerts) {
+  if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
+}
+
+double Pipeline::tolerance_bound_m() const {
+  const kinetic::KineticConfig& k = config_.kinetic;
+  if (k.tolerance_mode == kinetic::ToleranceMode::Absolute) return k.tolerance;
+  // Relative τ bounds the lag by τ·|p|, and |p| is at most the plane radius of coverage.
+  const double k_max = projection_ ? projection_->max_scale() : 1.03;
+  return k.tolerance * config_.coverage_radius_m * k_max * 1.05;
+}
+
+double Pipeline::search_radius(double speed_mps) const {
+  const double k_max = projection_ ? projection_->max_scale() : 1.0;
+  const double v_max = speeds_.empty() ? 0.0 : speeds_.top_key();
+  return config_.minima.horizontal_m * k_max + config_.minima.lookahead_s * (speed_mps + v_max) +
+         2.0 * tolerance_bound_m() + kSearchSlack_m;
+}
+
+void Pipeline::process(const TrackReport& report) {
+  ++stats_.records;
+  const std::string_view problem = tracks_.plausibility_problem(report);
+  if (!problem.empty()) {
+    tracks_.rejections().reject(problem, report.id);
+    return;
+  }
+  if (!projection_) projection_.emplace(rounded_reference(report), config_.coverage_radius_m);
+  if (!started_) {
+    started_ = true;
+    epoch_ = std::floor(report.t);
+    clock_ = epoch_;
+  }
+  // A plausible record that is not too late moves the clock (and may time out other
+  // tracks, or this record's own previous track) before it is applied.
+  if (report.t >= clock_ - tracks_.config().max_lateness_s) move_clock(std::max(clock_, report.t));
+
+  const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
+  if (admitted.admission == track::Admission::Rejected) return;
+  ++stats_.accepted;
+  stats_.last_data_time = clock_;
+  track::Track& track = tracks_[admitted.slot];
+  if (admitted.admission == track::Admission::AwaitingVelocity) {
+    ++stats_.awaiting_velocity;
+    if (track.point != kinetic::kNoPoint) {
+      // Velocity reset: the track leaves the probe until it has a velocity again.
+      kdt_.remove(track.point, engine_time(clock_));
+      slot_of_point_[track.point] = track::kNoTrack;
+      track.point = kinetic::kNoPoint;
+      speeds_.erase(admitted.slot);
+      alerts_.drop_track(admitted.slot, clock_, pending_events_);
+      deliver();
+    }
+    return;
+  }
+  apply(admitted.slot);
+}
+
+void Pipeline::move_clock(double t) {
+  if (t <= clock_) return;
+  tracks_.expire(t, [&](track::TrackSlot slot, const track::Track& track) {
+    const double at = std::max(clock_, track.t + tracks_.config().track_timeout_s);
+    kdt_.advance(engine_time(at));
+    clock_ = at;
+    drop_track(slot);
+  });
+  kdt_.advance(engine_time(t));
+  clock_ = t;
+}
+
+void Pipeline::advance_to(double t) {
+  if (!started_ || !std::isfinite(t)) return;
+  move_clock(t);
+}
+
+void Pipeline::drop_track(track::TrackSlot slot) {
+  track::Track& track = tracks_[slot];
+  if (track.point != kinetic::kNoPoint) {
+    kdt_.remove(track.point, engine_time(clock_));
+    slot_of_point_[track.point] = track::kNoTrack;
+    track.point = kinetic::kNoPoint;
+  }
+  speeds_.erase(slot);
+  alerts_.drop_track(slot, clock_, pending_events_);
+  ++stats_.tracks_dropped;
+  deliver();
+}
+
+void Pipeline::drop_all() {
+  for (track::TrackSlot slot = 0; slot < tracks_.slot_end(); ++slot) {
+    if (!tracks_[slot].in_use) continue;
+    drop_track(slot);
+    tracks_.drop(slot);
+  }
+}
+
+kinetic::KineticAudit Pipeline::audit() { return kdt_.audit_and_repair(); }
+
+void Pipeline::apply(track::TrackSlot slot) {
+  track::Track& track = tracks_[slot];
+  const probe::Kinematics now = track.at(clock_);
+  if (track.point == kinetic::kNoPoint) {
+    track.point = kdt_.insert(engine_time(clock_), now.position, now.velocity);
+    if (track.point >= slot_of_point_.size()) slot_of_point_.resize(track.point + 1, track::kNoTrack);
+    slot_of_point_[track.point] = slot;
+  } else {
+    kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
+  }
+  speeds_.set(slot, geometry::norm(now.velocity));
+  probe(slot);
+}
+
+void Pipeline::collect_candidates(track::TrackSlot slot) {
+  const track::Track& track = tracks_[slot];
+  candidates_.clear();
+  points_scratch_.clear();
+  switch (config_.probe_mode) {
+    case probe::ProbeMode::Exact:
+      search_.within(kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
+      break;
+    case probe::ProbeMode::Edges:
+      search_.neighbours(kdt_, track.point, points_scratch_);
+      break;
+    case probe::ProbeMode::Brute:
+      for (track::TrackSlot other = 0; other < tracks_.slot_end(); ++other)
+        if (tracks_[other].point != kinetic::kNoPoint) candidates_.push_back(other);
+      break;
+  }
+  for (const kinetic::PointId p : points_scratch_) candidates_.push_back(slot_of_point_[p]);
+  // Pairs pending confirmation or alerting are always re-evaluated, so they see their
+  // clear evaluations even when the search (edges mode) does not return them.
+  alerts_.partners_of(slot, candidates_);
+  std::sort(candidates_.begin(), candidates_.end());
+  candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+  candidates_.erase(std::remove(candidates_.begin(), candidates_.end(), slot), candidates_.end());
+}
+
+void Pipeline::probe(track::TrackSlot slot) {
+  collect_candidates(slot);
+  ++stats_.probes;
+  stats_.candidates += candidates_.size();
+  const track::Track& track = tracks_[slot];
+  const probe::Kinematics k_self = track.at(clock_);
+  for (const track::TrackSlot other_slot : candidates_) {
+    const track::Track& other = tracks_[other_slot];
+    const probe::Kinematics k_other = other.at(clock_);
+    probe::SeparationMinima minima = config_.minima;
+    minima.horizontal_m *= geo::Projection::pair_scale(track.plane.scale, other.plane.scale);
+    // The lower slot goes first so that a pair's figures do not depend on which of its
+    // two tracks was updated.
+    const bool self_first = slot < other_slot;
+    const probe::Kinematics& kp = self_first ? k_self : k_other;
+    const probe::Kinematics& kq = self_first ? k_other : k_self;
+    const probe::ConflictGeometry g = probe::evaluate_pair(kp, kq, minima);
+    alert::Evaluation e;
+    e.in_conflict = g.in_conflict;
+    if (g.in_conflict) e.severity = alerts_.classify(g.lost_now, g.t_los_s);
+    const track::TrackSlot p = self_first ? slot : other_slot;
+    const track::TrackSlot q = self_first ? other_slot : slot;
+    alerts_.evaluate(
+        p, q, e, clock_,
+        [&](AlertEvent& event) {
+          event.severity = e.severity;
+          fill_event(event, p, q, g, kp, kq);
+        },
+        pending_events_);
+  }
+  deliver();
+}
+
+void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
+                          const probe::Kinematics& kp, const probe::Kinematics& kq) const {
+  const track::Track& tp = tracks_[p];
+  const track::Track& tq = tracks_[q];
+  const bool p_first = ordered_before(tp, tq);
+  event.a = party_of(p_first ? tp : tq);
+  event.b = party_of(p_first ? tq : tp);
+  event.t_los_s = g.t_los_s;
+  event.t_cpa_s = g.t_cpa_s;
+  event.cpa_v_ft = g.cpa_v_m / kFootToMetre;
+  event.sep_v_ft = g.sep_v_m / kFootToMetre;
+  // Horizontal figures on the ellipsoid: the plane overstates lengths by the scale k.
+  const geo::Projection& projection = *projection_;
+  const auto geodesic = [&](geometry::Point2 x, geometry::Point2 y) {
+    return geo::Projection::geodesic_distance_m(projection.unproject(x), projection.unproject(y));
+  };
+  event.sep_h_m = geodesic(kp.position, kq.position);
+  event.cpa_h_m = geodesic(kp.position + g.t_cpa_s * kp.velocity, kq.position + g.t_cpa_s * kq.velocity);
+}
+
+void Pipeline::deliver() {
+  if (sink_)
+    for (const AlertEvent& event : pending_events_) sink_(event);
+  pending_events_.clear();
+}
+
+}  // namespace kew

@@ -1,0 +1,76 @@
+#include "kew/probe/cpa.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kew::probe {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Interval {
+  double lo = 0.0;
+  double hi = -1.0;  // empty unless lo < hi
+  bool empty() const { return !(lo < hi); }
+};
+
+// { s : |d + w·s| < r } for the 2D relative motion d + w·s.
+Interval horizontal_interval(geometry::Vector2 d, geometry::Vector2 w, double r) {
+  const double a = geometry::dot(w, w);
+  const double b = geometry::dot(d, w);
+  const double c = geometry::dot(d, d) - r * r;
+  if (a == 0.0) return c < 0.0 ? Interval{-kInfinity, kInfinity} : Interval{};
+  const double discriminant = b * b - a * c;
+  if (discriminant <= 0.0) return {};
+  // Roots of a s² + 2 b s + c; the numerically stable pair avoids cancellation.
+  const double root = std::sqrt(discriminant);
+  const double q = b >= 0.0 ? -(b + root) : -(b - root);
+  double s1 = q / a;
+  double s2 = q != 0.0 ? c / q : -s1;
+  if (s1 > s2) std::swap(s1, s2);
+  return {s1, s2};
+}
+
+// { s : |dz + wz·s| < r }.
+Interval vertical_interval(double dz, double wz, double r) {
+  if (wz == 0.0) return std::abs(dz) < r ? Interval{-kInfinity, kInfinity} : Interval{};
+  double s1 = (-r - dz) / wz;
+  double s2 = (r - dz) / wz;
+  if (s1 > s2) std::swap(s1, s2);
+  return {s1, s2};
+}
+
+}  // namespace
+
+ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
+  ConflictGeometry g;
+  const geometry::Vector2 d = b.position - a.position;
+  const geometry::Vector2 w = b.velocity - a.velocity;
+  const double dz = b.altitude_m - a.altitude_m;
+  const double wz = b.vertical_rate_mps - a.vertical_rate_mps;
+  const double T = minima.lookahead_s;
+
+  g.sep_h_m = geometry::norm(d);
+  g.sep_v_m = std::abs(dz);
+  const double ww = geometry::dot(w, w);
+  g.t_cpa_s = ww > 0.0 ? std::clamp(-geometry::dot(d, w) / ww, 0.0, T) : 0.0;
+  g.cpa_h_m = geometry::norm(d + g.t_cpa_s * w);
+  g.cpa_v_m = std::abs(dz + g.t_cpa_s * wz);
+
+  const Interval h = horizontal_interval(d, w, minima.horizontal_m);
+  if (h.empty()) return g;
+  const Interval v = vertical_interval(dz, wz, minima.vertical_m);
+  if (v.empty()) return g;
+  const double lo = std::max({0.0, h.lo, v.lo});
+  const double hi = std::min({T, h.hi, v.hi});
+  g.lost_now = h.lo < 0.0 && 0.0 < h.hi && v.lo < 0.0 && 0.0 < v.hi;
+  if (!(lo < hi) && !g.lost_now) return g;
+  g.in_conflict = true;
+  g.t_los_s = lo;
+  g.t_end_s = std::max(lo, hi);
+  return g;
+}
+
+}  // namespace kew::probe

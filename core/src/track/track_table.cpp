@@ -1,0 +1,189 @@
+#include "kew/track/track_table.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace kew::track {
+
+namespace {
+constexpr double kKnotToMps = 1852.0 / 3600.0;
+constexpr double kFootToMetre = 0.3048;
+constexpr double kFpmToMps = kFootToMetre / 60.0;
+
+bool finite_if_present(const std::optional<double>& v) { return !v || std::isfinite(*v); }
+
+std::string_view projection_reason(geo::ProjectionError e) {
+  switch (e) {
+    case geo::ProjectionError::NotFinite: return "position_not_finite";
+    case geo::ProjectionError::LatitudeRange: return "latitude_out_of_range";
+    case geo::ProjectionError::LongitudeRange: return "longitude_out_of_range";
+    case geo::ProjectionError::OutsideCoverage: return "outside_coverage";
+    case geo::ProjectionError::None: break;
+  }
+  return {};
+}
+
+std::uint16_t track_number_of(TrackSlot slot) { return static_cast<std::uint16_t>(slot % 65535u + 1u); }
+}  // namespace
+
+TrackTable::TrackTable(const TrackTableConfig& config) : config_(config) {}
+
+std::string_view TrackTable::plausibility_problem(const TrackReport& r) const {
+  if (r.id.empty()) return "empty_id";
+  if (r.id.size() > config_.max_id_bytes || r.source.size() > config_.max_id_bytes) return "id_too_long";
+  if (!std::isfinite(r.t)) return "time_not_finite";
+  if (!std::isfinite(r.lat_deg) || !std::isfinite(r.lon_deg)) return "position_not_finite";
+  if (std::abs(r.lat_deg) > 90.0) return "latitude_out_of_range";
+  if (std::abs(r.lon_deg) > 180.0) return "longitude_out_of_range";
+  if (std::isnan(r.alt_ft)) return "altitude_missing";
+  if (!std::isfinite(r.alt_ft)) return "altitude_not_finite";
+  if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return "altitude_out_of_range";
+  if (!finite_if_present(r.gs_kt) || !finite_if_present(r.trk_deg) || !finite_if_present(r.vr_fpm))
+    return "velocity_not_finite";
+  if (r.gs_kt && *r.gs_kt < 0.0) return "speed_negative";
+  if (r.gs_kt && *r.gs_kt > config_.max_ground_speed_kt) return "speed_too_high";
+  if (r.vr_fpm && std::abs(*r.vr_fpm) > config_.max_vertical_rate_fpm) return "vertical_rate_too_high";
+  if (r.on_ground && config_.exclude_on_ground) return "on_ground";
+  return {};
+}
+
+AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection) {
+  AdmitResult result;
+  const auto reject = [&](std::string_view reason) {
+    rejections_.reject(reason, r.id);
+    return result;
+  };
+  if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);
+  if (r.t < now - config_.max_lateness_s) return reject("too_late");
+
+  const TrackSlot existing = find(r.source, r.id);
+  if (existing != kNoTrack) {
+    const Track& previous = tracks_[existing];
+    if (r.t < previous.t) return reject("out_of_order");
+    if (r.t == previous.t) return reject("duplicate_time");
+  } else if (in_use_ >= config_.max_tracks) {
+    return reject("track_limit");
+  }
+
+  geo::ProjectionError error = geo::ProjectionError::None;
+  const geo::PlanePosition plane = projection.project({r.lat_deg, r.lon_deg}, error);
+  if (error != geo::ProjectionError::None) return reject(projection_reason(error));
+
+  const Track* previous = existing != kNoTrack ? &tracks_[existing] : nullptr;
+  const double gap = previous ? r.t - previous->t : 0.0;
+  const bool can_derive = previous && gap <= config_.max_derivation_gap_s;
+
+  // Horizontal velocity: reported, derived from the previous position, or kept.
+  bool has_velocity = false;
+  bool derived = false;
+  geometry::Vector2 velocity{};
+  if (r.gs_kt && r.trk_deg) {
+    velocity = projection.velocity_to_plane(plane, *r.gs_kt * kKnotToMps, *r.trk_deg);
+    has_velocity = true;
+  } else if (can_derive) {
+    velocity = (1.0 / gap) * (plane.p - previous->plane.p);
+    has_velocity = true;
+    derived = true;
+    if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * kKnotToMps) {
+      // A jump no aircraft can fly: the previous position is not this aircraft's (a
+      // reused track number, a bad fix). Start the velocity afresh from this record.
+      has_velocity = false;
+      derived = false;
+      result.velocity_reset = true;
+    }
+  } else if (previous && previous->has_velocity) {
+    velocity = previous->kinematics.velocity;
+    has_velocity = true;
+  }
+
+  double vertical_rate_mps = 0.0;
+  if (r.vr_fpm) {
+    vertical_rate_mps = *r.vr_fpm * kFpmToMps;
+  } else if (can_derive) {
+    vertical_rate_mps = (r.alt_ft - previous->alt_ft) * kFootToMetre / gap;
+    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) vertical_rate_mps = 0.0;
+  } else if (previous) {
+    vertical_rate_mps = previous->kinematics.vertical_rate_mps;
+  }
+
+  TrackSlot slot = existing;
+  if (slot == kNoTrack) {
+    slot = allocate(r);
+    result.new_track = true;
+  }
+  Track& track = tracks_[slot];
+  track.t = r.t;
+  track.lat_deg = r.lat_deg;
+  track.lon_deg = r.lon_deg;
+  track.alt_ft = r.alt_ft;
+  if (!r.callsign.empty()) track.callsign = r.callsign;
+  if (r.mode3a) track.mode3a = r.mode3a;
+  track.plane = plane;
+  track.kinematics.position = plane.p;
+  track.kinematics.velocity = velocity;
+  track.kinematics.altitude_m = r.alt_ft * kFootToMetre;
+  track.kinematics.vertical_rate_mps = vertical_rate_mps;
+  track.has_velocity = has_velocity;
+  track.vr_fpm = vertical_rate_mps / kFpmToMps;
+  if (r.gs_kt && r.trk_deg) {
+    track.gs_kt = *r.gs_kt;
+    track.trk_deg = *r.trk_deg;
+  } else if (has_velocity) {
+    double speed = 0.0;
+    projection.velocity_from_plane(plane, velocity, speed, track.trk_deg);
+    track.gs_kt = speed / kKnotToMps;
+  }
+  if (derived) ++velocities_derived_;
+  if (result.velocity_reset) ++velocity_resets_;
+  deadlines_.set(slot, r.t + config_.track_timeout_s);
+
+  result.slot = slot;
+  result.admission = has_velocity ? Admission::Accepted : Admission::AwaitingVelocity;
+  return result;
+}
+
+TrackSlot TrackTable::find(std::string_view source, std::string_view id) const {
+  const auto by_source = index_.find(source);
+  if (by_source == index_.end()) return kNoTrack;
+  const auto by_id = by_source->second.find(id);
+  return by_id == by_source->second.end() ? kNoTrack : by_id->second;
+}
+
+TrackSlot TrackTable::allocate(const TrackReport& r) {
+  TrackSlot slot;
+  if (!free_slots_.empty()) {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+  } else {
+    slot = static_cast<TrackSlot>(tracks_.size());
+    tracks_.emplace_back();
+  }
+  Track& track = tracks_[slot];
+  track = Track{};
+  track.source = r.source;
+  track.id = r.id;
+  track.number = track_number_of(slot);
+  track.in_use = true;
+  auto source_index = index_.find(r.source);
+  if (source_index == index_.end()) source_index = index_.emplace(r.source, IdIndex{}).first;
+  source_index->second.emplace(r.id, slot);
+  ++in_use_;
+  if (in_use_ > max_in_use_) max_in_use_ = in_use_;
+  return slot;
+}
+
+void TrackTable::drop(TrackSlot slot) {
+  Track& track = tracks_[slot];
+  if (!track.in_use) return;
+  const auto source_index = index_.find(track.source);
+  if (source_index != index_.end()) {
+    source_index->second.erase(track.id);
+    if (source_index->second.empty()) index_.erase(source_index);
+  }
+  deadlines_.erase(slot);
+  track = Track{};
+  free_slots_.push_back(slot);
+  --in_use_;
+}
+
+}  // namespace kew::track

@@ -1,0 +1,174 @@
+// Alert lifecycle (SPEC §4 "Alerts"): confirm, update, clear, drop; ids and sequence.
+#include "kew/alert/alert_manager.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace kew::alert {
+namespace {
+
+struct Figures {
+  double t_los = 90.0, cpa_h = 1000.0, cpa_v = 0.0;
+  Severity severity = Severity::Caution;
+};
+
+class Lifecycle : public ::testing::Test {
+ protected:
+  // Evaluates pair {p, q} at t with the given outcome.
+  void evaluate(Slot p, Slot q, double t, bool conflict, const Figures& f = {}) {
+    Evaluation e{conflict, conflict ? f.severity : Severity::None};
+    manager.evaluate(
+        p, q, e, t,
+        [&](AlertEvent& event) {
+          event.severity = f.severity;
+          event.a.source = "s";
+          event.a.id = "A" + std::to_string(std::min(p, q));
+          event.b.source = "s";
+          event.b.id = "B" + std::to_string(std::max(p, q));
+          event.t_los_s = f.t_los;
+          event.cpa_h_m = f.cpa_h;
+          event.cpa_v_ft = f.cpa_v;
+        },
+        events);
+  }
+
+  AlertManager manager{AlertConfig{}};
+  std::vector<AlertEvent> events;
+};
+
+TEST_F(Lifecycle, OpensOnlyAfterConfirmConsecutiveConflicts) {
+  evaluate(1, 2, 100.0, true);
+  EXPECT_TRUE(events.empty());
+  evaluate(1, 2, 104.0, false);  // the streak is broken
+  evaluate(1, 2, 108.0, true);
+  EXPECT_TRUE(events.empty());
+  evaluate(2, 1, 112.0, true, {85.0});  // same pair, either order
+  ASSERT_EQ(events.size(), 1u);
+  const AlertEvent& opened = events[0];
+  EXPECT_EQ(opened.state, AlertState::New);
+  EXPECT_EQ(opened.seq, 1u);
+  EXPECT_EQ(opened.number, 1u);
+  EXPECT_EQ(opened.t, 112.0);
+  EXPECT_EQ(opened.opened_t, 112.0);
+  EXPECT_EQ(opened.id, make_alert_id(opened.a, opened.b, 112.0));
+  EXPECT_EQ(opened.id.size(), 16u);
+  EXPECT_EQ(manager.active_count(), 1u);
+  EXPECT_EQ(manager.counters().opened, 1u);
+}
+
+TEST_F(Lifecycle, UpdatesOnlyWhenSeverityOrFiguresChange) {
+  evaluate(1, 2, 100.0, true, {90.0});
+  evaluate(1, 2, 104.0, true, {86.0});  // opens
+  ASSERT_EQ(events.size(), 1u);
+  evaluate(1, 2, 108.0, true, {82.5});  // t_los aged as expected: no update
+  EXPECT_EQ(events.size(), 1u);
+  evaluate(1, 2, 112.0, true, {70.0});  // 8 s earlier than the aged figure: update
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[1].state, AlertState::Update);
+  EXPECT_EQ(events[1].id, events[0].id);
+  EXPECT_EQ(events[1].seq, 2u);
+  evaluate(1, 2, 113.0, true, {69.0, 1000.0 + 200.0});  // CPA moved by 200 m ≥ 0.1 NM
+  ASSERT_EQ(events.size(), 3u);
+  evaluate(1, 2, 114.0, true, {55.0, 1200.0, 0.0, Severity::Warning});
+  ASSERT_EQ(events.size(), 4u);
+  EXPECT_EQ(events[3].severity, Severity::Warning);
+  evaluate(1, 2, 115.0, true, {54.0, 1200.0, 150.0, Severity::Warning});  // CPA vertical moved 150 ft
+  EXPECT_EQ(events.size(), 5u);
+}
+
+TEST_F(Lifecycle, EndsAfterClearConsecutiveClearEvaluations) {
+  evaluate(1, 2, 100.0, true, {90.0});
+  evaluate(1, 2, 104.0, true, {86.0});
+  evaluate(1, 2, 108.0, false);
+  evaluate(1, 2, 112.0, true, {78.0});  // resets the clear streak; figures as predicted
+  evaluate(1, 2, 116.0, false);
+  EXPECT_EQ(events.size(), 1u);
+  evaluate(1, 2, 120.0, false);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[1].state, AlertState::End);
+  EXPECT_EQ(events[1].end_reason, AlertEndReason::Cleared);
+  EXPECT_EQ(events[1].t, 120.0);
+  EXPECT_EQ(events[1].id, events[0].id);
+  EXPECT_EQ(manager.active_count(), 0u);
+  // The pair is forgotten: a new conflict must be confirmed again and gets a new id.
+  evaluate(1, 2, 124.0, true);
+  EXPECT_EQ(events.size(), 2u);
+  evaluate(1, 2, 128.0, true);
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_NE(events[2].id, events[0].id);
+  EXPECT_EQ(events[2].number, 2u);
+}
+
+TEST_F(Lifecycle, DroppingATrackEndsItsAlertsInPartnerOrder) {
+  for (Slot partner : {9u, 3u, 5u}) {
+    evaluate(7, partner, 100.0, true);
+    evaluate(7, partner, 104.0, true);
+  }
+  evaluate(3, 5, 104.0, true);  // pending only: no event, forgotten silently
+  ASSERT_EQ(events.size(), 3u);
+  std::vector<Slot> partners;
+  manager.partners_of(7, partners);
+  EXPECT_EQ(partners.size(), 3u);
+  manager.drop_track(7, 110.0, events);
+  ASSERT_EQ(events.size(), 6u);
+  for (int i = 3; i < 6; ++i) {
+    EXPECT_EQ(events[i].state, AlertState::End);
+    EXPECT_EQ(events[i].end_reason, AlertEndReason::TrackDropped);
+    EXPECT_EQ(events[i].t, 110.0);
+  }
+  EXPECT_EQ(events[3].b.id, "B7");
+  EXPECT_EQ(events[3].a.id, "A3");
+  EXPECT_EQ(events[4].a.id, "A5");
+  EXPECT_EQ(events[5].b.id, "B9");
+  EXPECT_EQ(manager.active_count(), 0u);
+  partners.clear();
+  manager.partners_of(7, partners);
+  EXPECT_TRUE(partners.empty());
+}
+
+TEST_F(Lifecycle, SnapshotAcknowledgeAndSeverity) {
+  evaluate(1, 2, 100.0, true, {30.0, 500.0, 0.0, Severity::Warning});
+  evaluate(1, 2, 104.0, true, {26.0, 500.0, 0.0, Severity::Warning});
+  evaluate(3, 4, 100.0, true);
+  evaluate(3, 4, 104.0, true);
+  ASSERT_EQ(manager.snapshot().size(), 2u);
+  EXPECT_EQ(manager.snapshot()[0].a.id, "A1");  // opening order
+  EXPECT_EQ(manager.highest_severity(), Severity::Warning);
+  EXPECT_EQ(manager.unacknowledged_count(), 2u);
+  manager.acknowledge_all();
+  EXPECT_EQ(manager.unacknowledged_count(), 0u);
+  evaluate(3, 4, 108.0, true, {0.0, 500.0, 0.0, Severity::Loss});  // escalation re-arms
+  EXPECT_EQ(manager.unacknowledged_count(), 1u);
+  EXPECT_FALSE(events.back().acknowledged);
+  EXPECT_EQ(manager.highest_severity(), Severity::Loss);
+}
+
+TEST(AlertIds, DependOnPairAndOpeningTimeOnly) {
+  AlertParty a, b, c;
+  a.source = b.source = c.source = "cat062/25.100";
+  a.id = "4CA123";
+  b.id = "3C6DD2";
+  c.id = "4CA12";
+  EXPECT_EQ(make_alert_id(a, b, 1714400000.25), make_alert_id(a, b, 1714400000.25));
+  EXPECT_NE(make_alert_id(a, b, 1714400000.25), make_alert_id(a, b, 1714400004.25));
+  EXPECT_NE(make_alert_id(a, b, 1714400000.25), make_alert_id(a, c, 1714400000.25));
+  // The separator keeps ("4CA12", "3…") and ("4CA123", "…") apart.
+  AlertParty b2 = b;
+  b2.id = "3" + b.id;
+  EXPECT_NE(make_alert_id(c, b2, 1.0), make_alert_id(a, b, 1.0));
+}
+
+TEST(Severities, ClassifiedByTimeToLoss) {
+  const AlertManager m;
+  EXPECT_EQ(m.classify(true, 0.0), Severity::Loss);
+  EXPECT_EQ(m.classify(false, 60.0), Severity::Warning);
+  EXPECT_EQ(m.classify(false, 60.5), Severity::Caution);
+  Severity s;
+  EXPECT_TRUE(parse_severity("warning", s));
+  EXPECT_EQ(s, Severity::Warning);
+  EXPECT_FALSE(parse_severity("urgent", s));
+}
+
+}  // namespace
+}  // namespace kew::alert

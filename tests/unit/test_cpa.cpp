@@ -1,0 +1,125 @@
+// Hand-computed CPA cases (SPEC §4 "Conflict"): S_h = 9260 m, S_v = 304.8 m, T = 120 s.
+#include "kew/probe/cpa.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace kew::probe {
+namespace {
+
+Kinematics at(double x, double y, double vx, double vy, double alt_m = 10000.0, double vz = 0.0) {
+  return {{x, y}, {vx, vy}, alt_m, vz};
+}
+
+const SeparationMinima kMinima{};
+
+TEST(Cpa, HeadOnLosesSeparationWhenTheGapCloses) {
+  // 60 km apart, closing at 2 × 250 m/s: loss when the gap is 9260 m, after
+  // (60000 − 9260) / 500 = 101.48 s; CPA at 120 s (clamped: they would meet at 120 s).
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 250, 0), at(60000, 0, -250, 0), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_FALSE(g.lost_now);
+  EXPECT_NEAR(g.t_los_s, 101.48, 1e-9);
+  EXPECT_NEAR(g.t_cpa_s, 120.0, 1e-9);
+  EXPECT_NEAR(g.cpa_h_m, 0.0, 1e-6);
+  EXPECT_NEAR(g.sep_h_m, 60000.0, 1e-9);
+  EXPECT_NEAR(g.t_end_s, 120.0, 1e-9);
+}
+
+TEST(Cpa, HeadOnBeyondTheLookaheadIsClear) {
+  // 130 km apart closing at 500 m/s: the gap is 70 km after 120 s.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 250, 0), at(130000, 0, -250, 0), kMinima);
+  EXPECT_FALSE(g.in_conflict);
+  EXPECT_NEAR(g.cpa_h_m, 70000.0, 1e-6);
+  EXPECT_NEAR(g.t_cpa_s, 120.0, 1e-12);
+}
+
+TEST(Cpa, SlowOvertakeBeyondTheLookaheadIsClear) {
+  // Same airway and level, 20 km behind, 50 m/s faster: the gap is 14 km at T.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 200, 0), at(-20000, 0, 250, 0), kMinima);
+  EXPECT_FALSE(g.in_conflict);
+  EXPECT_NEAR(g.t_cpa_s, 120.0, 1e-9);
+  EXPECT_NEAR(g.cpa_h_m, 14000.0, 1e-6);
+}
+
+TEST(Cpa, OvertakeWithinTheLookahead) {
+  // 15 km behind, 100 m/s faster: loss after (15000 − 9260)/100 = 57.4 s: a warning.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 200, 0), at(-15000, 0, 300, 0), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_NEAR(g.t_los_s, 57.4, 1e-9);
+  EXPECT_NEAR(g.t_cpa_s, 120.0, 1e-9);  // still closing at T
+  EXPECT_NEAR(g.cpa_h_m, 15000.0 - 12000.0, 1e-6);
+}
+
+TEST(Cpa, ParallelAtConstantDistanceIsClearOrLost) {
+  // Same velocity: the relative motion is zero, the distance never changes.
+  const ConflictGeometry clear = evaluate_pair(at(0, 0, 200, 0), at(0, 10000, 200, 0), kMinima);
+  EXPECT_FALSE(clear.in_conflict);
+  EXPECT_EQ(clear.t_cpa_s, 0.0);
+  EXPECT_NEAR(clear.cpa_h_m, 10000.0, 1e-9);
+  const ConflictGeometry lost = evaluate_pair(at(0, 0, 200, 0), at(0, 5000, 200, 0), kMinima);
+  EXPECT_TRUE(lost.in_conflict);
+  EXPECT_TRUE(lost.lost_now);
+  EXPECT_EQ(lost.t_los_s, 0.0);
+  EXPECT_EQ(lost.t_end_s, 120.0);
+}
+
+TEST(Cpa, VerticalCrossingOverTheSamePoint) {
+  // Same ground track and speed (horizontal distance 0 throughout); one climbs at
+  // 10 m/s from 1000 m below: vertical distance < 304.8 m from (1000 − 304.8)/10 =
+  // 69.52 s to (1000 + 304.8)/10 = 130.48 s, clipped to T.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 200, 0, 10000), at(0, 0, 200, 0, 9000, 10), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_NEAR(g.t_los_s, 69.52, 1e-9);
+  EXPECT_NEAR(g.t_end_s, 120.0, 1e-12);
+  EXPECT_NEAR(g.sep_v_m, 1000.0, 1e-9);
+}
+
+TEST(Cpa, VerticalCrossingWhenHorizontallyApartIsClear) {
+  // The vertical window (69.52 s, 130.48 s) and the horizontal one (the pair is within
+  // 9260 m only before 20 s on diverging tracks) do not overlap.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 0, 0, 10000), at(5000, 0, 200, 0, 9000, 10), kMinima);
+  EXPECT_FALSE(g.in_conflict);
+}
+
+TEST(Cpa, AlreadyInLoss) {
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 200, 0, 10000), at(3000, 4000, 150, 0, 10100), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_TRUE(g.lost_now);
+  EXPECT_EQ(g.t_los_s, 0.0);
+  EXPECT_NEAR(g.sep_h_m, 5000.0, 1e-9);
+  EXPECT_NEAR(g.sep_v_m, 100.0, 1e-9);
+}
+
+TEST(Cpa, DivergingAfterCloseApproachIsClear) {
+  // 10 km apart and separating: the closest approach was in the past.
+  const ConflictGeometry g = evaluate_pair(at(0, 0, -200, 0), at(10000, 0, 200, 0), kMinima);
+  EXPECT_FALSE(g.in_conflict);
+  EXPECT_EQ(g.t_cpa_s, 0.0);
+  EXPECT_NEAR(g.cpa_h_m, 10000.0, 1e-9);
+}
+
+TEST(Cpa, CrossingAtRightAngles) {
+  // A flies east from (−30 km, 0), B north from (0, −30 km), both 250 m/s: they meet
+  // at the origin at 120 s; their distance is √2·|30000 − 250 t|, below 9260 m from
+  // t = (30000 − 9260/√2)/250 = 93.810... s.
+  const ConflictGeometry g = evaluate_pair(at(-30000, 0, 250, 0), at(0, -30000, 0, 250), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_NEAR(g.t_los_s, (30000.0 - 9260.0 / std::sqrt(2.0)) / 250.0, 1e-9);
+  EXPECT_NEAR(g.t_cpa_s, 120.0, 1e-9);
+  EXPECT_NEAR(g.cpa_h_m, 0.0, 1e-6);
+}
+
+TEST(Cpa, SymmetricUnderSwap) {
+  const Kinematics a = at(1234, -5678, 210, 35, 10500, 5);
+  const Kinematics b = at(-4321, 8765, -180, -60, 10300, -3);
+  const ConflictGeometry ab = evaluate_pair(a, b, kMinima);
+  const ConflictGeometry ba = evaluate_pair(b, a, kMinima);
+  EXPECT_EQ(ab.in_conflict, ba.in_conflict);
+  EXPECT_NEAR(ab.t_los_s, ba.t_los_s, 1e-9);
+  EXPECT_NEAR(ab.cpa_h_m, ba.cpa_h_m, 1e-9);
+}
+
+}  // namespace
+}  // namespace kew::probe
