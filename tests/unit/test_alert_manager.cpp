@@ -17,7 +17,7 @@ class Lifecycle : public ::testing::Test {
  protected:
   // Evaluates pair {p, q} at t with the given outcome.
   void evaluate(Slot p, Slot q, double t, bool conflict, const Figures& f = {}) {
-    Evaluation e{conflict, conflict ? f.severity : Severity::None};
+    Evaluation e{conflict, conflict ? f.severity : Severity::None, f.t_los, f.cpa_h, f.cpa_v};
     manager.evaluate(
         p, q, e, t,
         [&](AlertEvent& event) {

@@ -90,35 +90,37 @@ void AlertManager::record_clear(Pairs::iterator it, double t, std::vector<AlertE
   forget(it);
 }
 
-void AlertManager::open(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out) {
+void AlertManager::open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out) {
   s.active = true;
   ++active_;
   ++counters_.opened;
-  candidate.state = AlertState::New;
-  candidate.opened_t = candidate.t;
-  candidate.id = make_alert_id(candidate.a, candidate.b, candidate.t);
-  candidate.number = next_number_;
+  event.state = AlertState::New;
+  event.opened_t = event.t;
+  event.id = make_alert_id(event.a, event.b, event.t);
+  event.number = next_number_;
   next_number_ = static_cast<std::uint16_t>(next_number_ == 0xffff ? 1 : next_number_ + 1);
-  candidate.acknowledged = false;
-  emit(s, std::move(candidate), out);
+  event.acknowledged = false;
+  emit(s, std::move(event), out);
   s.opened_seq = s.last.seq;
 }
 
-void AlertManager::offer_update(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out) {
+bool AlertManager::changed(const PairState& s, const Evaluation& e, double t) const {
+  const Evaluation& last = s.decided;
+  const double aged_t_los = std::max(0.0, last.t_los_s - (t - s.decided_t));
+  return e.severity != last.severity || std::abs(e.t_los_s - aged_t_los) >= config_.update_t_los_s ||
+         std::abs(e.cpa_h_m - last.cpa_h_m) >= config_.update_cpa_h_m ||
+         std::abs(e.cpa_v_ft - last.cpa_v_ft) >= config_.update_cpa_v_ft;
+}
+
+void AlertManager::update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out) {
   const AlertEvent& last = s.last;
-  const double aged_t_los = std::max(0.0, last.t_los_s - (candidate.t - last.t));
-  const bool changed = candidate.severity != last.severity ||
-                       std::abs(candidate.t_los_s - aged_t_los) >= config_.update_t_los_s ||
-                       std::abs(candidate.cpa_h_m - last.cpa_h_m) >= config_.update_cpa_h_m ||
-                       std::abs(candidate.cpa_v_ft - last.cpa_v_ft) >= config_.update_cpa_v_ft;
-  if (!changed) return;
   ++counters_.updated;
-  candidate.state = AlertState::Update;
-  candidate.id = last.id;
-  candidate.number = last.number;
-  candidate.opened_t = last.opened_t;
-  candidate.acknowledged = last.acknowledged && candidate.severity <= last.severity;
-  emit(s, std::move(candidate), out);
+  event.state = AlertState::Update;
+  event.id = last.id;
+  event.number = last.number;
+  event.opened_t = last.opened_t;
+  event.acknowledged = last.acknowledged && event.severity <= last.severity;
+  emit(s, std::move(event), out);
 }
 
 void AlertManager::end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out) {

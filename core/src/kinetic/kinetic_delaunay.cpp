@@ -61,9 +61,9 @@ void KineticDelaunay::clear_edge(FaceIndex f, int i, bool count_discard) {
   FaceSchedule& s = schedule_[f];
   const EntryKind kind = s.kind[static_cast<unsigned>(i)];
   if (kind == EntryKind::None) return;
-  if (kind == EntryKind::Failure) {
+  if (kind == EntryKind::Failure || kind == EntryKind::Approach) {
     --stats_.queue_now;
-    if (count_discard) ++stats_.events_discarded;
+    if (count_discard && kind == EntryKind::Failure) ++stats_.events_discarded;
   } else {
     --stats_.renewals_queued;
   }
@@ -81,8 +81,11 @@ void KineticDelaunay::clear_edge(FaceIndex f, int i, bool count_discard) {
 double KineticDelaunay::earliest_failure(FaceIndex f) const {
   const FaceSchedule& s = schedule_[f];
   double t = kNever;
-  for (int i = 0; i < 3; ++i)
-    if (s.kind[static_cast<unsigned>(i)] == EntryKind::Failure) t = std::min(t, s.time[static_cast<unsigned>(i)]);
+  // An approach destroys faces like a failure does, so it bounds §8.3 windows too.
+  for (int i = 0; i < 3; ++i) {
+    const EntryKind kind = s.kind[static_cast<unsigned>(i)];
+    if (kind == EntryKind::Failure || kind == EntryKind::Approach) t = std::min(t, s.time[static_cast<unsigned>(i)]);
+  }
   return t;
 }
 
@@ -103,7 +106,7 @@ void KineticDelaunay::push(double time, std::uint32_t subject, int edge, EntryKi
     r.time[static_cast<unsigned>(e)] = time;
     r.seq[static_cast<unsigned>(e)] = seq;
   }
-  if (kind == EntryKind::Failure) {
+  if (kind == EntryKind::Failure || kind == EntryKind::Approach) {
     ++stats_.queue_now;
     stats_.queue_max = std::max(stats_.queue_max, stats_.queue_now);
   } else {
@@ -152,12 +155,52 @@ Polynomial KineticDelaunay::edge_certificate(FaceIndex f, int i) const {
   return incircle_polynomial(T(a), T(b), T(c), T(d), now_);
 }
 
+double KineticDelaunay::approach_offset(FaceIndex f, int i) const {
+  const Face& face = dt_.tds().face(f);
+  const PointId a = face.vertex[static_cast<unsigned>(ccw(i))];
+  const PointId b = face.vertex[static_cast<unsigned>(cw(i))];
+  if (a == kInfiniteVertex || b == kInfiniteVertex) return kNever;
+  const double r = config_.twin_release_distance_m;
+  const Vector2 gap = dt_.position(a) - dt_.position(b);
+  const double c = geometry::dot(gap, gap) - r * r;
+  if (c < 0.0) return 0.0;
+  const Vector2 drift = dt_.trajectory(a).velocity - dt_.trajectory(b).velocity;
+  const double b_half = geometry::dot(gap, drift);
+  if (!(b_half < 0.0)) return kNever;  // not approaching
+  const double speed2 = geometry::dot(drift, drift);
+  const double disc = b_half * b_half - speed2 * c;
+  if (disc < 0.0) return kNever;  // their closest approach is wider than r
+  // Smaller root of |gap + drift·τ|² = r², in the form without cancellation.
+  return c / (-b_half + std::sqrt(disc));
+}
+
 void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::uint16_t retries) {
   const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(i)];
   double end = now_ + config_.horizon_s;
   if (config_.reduce_redundant_events) end = std::min({end, earliest_failure(f), earliest_failure(g)});
   const Polynomial certificate = edge_certificate(f, i);
-  if (certificate.is_zero()) return;  // never fails (e.g. a segment of a flat chain)
+  watch_degenerate(f, i, certificate.is_zero());
+  // Two ends about to pass through each other: every certificate around them vanishes
+  // at the meeting instant, which no flip sequence can follow exactly. Merge them into
+  // twins just before instead; the certificate only matters until then.
+  const double approach = approach_offset(f, i);
+  if (approach < end - now_) {
+    if (!certificate.is_zero() && from_offset < approach) {
+      ++stats_.certificates_solved;
+      const Crossing crossing = first_positive_crossing(certificate, from_offset, approach);
+      stats_.tangencies_ignored += static_cast<std::uint64_t>(crossing.tangencies);
+      if (crossing.violated_at_start || crossing.found) {
+        const double at = crossing.violated_at_start ? now_ + from_offset : now_ + crossing.time;
+        ++stats_.events_computed;
+        push(at, f, i, EntryKind::Failure, retries);
+        return;
+      }
+    }
+    ++stats_.approaches_scheduled;
+    push(now_ + approach, f, i, EntryKind::Approach, 0);
+    return;
+  }
+  if (certificate.is_zero()) return;  // no event can be computed (watched if it matters)
   ++stats_.certificates_solved;
   const double window = end - now_;
   if (!(window > from_offset)) {
@@ -174,6 +217,51 @@ void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::ui
     return;
   }
   if (std::isfinite(end)) push(end, f, i, EntryKind::Renewal, 0);
+}
+
+void KineticDelaunay::watch_degenerate(FaceIndex f, int i, bool zero_certificate) {
+  const auto& tds = dt_.tds();
+  const Face& face = tds.face(f);
+  const PointId c = face.vertex[static_cast<unsigned>(i)];
+  const PointId d = tds.face(face.neighbor[static_cast<unsigned>(i)]).vertex[static_cast<unsigned>(tds.mirror_index(f, i))];
+  // Edges that constrain nothing (segments of a flat chain, the ends of one) have no
+  // certificate at all, rather than a degenerate one.
+  const bool unconstrained = c == d || (c == kInfiniteVertex && d == kInfiniteVertex);
+  std::uint8_t& mask = schedule_[f].zero_certificate;
+  const auto bit = static_cast<std::uint8_t>(1u << i);
+  if (zero_certificate && !unconstrained) {
+    if (mask == 0) degenerate_faces_.emplace_back(f, face.generation);
+    mask = static_cast<std::uint8_t>(mask | bit);
+  } else {
+    mask = static_cast<std::uint8_t>(mask & ~bit);
+  }
+}
+
+bool KineticDelaunay::flip_degenerate_edges() {
+  if (degenerate_faces_.empty()) return false;
+  const auto& tds = dt_.tds();
+  std::vector<std::pair<FaceIndex, int>> seeds;
+  std::size_t kept = 0;
+  for (const auto& [f, generation] : degenerate_faces_) {
+    const Face& face = tds.face(f);
+    const std::uint8_t mask = schedule_[f].zero_certificate;
+    if (!face.alive || face.generation != generation || mask == 0) continue;
+    degenerate_faces_[kept++] = {f, generation};
+    for (int i = 0; i < 3; ++i)
+      if ((mask >> i) & 1u && dt_.edge_state(f, i) == EdgeState::Violated) seeds.emplace_back(f, i);
+  }
+  degenerate_faces_.resize(kept);
+  if (seeds.empty()) return false;
+  std::vector<std::pair<FaceIndex, int>> stuck;
+  stats_.degenerate_flips += dt_.make_locally_delaunay(seeds, &stuck);
+  std::vector<PointId> suspects;
+  for (const auto& [f, i] : stuck) {
+    if (!tds.face(f).alive) continue;
+    suspects.insert(suspects.end(), tds.face(f).vertex.begin(), tds.face(f).vertex.end());
+  }
+  if (!suspects.empty()) repair_around(suspects);
+  schedule_dirty_faces();
+  return true;
 }
 
 void KineticDelaunay::schedule_dirty_faces() {
@@ -219,16 +307,19 @@ void KineticDelaunay::set_now(double t) {
 void KineticDelaunay::advance(double t) {
   assert(!(t < now_) && "the engine's clock only moves forward");
   if (t < now_) t = now_;
-  while (!heap_.empty() && heap_.front().time <= t) {
-    std::pop_heap(heap_.begin(), heap_.end(), EntryLater{});
-    const Entry e = heap_.back();
-    heap_.pop_back();
-    if (!is_live(e)) continue;
-    set_now(std::max(now_, e.time));
-    execute(e);
-    schedule_dirty_faces();
-  }
-  set_now(t);
+  do {
+    while (!heap_.empty() && heap_.front().time <= t) {
+      std::pop_heap(heap_.begin(), heap_.end(), EntryLater{});
+      const Entry e = heap_.back();
+      heap_.pop_back();
+      if (!is_live(e)) continue;
+      set_now(std::max(now_, e.time));
+      execute(e);
+      schedule_dirty_faces();
+    }
+    set_now(t);
+    // Flips of degenerate edges may schedule failures already due at t: loop.
+  } while (flip_degenerate_edges());
   stats_.queue_sum += static_cast<double>(stats_.queue_now);
   ++stats_.queue_samples;
   compact_queue();
@@ -244,13 +335,20 @@ void KineticDelaunay::execute(const Entry& e) {
       clear_edge(e.subject, e.edge, false);
       solve_edge(e.subject, e.edge, 0.0, 0);
       return;
+    case EntryKind::Approach:
+      execute_approach(e);
+      return;
     case EntryKind::TwinRelease: {
       release_seq_[e.subject] = 0;
       const PointId id = e.subject;
       const PointId host = twin_host_[id];
       if (host == kNoPoint) return;
-      if (dt_.position(id) == dt_.position(host)) {
-        schedule_twin_release(id);  // still coincident after rounding: look again later
+      const Vector2 gap = dt_.position(id) - dt_.position(host);
+      const double r = config_.twin_release_distance_m;
+      if (geometry::dot(gap, gap) < r * r) {
+        // Still closer than r after rounding: look again later, so that a released
+        // twin is never merged straight back by approach_offset().
+        schedule_twin_release(id);
         return;
       }
       unlink_twin(id);
@@ -296,6 +394,33 @@ void KineticDelaunay::execute_failure(const Entry& e) {
   // Violated but not flippable: the neighbourhood is degenerate (points passing through
   // each other, collinear overtakes). Repair it locally.
   repair_quadrilateral(f, i);
+}
+
+void KineticDelaunay::execute_approach(const Entry& e) {
+  const FaceIndex f = e.subject;
+  const int i = e.edge;
+  clear_edge(f, i, false);
+  const Face& face = dt_.tds().face(f);
+  PointId keep = face.vertex[static_cast<unsigned>(ccw(i))];
+  PointId leave = face.vertex[static_cast<unsigned>(cw(i))];
+  // The time was computed in floating point: accept anything near r, else look again.
+  const Vector2 gap = dt_.position(keep) - dt_.position(leave);
+  const double r = config_.twin_release_distance_m;
+  if (geometry::dot(gap, gap) > 4.0 * r * r) {
+    solve_edge(f, i, 0.0, 0);
+    return;
+  }
+  // Deterministic choice: the vertex hosting more twins stays (fewer moves), then the
+  // lower index.
+  if (twins_[leave].size() > twins_[keep].size() || (twins_[leave].size() == twins_[keep].size() && leave < keep))
+    std::swap(keep, leave);
+  if (!dt_.detach(leave)) {
+    ++stats_.rebuilds;
+    ++stats_.repairs;
+  }
+  adopt_evicted_duplicates();
+  ++stats_.approaches_merged;
+  merge_into(leave, keep);
 }
 
 void KineticDelaunay::repair_quadrilateral(FaceIndex f, int i) {
@@ -456,17 +581,18 @@ void KineticDelaunay::adopt_evicted_duplicates() {
   if (evicted.empty()) return;
   const auto pairs = std::move(evicted);
   evicted.clear();
-  for (const auto& [vertex, same] : pairs) {
-    // A rebuild found two vertices at one place: the evicted one becomes a twin, and
-    // its own twins follow it to the surviving host.
-    std::vector<PointId> carried = std::move(twins_[vertex]);
-    twins_[vertex].clear();
-    make_twin(vertex, same);
-    for (const PointId w : carried) {
-      twin_host_[w] = kNoPoint;
-      make_twin(w, same);
-      --stats_.twins_created;
-    }
+  // A rebuild found two vertices at one place: the evicted one becomes a twin.
+  for (const auto& [vertex, same] : pairs) merge_into(vertex, same);
+}
+
+void KineticDelaunay::merge_into(PointId vertex, PointId host) {
+  std::vector<PointId> carried = std::move(twins_[vertex]);
+  twins_[vertex].clear();
+  make_twin(vertex, host);
+  for (const PointId w : carried) {
+    twin_host_[w] = kNoPoint;
+    make_twin(w, host);
+    --stats_.twins_created;  // not a new twin, only a new host
   }
 }
 

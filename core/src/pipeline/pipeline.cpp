@@ -81,10 +81,7 @@ void Pipeline::process(const TrackReport& report) {
     ++stats_.awaiting_velocity;
     if (track.point != kinetic::kNoPoint) {
       // Velocity reset: the track leaves the probe until it has a velocity again.
-      kdt_.remove(track.point, engine_time(clock_));
-      slot_of_point_[track.point] = track::kNoTrack;
-      track.point = kinetic::kNoPoint;
-      speeds_.erase(admitted.slot);
+      leave_engine(admitted.slot);
       alerts_.drop_track(admitted.slot, clock_, pending_events_);
       deliver();
     }
@@ -110,14 +107,19 @@ void Pipeline::advance_to(double t) {
   move_clock(t);
 }
 
-void Pipeline::drop_track(track::TrackSlot slot) {
+void Pipeline::leave_engine(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
   if (track.point != kinetic::kNoPoint) {
     kdt_.remove(track.point, engine_time(clock_));
     slot_of_point_[track.point] = track::kNoTrack;
     track.point = kinetic::kNoPoint;
   }
+  if (slot < probe_state_.size()) probe_state_[slot].live = false;
   speeds_.erase(slot);
+}
+
+void Pipeline::drop_track(track::TrackSlot slot) {
+  leave_engine(slot);
   alerts_.drop_track(slot, clock_, pending_events_);
   ++stats_.tracks_dropped;
   deliver();
@@ -144,6 +146,8 @@ void Pipeline::apply(track::TrackSlot slot) {
     kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
   }
   speeds_.set(slot, geometry::norm(now.velocity));
+  if (slot >= probe_state_.size()) probe_state_.resize(slot + 1);
+  probe_state_[slot] = {track.kinematics, track.t, track.plane.scale, true};
   probe(slot);
 }
 
@@ -159,16 +163,19 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       search_.neighbours(kdt_, track.point, points_scratch_);
       break;
     case probe::ProbeMode::Brute:
-      for (track::TrackSlot other = 0; other < tracks_.slot_end(); ++other)
-        if (tracks_[other].point != kinetic::kNoPoint) candidates_.push_back(other);
+      for (track::TrackSlot other = 0; other < probe_state_.size(); ++other)
+        if (probe_state_[other].live) candidates_.push_back(other);
       break;
   }
   for (const kinetic::PointId p : points_scratch_) candidates_.push_back(slot_of_point_[p]);
   // Pairs pending confirmation or alerting are always re-evaluated, so they see their
-  // clear evaluations even when the search (edges mode) does not return them.
-  alerts_.partners_of(slot, candidates_);
-  std::sort(candidates_.begin(), candidates_.end());
-  candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+  // clear evaluations even when the search (edges mode) does not return them. Brute
+  // force already has every live track, in slot order.
+  if (config_.probe_mode != probe::ProbeMode::Brute) {
+    alerts_.partners_of(slot, candidates_);
+    std::sort(candidates_.begin(), candidates_.end());
+    candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+  }
   candidates_.erase(std::remove(candidates_.begin(), candidates_.end(), slot), candidates_.end());
 }
 
@@ -176,31 +183,33 @@ void Pipeline::probe(track::TrackSlot slot) {
   collect_candidates(slot);
   ++stats_.probes;
   stats_.candidates += candidates_.size();
-  const track::Track& track = tracks_[slot];
-  const probe::Kinematics k_self = track.at(clock_);
+  const ProbeState& self = probe_state_[slot];
+  const probe::Kinematics k_self = self.at(clock_);
   for (const track::TrackSlot other_slot : candidates_) {
-    const track::Track& other = tracks_[other_slot];
+    const ProbeState& other = probe_state_[other_slot];
     const probe::Kinematics k_other = other.at(clock_);
     probe::SeparationMinima minima = config_.minima;
-    minima.horizontal_m *= geo::Projection::pair_scale(track.plane.scale, other.plane.scale);
+    minima.horizontal_m *= geo::Projection::pair_scale(self.scale, other.scale);
     // The lower slot goes first so that a pair's figures do not depend on which of its
     // two tracks was updated.
     const bool self_first = slot < other_slot;
     const probe::Kinematics& kp = self_first ? k_self : k_other;
     const probe::Kinematics& kq = self_first ? k_other : k_self;
-    const probe::ConflictGeometry g = probe::evaluate_pair(kp, kq, minima);
+    // Most pairs are clear: decide that without the figures, which only events need.
+    probe::ConflictGeometry g;
+    if (probe::in_conflict(kp, kq, minima)) g = probe::evaluate_pair(kp, kq, minima);
     alert::Evaluation e;
     e.in_conflict = g.in_conflict;
-    if (g.in_conflict) e.severity = alerts_.classify(g.lost_now, g.t_los_s);
+    if (g.in_conflict) {
+      e.severity = alerts_.classify(g.lost_now, g.t_los_s);
+      e.t_los_s = g.t_los_s;
+      e.cpa_h_m = g.cpa_h_m / geo::Projection::pair_scale(self.scale, other.scale);
+      e.cpa_v_ft = g.cpa_v_m / kFootToMetre;
+    }
     const track::TrackSlot p = self_first ? slot : other_slot;
     const track::TrackSlot q = self_first ? other_slot : slot;
     alerts_.evaluate(
-        p, q, e, clock_,
-        [&](AlertEvent& event) {
-          event.severity = e.severity;
-          fill_event(event, p, q, g, kp, kq);
-        },
-        pending_events_);
+        p, q, e, clock_, [&](AlertEvent& event) { fill_event(event, p, q, g, kp, kq); }, pending_events_);
   }
   deliver();
 }

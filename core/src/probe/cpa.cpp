@@ -42,7 +42,35 @@ Interval vertical_interval(double dz, double wz, double r) {
   return {s1, s2};
 }
 
+struct Window {
+  bool in_conflict = false;
+  bool lost_now = false;
+  double lo = 0.0, hi = 0.0;
+};
+
+// The conflict window of the pair, shared by evaluate_pair and in_conflict so that the
+// two agree bit for bit.
+Window conflict_window(geometry::Vector2 d, geometry::Vector2 w, double dz, double wz, const SeparationMinima& m) {
+  Window out;
+  const Interval v = vertical_interval(dz, wz, m.vertical_m);
+  // A vertical window wholly before now or after T cannot overlap [0, T].
+  if (v.empty() || v.hi <= 0.0 || v.lo >= m.lookahead_s) return out;
+  const Interval h = horizontal_interval(d, w, m.horizontal_m);
+  if (h.empty()) return out;
+  out.lo = std::max({0.0, h.lo, v.lo});
+  out.hi = std::min({m.lookahead_s, h.hi, v.hi});
+  out.lost_now = h.lo < 0.0 && 0.0 < h.hi && v.lo < 0.0 && 0.0 < v.hi;
+  out.in_conflict = out.lo < out.hi || out.lost_now;
+  return out;
+}
+
 }  // namespace
+
+bool in_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
+  return conflict_window(b.position - a.position, b.velocity - a.velocity, b.altitude_m - a.altitude_m,
+                         b.vertical_rate_mps - a.vertical_rate_mps, minima)
+      .in_conflict;
+}
 
 ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
   ConflictGeometry g;
@@ -59,17 +87,12 @@ ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const S
   g.cpa_h_m = geometry::norm(d + g.t_cpa_s * w);
   g.cpa_v_m = std::abs(dz + g.t_cpa_s * wz);
 
-  const Interval h = horizontal_interval(d, w, minima.horizontal_m);
-  if (h.empty()) return g;
-  const Interval v = vertical_interval(dz, wz, minima.vertical_m);
-  if (v.empty()) return g;
-  const double lo = std::max({0.0, h.lo, v.lo});
-  const double hi = std::min({T, h.hi, v.hi});
-  g.lost_now = h.lo < 0.0 && 0.0 < h.hi && v.lo < 0.0 && 0.0 < v.hi;
-  if (!(lo < hi) && !g.lost_now) return g;
+  const Window window = conflict_window(d, w, dz, wz, minima);
+  g.lost_now = window.lost_now;
+  if (!window.in_conflict) return g;
   g.in_conflict = true;
-  g.t_los_s = lo;
-  g.t_end_s = std::max(lo, hi);
+  g.t_los_s = window.lo;
+  g.t_end_s = std::max(window.lo, window.hi);
   return g;
 }
 

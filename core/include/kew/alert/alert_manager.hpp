@@ -28,10 +28,16 @@ struct AlertConfig {
   double update_cpa_v_ft = 100.0;
 };
 
-/// The outcome of one pair evaluation, as the manager needs it.
+/// The outcome of one pair evaluation, as the manager needs it. The figures decide
+/// whether an active alert is re-emitted; they may be approximations of the reported
+/// ones (the probe gives plane figures corrected by the projection scale) so that the
+/// exact figures are computed only for events actually emitted.
 struct Evaluation {
   bool in_conflict = false;
   Severity severity = Severity::None;  ///< meaningful when in_conflict
+  double t_los_s = 0.0;
+  double cpa_h_m = 0.0;
+  double cpa_v_ft = 0.0;
 };
 
 class AlertManager {
@@ -41,9 +47,9 @@ class AlertManager {
   /// Severity of a conflict from its geometry (loss now / t_los ≤ warning_s / later).
   Severity classify(bool lost_now, double t_los_s) const;
 
-  /// Records one evaluation of pair {p, q} at data time t. When an event may be due,
-  /// `build(AlertEvent&)` is called to fill parties, severity and figures (ids, numbers,
-  /// state and sequence are the manager's), and emitted events are appended to `out`.
+  /// Records one evaluation of pair {p, q} at data time t. When an event is emitted,
+  /// `build(AlertEvent&)` is called first to fill parties and figures (severity, ids,
+  /// numbers, state and sequence are the manager's), and the event is appended to `out`.
   template <class Build>
   void evaluate(Slot p, Slot q, const Evaluation& e, double t, Build&& build, std::vector<AlertEvent>& out) {
     const std::uint64_t key = pair_key(p, q);
@@ -57,11 +63,15 @@ class AlertManager {
     s.clears_in_row = 0;
     if (s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
     if (!s.active && s.conflicts_in_row < config_.confirm) return;
-    AlertEvent candidate;
-    build(candidate);
-    candidate.t = t;
-    if (!s.active) open(s, std::move(candidate), out);
-    else offer_update(s, std::move(candidate), out);
+    if (s.active && !changed(s, e, t)) return;
+    AlertEvent event;
+    build(event);
+    event.severity = e.severity;
+    event.t = t;
+    s.decided = e;
+    s.decided_t = t;
+    if (!s.active) open(s, std::move(event), out);
+    else update(s, std::move(event), out);
   }
 
   /// Ends every alert of the track in `slot` (reason TrackDropped) and forgets its pairs.
@@ -97,7 +107,9 @@ class AlertManager {
     int clears_in_row = 0;
     bool active = false;
     std::uint64_t opened_seq = 0;
-    AlertEvent last;  // last emitted event while active
+    AlertEvent last;      // last emitted event while active
+    Evaluation decided;   // the evaluation behind `last`
+    double decided_t = 0.0;
   };
   using Pairs = std::unordered_map<std::uint64_t, PairState>;
 
@@ -108,8 +120,9 @@ class AlertManager {
   Pairs::iterator create(std::uint64_t key);
   void forget(Pairs::iterator it);
   void record_clear(Pairs::iterator it, double t, std::vector<AlertEvent>& out);
-  void open(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out);
-  void offer_update(PairState& s, AlertEvent&& candidate, std::vector<AlertEvent>& out);
+  bool changed(const PairState& s, const Evaluation& e, double t) const;
+  void open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
+  void update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
   void end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out);
   void emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out);
 

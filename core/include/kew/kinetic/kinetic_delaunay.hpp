@@ -36,8 +36,12 @@ struct KineticConfig {
   ToleranceMode tolerance_mode = ToleranceMode::Absolute;
   /// Solve a new certificate only up to the earliest event of its two triangles (§8.3).
   bool reduce_redundant_events = true;
-  /// Coincident points are kept as twins of one triangulation vertex until they are
-  /// this far apart (metres, > 0).
+  /// Points closer than this (metres, > 0) are kept as twins of one triangulation
+  /// vertex: exact duplicates, and pairs whose paths cross within this distance, which
+  /// are merged when they come this close (before they meet) and released when they are
+  /// this far apart again. Far above coordinate rounding (≈ 1e-11 m at 100 km), so an
+  /// exact meeting in the model is always caught; small enough to be invisible to the
+  /// probe.
   double twin_release_distance_m = 1e-3;
 };
 
@@ -57,11 +61,17 @@ struct KineticStatistics {
   std::uint64_t reinsertions = 0;         ///< updates beyond τ: removed and reinserted
   std::uint64_t repairs = 0;              ///< defects found by audits or degenerate events and fixed
   std::uint64_t repair_flips = 0;
+  /// Flips of edges whose certificate is identically zero (points moving so as to stay
+  /// exactly cocircular, e.g. converging radially at one speed): no event can be
+  /// computed for them, so they are checked exactly whenever advance() returns.
+  std::uint64_t degenerate_flips = 0;
   std::uint64_t repair_reinsertions = 0;
   std::uint64_t rebuilds = 0;             ///< full retriangulations (last-resort repair)
-  std::uint64_t twins_created = 0;        ///< points found at exactly another point's position
-  std::uint64_t twins_released = 0;
-  std::size_t queue_now = 0;              ///< failures scheduled now
+  std::uint64_t twins_created = 0;        ///< points made twins: exact duplicates and approaches
+  std::uint64_t twins_released = 0;       ///< twins reinserted once twin_release_distance_m apart
+  std::uint64_t approaches_scheduled = 0; ///< pairs found to come within twin_release_distance_m
+  std::uint64_t approaches_merged = 0;    ///< of those, merged into twins (also in twins_created)
+  std::size_t queue_now = 0;              ///< failures and approaches scheduled now
   std::size_t queue_max = 0;
   std::size_t renewals_queued = 0;        ///< renewal entries scheduled now
   double queue_sum = 0.0;                 ///< Σ queue_now over samples (one per advance)
@@ -105,9 +115,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   Point2 position_now(PointId id) const { return dt_.trajectory(id).at(now_); }
   Vector2 velocity(PointId id) const { return dt_.trajectory(id).velocity; }
 
-  /// Calls f(neighbour) for every Delaunay neighbour of id, counting twins (points at
-  /// the same place, not yet separated) as neighbours of each other and of the
-  /// neighbours of their host.
+  /// Calls f(neighbour) for every Delaunay neighbour of id, counting twins (points
+  /// within twin_release_distance_m of their host, not yet separated) as neighbours of
+  /// each other and of the neighbours of their host.
   template <class F>
   void for_each_neighbor(PointId id, F&& f) const {
     const PointId vertex = host_of(id);
@@ -137,7 +147,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::vector<std::pair<PointId, PointId>> edges() const { return dt_.finite_edges(); }
 
  private:
-  enum class EntryKind : std::uint8_t { None, Failure, Renewal, TwinRelease };
+  /// Approach: the two ends of an edge come within twin_release_distance_m (they are
+  /// about to pass through each other); one is merged into the other as a twin.
+  enum class EntryKind : std::uint8_t { None, Failure, Renewal, TwinRelease, Approach };
   struct Entry {
     double time;
     std::uint64_t seq;
@@ -157,6 +169,8 @@ class KineticDelaunay final : private triangulation::FaceObserver {
     std::array<double, 3> time{kNever, kNever, kNever};
     std::array<std::uint64_t, 3> seq{0, 0, 0};
     std::array<EntryKind, 3> kind{EntryKind::None, EntryKind::None, EntryKind::None};
+    /// Bit i: the certificate of edge i is identically zero (see degenerate_faces_).
+    std::uint8_t zero_certificate = 0;
   };
 
   void face_created(triangulation::FaceIndex f) override;
@@ -165,7 +179,17 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void set_now(double t);
   void execute(const Entry& e);
   void execute_failure(const Entry& e);
+  void execute_approach(const Entry& e);
+  /// Seconds from now until the finite ends of edge i of face f are closer than
+  /// twin_release_distance_m while approaching: 0 when they already are, kNever when
+  /// they never will be on their current motions (or an end is infinite).
+  double approach_offset(triangulation::FaceIndex f, int i) const;
   void schedule_dirty_faces();
+  /// Records whether edge i of f has an identically zero certificate.
+  void watch_degenerate(triangulation::FaceIndex f, int i, bool zero_certificate);
+  /// Flips the watched edges that the exact predicates find violated at now (Lawson).
+  /// Returns true when it changed the triangulation.
+  bool flip_degenerate_edges();
   void solve_edge(triangulation::FaceIndex f, int i, double from_offset, std::uint16_t retries);
   Polynomial edge_certificate(triangulation::FaceIndex f, int i) const;
   double earliest_failure(triangulation::FaceIndex f) const;
@@ -177,6 +201,8 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void attach_point(PointId id);
   void detach_point(PointId id);
   void make_twin(PointId id, PointId host);
+  /// Makes vertex (just detached) a twin of host, and its own twins follow it there.
+  void merge_into(PointId vertex, PointId host);
   void unlink_twin(PointId id);
   void schedule_twin_release(PointId id);
   void repair_around(const std::vector<PointId>& vertices);
@@ -193,6 +219,10 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::uint64_t next_seq_ = 1;
   std::vector<std::pair<triangulation::FaceIndex, std::uint32_t>> dirty_faces_;
   std::vector<std::uint32_t> dirty_mark_;
+  /// Faces (with their generation) having an edge whose certificate is identically zero
+  /// in floating point while the exact predicate on the rounded positions may still
+  /// change sign at any instant: such edges are checked at the end of every advance().
+  std::vector<std::pair<triangulation::FaceIndex, std::uint32_t>> degenerate_faces_;
   std::uint32_t dirty_round_ = 0;
   std::vector<PointId> twin_host_;
   std::vector<std::vector<PointId>> twins_;

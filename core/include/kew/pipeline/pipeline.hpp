@@ -93,6 +93,7 @@ class Pipeline {
  private:
   void move_clock(double t);
   void drop_track(track::TrackSlot slot);
+  void leave_engine(track::TrackSlot slot);
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
   void collect_candidates(track::TrackSlot slot);
@@ -109,6 +110,22 @@ class Pipeline {
   alert::AlertManager alerts_;
   probe::ProximitySearch search_;
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
+  // What the probe reads of each live track, by slot, packed for the candidate loop
+  // (the Track itself is large and cold).
+  struct ProbeState {
+    probe::Kinematics kinematics;  // at time t
+    double t = 0.0;
+    double scale = 1.0;
+    bool live = false;  // in the kinetic engine
+    probe::Kinematics at(double at_t) const {
+      probe::Kinematics k = kinematics;
+      const double dt = at_t - t;
+      k.position = k.position + dt * k.velocity;
+      k.altitude_m += dt * k.vertical_rate_mps;
+      return k;
+    }
+  };
+  std::vector<ProbeState> probe_state_;
   std::vector<track::TrackSlot> slot_of_point_;
   std::vector<kinetic::PointId> points_scratch_;
   std::vector<track::TrackSlot> candidates_;

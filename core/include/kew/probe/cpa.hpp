@@ -45,4 +45,9 @@ struct ConflictGeometry {
 /// rounding; callers that need bit-identical results order the pair canonically.
 ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
 
+/// evaluate_pair(a, b, minima).in_conflict, computed the same way but without the
+/// figures (no square roots unless the horizontal test needs one): the probe's fast
+/// path for the many pairs that are clear.
+bool in_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
+
 }  // namespace kew::probe
