@@ -14,6 +14,7 @@ packages=(build-essential cmake ccache
           libcgal-dev libgmp-dev libmpfr-dev libgeographiclib-dev
           libboost-dev libsimdjson-dev libfmt-dev zlib1g-dev
           libgtest-dev libgmock-dev libbenchmark-dev
+          libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev
           tshark clang-14 libclang-rt-14-dev)
 
 install_dependencies() {
@@ -33,6 +34,26 @@ configure_and_build() {
   export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
   cmake --build "$build" -j "$jobs"
+}
+
+# Second build with clang, ASan + UBSan and libFuzzer: the decoder and encoder unit tests
+# under the sanitizers, then a short smoke run of every fuzz target (tests/fuzz). Only the
+# targets needed are built; benchmarks are off. KEW_FUZZ_SECONDS sets the run per target
+# (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
+sanitize_and_fuzz() {
+  if [ "${KEW_SKIP_SANITIZE:-0}" = 1 ]; then
+    echo "bootstrap: sanitizer and fuzz stage skipped (KEW_SKIP_SANITIZE=1)"
+    return 0
+  fi
+  local sanitize_build="$build-sanitize"
+  CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF >/dev/null
+  # kew_decoder_tests: the decoder and encoder unit tests of kew_unit_tests, without the
+  # core tests and their CGAL oracle (tests/fuzz/CMakeLists.txt).
+  cmake --build "$sanitize_build" -j "$jobs" --target kew_decoder_tests kew_fuzzers
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "$sanitize_build/tests/fuzz/kew_decoder_tests" --gtest_brief=1
+  bash "$here/tests/fuzz/run_fuzzers.sh" "$sanitize_build/tests/fuzz" "${KEW_FUZZ_SECONDS:-15}"
 }
 
 install_dependencies

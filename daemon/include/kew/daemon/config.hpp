@@ -1,0 +1,98 @@
+#pragma once
+// kew's configuration (SPEC §5.7): one TOML file shared by kewd and kew-replay. Every
+// key, its unit and its default is documented in deploy/kew.toml; unknown keys are
+// errors so that a typo never silently leaves a default in force.
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/formats.hpp"
+
+namespace kew::daemon {
+
+/// A configuration problem, with the file and line when known ("kew.toml:12: ...").
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class Transport { Udp, TcpClient, TcpServer, File };
+std::string_view to_string(Transport t);
+
+/// One `[[input]]` table.
+struct InputConfig {
+  std::string name;                 ///< for logs and statistics; default "input<N>"
+  protocol::Format format = protocol::Format::Auto;
+  Transport transport = Transport::Udp;
+  /// udp: "HOST:PORT" to bind (HOST may be a multicast group, joined on `interface`);
+  /// tcp-client: "HOST:PORT" to connect to; tcp-server: "HOST:PORT" to listen on;
+  /// file: a path (read once, as fast as the pipeline takes it, unless `pace`).
+  std::string address;
+  std::string interface = "0.0.0.0";  ///< multicast: local interface address
+  double reconnect_min_s = 1.0;       ///< tcp-client backoff, doubling up to max
+  double reconnect_max_s = 30.0;
+  std::size_t max_connections = 4;    ///< tcp-server
+  bool pace = false;                  ///< file: replay at recorded speed
+  /// Data day for ASTERIX time of day (UTC midnight, "YYYY-MM-DD"); empty: today (live)
+  /// or the pcap timestamps (files).
+  std::string asterix_day;
+};
+
+struct ServiceConfig {
+  std::string alert_listen = "127.0.0.1:4747";
+  std::size_t max_subscribers = 32;
+  std::size_t subscriber_queue = 8192;  ///< objects queued per subscriber before it is cut off
+  double alive_interval_s = 1.0;
+  double tick_interval_s = 1.0;         ///< live clock tick (timeouts, kinetic events)
+  std::string log_level = "info";
+  std::string alert_log;                ///< JSON-lines file of every alert event; "" = none
+  std::uint64_t alert_log_max_bytes = 64ull << 20;
+  int alert_log_keep = 5;
+  std::string record_file;              ///< canonical NDJSON of every decoded record; "" = none
+  bool tracks_stream = true;            ///< allow WATCH "tracks": true
+};
+
+struct Cat004Config {
+  bool enabled = false;
+  std::string destination = "127.0.0.1:8601";  ///< UDP "HOST:PORT"; multicast allowed
+  std::string interface = "0.0.0.0";
+  int ttl = 1;
+  std::uint8_t sac = 0, sic = 1;
+  double alive_interval_s = 1.0;
+};
+
+struct ModbusConfig {
+  bool enabled = false;
+  std::string listen = "127.0.0.1:1502";
+  int unit_id = 1;
+  int table_entries = 8;
+  bool read_only = false;
+  int max_connections = 8;
+};
+
+struct Config {
+  PipelineConfig pipeline;
+  ServiceConfig service;
+  Cat004Config cat004;
+  ModbusConfig modbus;
+  protocol::DecoderOptions decoding;  ///< radars of `[[radar]]`, SBS offset, line limit
+  std::vector<InputConfig> inputs;
+};
+
+/// Parses TOML text; `origin` names it in error messages. Throws ConfigError.
+Config parse_config(std::string_view toml_text, std::string_view origin = "config");
+/// Reads and parses a file. Throws ConfigError.
+Config load_config(const std::string& path);
+
+/// "HOST:PORT" → host and port; false when malformed (IPv6 as "[::1]:4747").
+bool split_host_port(std::string_view address, std::string& host, std::uint16_t& port);
+
+/// "YYYY-MM-DD" → UTC seconds of that midnight; false when malformed.
+bool parse_utc_day(std::string_view text, double& out);
+
+}  // namespace kew::daemon

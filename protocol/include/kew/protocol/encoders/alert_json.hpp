@@ -1,0 +1,77 @@
+#pragma once
+// JSON objects of the subscriber alert stream (SPEC §5.3): gpsd-style, one object per
+// line. Every function appends exactly one line, terminated by '\n', to `out` and
+// allocates nothing beyond growing `out`.
+//
+// Numbers are printed in fixed notation with a fixed number of decimals per field, so
+// that the same event always gives the same bytes (SPEC §2.5) and lines stay short:
+//   times (t, t_open)            3 decimals (1 ms)
+//   lat, lon                     6 decimals (about 0.11 m)
+//   metres, seconds, gs_kt, trk  1 decimal
+//   feet, ft/min                 0 decimals
+//   rates (per second)           1 decimal
+// A value that rounds to zero is printed without a minus sign; a value that is not
+// finite (NaN, ±inf) is printed as `null`; a magnitude of 10^15 or more (never a physical
+// figure) is printed in its shortest exact form with an exponent. Strings go through the project's one JSON
+// string escaper, append_json_string() of kew/protocol/ndjson_writer.hpp (any bytes give
+// valid JSON; invalid UTF-8 becomes \ufffd). protocol/docs/encoders.md lists every field.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "kew/alert/alert_event.hpp"
+#include "kew/protocol/ndjson_writer.hpp"  // append_json_string(), for callers of this header too
+#include "kew/track/track_report.hpp"
+
+namespace kew::protocol {
+
+/// Figures of the once-a-second ALIVE object.
+struct AliveStatus {
+  /// Data time of the latest record processed, UTC seconds; absent before the first one.
+  std::optional<double> last_data_t;
+  /// Live tracks now.
+  std::uint64_t tracks = 0;
+  /// Active alerts now.
+  std::uint64_t alerts = 0;
+  /// Input records accepted per second, averaged by the caller (>= 0).
+  double records_per_s = 0.0;
+  /// Track updates applied to the engine per second (>= 0).
+  double updates_per_s = 0.0;
+  /// Seconds since the service started.
+  std::uint64_t uptime_s = 0;
+  /// The feed is stale or the service is overloaded (Modbus discrete input 5).
+  bool degraded = false;
+};
+
+/// {"class":"VERSION","seq":…,"release":"MAJOR.MINOR.PATCH","proto":1}
+void append_version_json(std::string& out, std::uint64_t seq);
+
+/// One ALERT object. `seq` is the stream's sequence number for this line (callers that
+/// forward the alert manager's numbering pass `event.seq`).
+void append_alert_json(std::string& out, const AlertEvent& event, std::uint64_t seq);
+
+/// {"class":"ALERTS","seq":…,"alerts":[…]}: every element is the complete ALERT object
+/// of an active alert's latest event, including its "class" and with the event's own
+/// `AlertEvent::seq`, so a client reads elements with the same code as ALERT lines.
+void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent> active,
+                                 std::uint64_t seq);
+/// Same, for callers that keep their events elsewhere (no copies needed).
+void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent* const> active,
+                                 std::uint64_t seq);
+
+/// {"class":"ALIVE","seq":…,"t":…|null,"tracks":…,"alerts":…,
+///  "rates":{"records_per_s":…,"updates_per_s":…},"uptime_s":…,"degraded":…}
+void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq);
+
+/// {"class":"ERROR","seq":…,"message":"…"}; `message` may hold any bytes.
+void append_error_json(std::string& out, std::string_view message, std::uint64_t seq);
+
+/// {"class":"TRACK","seq":…,"t":…,"id":…,"src":…,"cs":…,"lat":…,"lon":…,"alt_ft":…,
+///  "gs_kt":…,"trk_deg":…,"vr_fpm":…}; gs_kt, trk_deg and vr_fpm are left out when the
+/// report does not have them, and "gnd":true is added for targets on the ground.
+void append_track_json(std::string& out, const TrackReport& report, std::uint64_t seq);
+
+}  // namespace kew::protocol

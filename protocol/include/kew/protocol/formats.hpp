@@ -1,0 +1,64 @@
+#pragma once
+// Every input format by name, auto-detection from a file's first bytes, one factory for
+// all decoders, and the one place protocol/ reads a file (decode_file).
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "kew/protocol/asterix/asterix_decoder.hpp"
+#include "kew/protocol/decoder.hpp"
+
+namespace kew::protocol {
+
+enum class Format {
+  Auto,                ///< detect from the first bytes (detect_format)
+  Ndjson,              ///< canonical records, ndjson.hpp
+  Sbs,                 ///< SBS-1 BaseStation, sbs.hpp
+  OpenskyCsv,          ///< OpenSky state-vector CSV, opensky.hpp
+  OpenskyJson,         ///< traffic-library state-vector JSON, opensky.hpp
+  ReadsbJson,          ///< readsb JSON lines, readsb.hpp
+  AsterixRaw,          ///< ASTERIX data blocks back to back
+  AsterixFinalFormat,  ///< ASTERIX in EUROCONTROL final format (.ff)
+  AsterixPcap,         ///< ASTERIX in UDP datagrams of a pcap file
+  AsterixDatagram,     ///< ASTERIX, one UDP datagram per feed() (live only)
+};
+
+/// "auto", "ndjson", "sbs", "opensky-csv", "opensky-json", "readsb", "asterix-raw",
+/// "asterix-ff", "asterix-pcap", "asterix-datagram".
+std::string_view to_string(Format format);
+/// Inverse of to_string (exact, lower case); false and `out` untouched for another name.
+bool parse_format(std::string_view name, Format& out);
+
+struct DecoderOptions {
+  AsterixOptions asterix;
+  /// SbsOptions::utc_offset_s: receiver local time offset east of UTC, seconds.
+  double sbs_utc_offset_s = 0;
+  /// Longest line (text formats) or JSON array element (opensky-json), bytes.
+  std::size_t max_line_bytes = 4096;
+};
+
+/// Names the format of a stream from its first bytes (after gunzip when they start with
+/// the gzip magic); Format::Auto when unknown. A few kilobytes suffice for the text
+/// formats (the first non-comment lines are looked at); binary input is given to the
+/// ASTERIX framing heuristics (pcap, final format, raw blocks; never datagram).
+Format detect_format(std::span<const std::byte> head);
+
+/// A decoder for `format`. For every format but AsterixDatagram, gzip input is inflated
+/// transparently when the stream starts with the gzip magic. Format::Auto gives a
+/// decoder that buffers the start of the stream (4 KiB, up to 64 KiB when that is not
+/// enough), detects, then decodes; an unknown stream is counted "unknown_format" and
+/// ignored until finish().
+std::unique_ptr<Decoder> make_decoder(Format format, const DecoderOptions& options = {});
+
+/// Decodes the whole file at `path` in 64 KiB reads (auto-detecting when `format` is
+/// Auto) and calls `sink` per report; the decoder's rejections are forwarded into
+/// `rejections` (with their messages, through its reporter). A file that cannot be
+/// opened or read is counted "file_unreadable", an undetectable one "unknown_format".
+/// Returns the number of reports.
+std::size_t decode_file(const std::string& path, Format format, const DecoderOptions& options,
+                        const ReportSink& sink, Rejections& rejections);
+
+}  // namespace kew::protocol

@@ -1,0 +1,113 @@
+// CAT048 (monoradar target reports) record → TrackReport. Items and scalings: ASTERIX
+// Part 4, editions 1.15-1.32; the polar position is converted with RadarProjector.
+
+#include "bytes.hpp"
+#include "kew/protocol/asterix/uap.hpp"
+#include "record_context.hpp"
+
+namespace kew::protocol::asterix {
+
+namespace {
+
+constexpr double kRhoLsbNm = 1.0 / 256.0;
+constexpr double kAngleLsbDeg = 360.0 / 65536.0;
+constexpr double kSpeedLsbKt = 3600.0 / 16384.0;  // 2^-14 NM/s in knots
+constexpr double kQuarterFlightLevelFt = kFeetPerFlightLevel / 4.0;
+
+/// Flight level (I048/090) in feet, unless the code is garbled. The 14-bit value is two's
+/// complement (ASTERIX Part 4 §5.2.8); non-validated codes are kept, as the radar's best
+/// estimate.
+bool read_flight_level(const RecordItems& items, double& alt_ft) {
+  if (!items.has(cat048::kFlightLevel)) return false;
+  const std::uint32_t raw = be16(items.data(cat048::kFlightLevel));
+  if ((raw & 0x4000) != 0) return false;
+  alt_ft = sign_extend(raw, 14) * kQuarterFlightLevelFt;
+  return true;
+}
+
+/// Flight status (I048/230 STAT) 1 or 3: the transponder reports "on the ground".
+bool reports_on_ground(const RecordItems& items) {
+  if (!items.has(cat048::kCommsCapability)) return false;
+  const std::uint32_t status = (be16(items.data(cat048::kCommsCapability)) >> 10) & 0x7;
+  return status == 1 || status == 3;
+}
+
+}  // namespace
+
+bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport& report) {
+  using namespace cat048;
+  Rejections& rejections = context.rejections;
+  if (!items.has(kDataSource)) {
+    rejections.reject("asterix_missing_data_source", "CAT048 record without I048/010");
+    return false;
+  }
+  if (!items.has(kTimeOfDay)) {
+    rejections.reject("asterix_missing_time", "CAT048 record without I048/140");
+    return false;
+  }
+  if (items.has(kDescriptor)) {
+    const auto descriptor = items.item(kDescriptor);
+    if ((descriptor[0] & 0x10) != 0) {
+      rejections.reject("asterix_simulated_target", "CAT048 descriptor SIM: simulated");
+      return false;
+    }
+    if (descriptor.size() >= 2 && (descriptor[1] & 0x80) != 0) {
+      rejections.reject("asterix_test_target", "CAT048 descriptor TST: test target");
+      return false;
+    }
+  }
+  if (items.has(kTrackStatus) && (items.data(kTrackStatus)[0] & 0x80) != 0) {
+    rejections.reject("asterix_tentative_track", "CAT048 track status CNF: tentative");
+    return false;
+  }
+  const std::uint8_t* source = items.data(kDataSource);
+  const int site = context.radars.find(source[0], source[1]);
+  if (site < 0) {
+    rejections.reject("cat048_unknown_radar", "CAT048 radar SAC/SIC without a configured site");
+    return false;
+  }
+  if (!items.has(kPolarPosition)) {
+    rejections.reject("asterix_missing_position", "CAT048 record without I048/040");
+    return false;
+  }
+  report.on_ground = reports_on_ground(items);
+  if (!read_flight_level(items, report.alt_ft)) {
+    // A ground target without Mode C is still placed (at height 0); an airborne one cannot
+    // be: its slant range needs a height.
+    if (!report.on_ground) {
+      rejections.reject("asterix_missing_altitude", "CAT048 record without a usable I048/090");
+      return false;
+    }
+    report.alt_ft = 0;
+  }
+  if (items.has(kAddress)) {
+    set_address_id(be24(items.data(kAddress)), report);
+  } else if (items.has(kTrackNumber)) {
+    set_track_number_id(be16(items.data(kTrackNumber)) & 0x0FFF, report);
+  } else {
+    rejections.reject("asterix_missing_identity", "CAT048 record without I048/220 or I048/161");
+    return false;
+  }
+  if (!set_time_of_day(items.data(kTimeOfDay), context, report)) return false;
+
+  const std::uint8_t* polar = items.data(kPolarPosition);
+  const double slant_m = be16(polar) * kRhoLsbNm * kMetresPerNauticalMile;
+  const double azimuth_deg = be16(polar + 2) * kAngleLsbDeg;
+  const GeodeticPoint point =
+      context.radars.project(site, slant_m, azimuth_deg, report.alt_ft * kMetresPerFoot);
+  report.lat_deg = point.lat_deg;
+  report.lon_deg = point.lon_deg;
+  if (!accept_position(context, report)) return false;
+  set_source("cat048", source, report);
+
+  if (items.has(kVelocity)) {
+    const std::uint8_t* velocity = items.data(kVelocity);
+    report.gs_kt = be16(velocity) * kSpeedLsbKt;
+    report.trk_deg = be16(velocity + 2) * kAngleLsbDeg;
+  }
+  if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
+  if (items.has(kIdentification)) decode_icao_characters(items.data(kIdentification), report.callsign);
+  return true;
+}
+
+}  // namespace kew::protocol::asterix

@@ -1,0 +1,122 @@
+// CAT062 (SDPS track messages) record → TrackReport. Items and scalings: ASTERIX Part 9,
+// editions 1.16-1.21; protocol/docs/asterix.md lists what is read and what is ignored.
+
+#include "bytes.hpp"
+#include "kew/protocol/asterix/uap.hpp"
+#include "record_context.hpp"
+
+namespace kew::protocol::asterix {
+
+namespace {
+
+constexpr double kLatLonLsbDeg = 180.0 / 33554432.0;  // 180 / 2^25
+constexpr double kVelocityLsbMs = 0.25;
+constexpr double kQuarterFlightLevelFt = kFeetPerFlightLevel / 4.0;
+constexpr double kGeometricAltitudeLsbFt = 6.25;
+constexpr double kRateOfClimbLsbFpm = 6.25;
+
+const ItemFormat& format_of(unsigned frn) { return cat062_uap().items[frn - 1]; }
+
+/// Altitude in feet by preference: measured FL (I062/136), the tracker's barometric
+/// altitude (I062/135), its geometric altitude (I062/130).
+bool read_altitude(const RecordItems& items, double& alt_ft) {
+  using namespace cat062;
+  if (items.has(kMeasuredFl)) {
+    alt_ft = sign_extend(be16(items.data(kMeasuredFl)), 16) * kQuarterFlightLevelFt;
+    return true;
+  }
+  if (items.has(kBarometricAlt)) {
+    // Bit 16 is the QNH correction flag; the altitude is 15-bit two's complement.
+    alt_ft = sign_extend(be16(items.data(kBarometricAlt)), 15) * kQuarterFlightLevelFt;
+    return true;
+  }
+  if (items.has(kGeometricAlt)) {
+    alt_ft = sign_extend(be16(items.data(kGeometricAlt)), 16) * kGeometricAltitudeLsbFt;
+    return true;
+  }
+  return false;
+}
+
+/// Callsign by preference: downlinked identification (I062/245), the identification in
+/// aircraft derived data (I062/380 ID), the flight plan callsign (I062/390 CSN).
+void read_callsign(const RecordItems& items, std::string& callsign) {
+  using namespace cat062;
+  if (items.has(kTargetId) && decode_icao_characters(items.data(kTargetId) + 1, callsign)) return;
+  const auto derived_id = compound_subfield(format_of(kAircraftDerived),
+                                            items.item(kAircraftDerived), k380Identification);
+  if (derived_id.size() == 6 && decode_icao_characters(derived_id.data(), callsign)) return;
+  const auto plan_callsign =
+      compound_subfield(format_of(kFlightPlan), items.item(kFlightPlan), k390Callsign);
+  if (!plan_callsign.empty()) decode_ascii_characters(plan_callsign, callsign);
+}
+
+}  // namespace
+
+bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport& report) {
+  using namespace cat062;
+  Rejections& rejections = context.rejections;
+  if (!items.has(kDataSource)) {
+    rejections.reject("asterix_missing_data_source", "CAT062 record without I062/010");
+    return false;
+  }
+  if (!items.has(kTimeOfTrack)) {
+    rejections.reject("asterix_missing_time", "CAT062 record without I062/070");
+    return false;
+  }
+  if (items.has(kTrackStatus)) {
+    const auto status = items.item(kTrackStatus);
+    if ((status[0] & 0x02) != 0) {
+      rejections.reject("asterix_tentative_track", "CAT062 track status CNF: tentative");
+      return false;
+    }
+    if (status.size() >= 2 && (status[1] & 0x80) != 0) {
+      rejections.reject("asterix_simulated_target", "CAT062 track status SIM: simulated");
+      return false;
+    }
+  }
+  if (!items.has(kPositionWgs84)) {
+    // I062/100 is relative to the SDPS's system reference point, which ASTERIX does not
+    // carry: without I062/105 there is no usable position.
+    if (items.has(kPositionCartesian)) {
+      rejections.reject("cat062_cartesian_only", "CAT062 record with I062/100 but no I062/105");
+    } else {
+      rejections.reject("asterix_missing_position", "CAT062 record without I062/105");
+    }
+    return false;
+  }
+  if (!read_altitude(items, report.alt_ft)) {
+    rejections.reject("asterix_missing_altitude", "CAT062 record without I062/136, 135 or 130");
+    return false;
+  }
+  const auto address =
+      compound_subfield(format_of(kAircraftDerived), items.item(kAircraftDerived), k380Address);
+  if (address.size() == 3) {
+    set_address_id(be24(address.data()), report);
+  } else if (items.has(kTrackNumber)) {
+    set_track_number_id(be16(items.data(kTrackNumber)), report);
+  } else {
+    rejections.reject("asterix_missing_identity", "CAT062 record without I062/040 or I062/380 ADR");
+    return false;
+  }
+  if (!set_time_of_day(items.data(kTimeOfTrack), context, report)) return false;
+
+  const std::uint8_t* position = items.data(kPositionWgs84);
+  report.lat_deg = sign_extend(be32(position), 32) * kLatLonLsbDeg;
+  report.lon_deg = sign_extend(be32(position + 4), 32) * kLatLonLsbDeg;
+  if (!accept_position(context, report)) return false;
+  set_source("cat062", items.data(kDataSource), report);
+
+  if (items.has(kVelocity)) {
+    const std::uint8_t* velocity = items.data(kVelocity);
+    set_velocity_from_cartesian(sign_extend(be16(velocity), 16) * kVelocityLsbMs,
+                                sign_extend(be16(velocity + 2), 16) * kVelocityLsbMs, report);
+  }
+  if (items.has(kRateOfClimb)) {
+    report.vr_fpm = sign_extend(be16(items.data(kRateOfClimb)), 16) * kRateOfClimbLsbFpm;
+  }
+  if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
+  read_callsign(items, report.callsign);
+  return true;
+}
+
+}  // namespace kew::protocol::asterix

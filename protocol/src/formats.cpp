@@ -1,0 +1,305 @@
+// Format names, detection, the decoder factory and decode_file; described in formats.hpp.
+#include "kew/protocol/formats.hpp"
+
+#include <fmt/format.h>
+#include <simdjson.h>
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "kew/protocol/gzip.hpp"
+#include "kew/protocol/ndjson.hpp"
+#include "kew/protocol/opensky.hpp"
+#include "kew/protocol/readsb.hpp"
+#include "kew/protocol/sbs.hpp"
+#include "text/decoder_chain.hpp"
+
+namespace kew::protocol {
+namespace {
+
+constexpr std::array<std::pair<Format, std::string_view>, 10> kNames = {{
+    {Format::Auto, "auto"},
+    {Format::Ndjson, "ndjson"},
+    {Format::Sbs, "sbs"},
+    {Format::OpenskyCsv, "opensky-csv"},
+    {Format::OpenskyJson, "opensky-json"},
+    {Format::ReadsbJson, "readsb"},
+    {Format::AsterixRaw, "asterix-raw"},
+    {Format::AsterixFinalFormat, "asterix-ff"},
+    {Format::AsterixPcap, "asterix-pcap"},
+    {Format::AsterixDatagram, "asterix-datagram"},
+}};
+
+// Detection reads at most this much inflated text, and the auto decoder buffers this much
+// at most before deciding.
+constexpr std::size_t kDetectMaxBytes = 64 * 1024;
+// The auto decoder's first attempt: enough for a dozen lines of any text format.
+constexpr std::size_t kDetectFirstTryBytes = 4 * 1024;
+// Text lines looked at before giving up on a text format.
+constexpr int kDetectMaxLines = 16;
+// Least ASTERIX framing confidence accepted: 0.4 is what the heuristics give a file
+// holding exactly one plausible data block (the single-record test vectors).
+constexpr double kAsterixMinConfidence = 0.4;
+// Bytes looked at to tell text from binary.
+constexpr std::size_t kTextSampleBytes = 1024;
+constexpr std::size_t kFileChunkBytes = 64 * 1024;
+
+std::string_view as_text(std::span<const std::byte> bytes) {
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+/// Text: valid UTF-8 without control bytes but tab, CR, LF (ASTERIX blocks are full of
+/// zeros and small lengths; the GPS-framed recordings start with 2200 bytes of 0xCD).
+bool looks_like_text(std::string_view head) {
+  std::string_view sample = head.substr(0, kTextSampleBytes);
+  if (sample.empty()) return false;
+  for (const char c : sample) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\t' && c != '\n' && c != '\r') || byte == 0x7f) return false;
+  }
+  // The sample (or the head itself) may end inside a multi-byte character: drop up to
+  // 3 bytes of it.
+  for (int cut = 0; cut < 4 && !sample.empty(); ++cut) {
+    if (simdjson::validate_utf8(sample.data(), sample.size())) return true;
+    sample.remove_suffix(1);
+  }
+  return false;
+}
+
+bool contains(std::string_view line, std::string_view token) {
+  return line.find(token) != std::string_view::npos;
+}
+
+bool starts_sbs_message(std::string_view line) {
+  for (const std::string_view kind : {"MSG,", "SEL,", "ID,", "AIR,", "STA,", "CLK,"})
+    if (line.starts_with(kind)) return true;
+  return false;
+}
+
+/// The format one meaningful (non-blank, non-comment) line belongs to, Auto if none.
+Format classify_line(std::string_view line) {
+  if (starts_sbs_message(line)) return Format::Sbs;
+  if (line.starts_with("[")) {
+    const auto brace = line.find('{');
+    if (brace == std::string_view::npos) return Format::Auto;
+    line.remove_prefix(brace);
+  }
+  if (line.starts_with("{")) {
+    if (contains(line, "\"alt_ft\"") && contains(line, "\"t\"")) return Format::Ndjson;
+    if (contains(line, "\"icao24\"")) return Format::OpenskyJson;
+    if (contains(line, "\"hex\"") || contains(line, "\"now\"")) return Format::ReadsbJson;
+    return Format::Auto;
+  }
+  if (contains(line, "icao24") && contains(line, ",")) return Format::OpenskyCsv;
+  return Format::Auto;
+}
+
+Format detect_text(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+  int lines = 0;
+  while (!text.empty() && lines < kDetectMaxLines) {
+    const auto newline = text.find('\n');
+    std::string_view line = text.substr(0, newline);
+    text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || line[first] == '#') continue;
+    ++lines;
+    // The JSON array of opensky-json has no newline at all: its first "line" is cut by
+    // the end of the head, which still shows the first element's keys.
+    const Format format = classify_line(line.substr(first));
+    if (format != Format::Auto) return format;
+  }
+  return Format::Auto;
+}
+
+Format detect_binary(std::span<const std::byte> head) {
+  Format best = Format::Auto;
+  double best_confidence = 0.0;
+  const std::pair<AsterixFraming, Format> kFramings[] = {
+      {AsterixFraming::Pcap, Format::AsterixPcap},
+      {AsterixFraming::FinalFormat, Format::AsterixFinalFormat},
+      {AsterixFraming::RawBlocks, Format::AsterixRaw}};
+  for (const auto& [framing, format] : kFramings) {
+    const double confidence = asterix_framing_confidence(framing, head);
+    if (confidence > best_confidence) {
+      best_confidence = confidence;
+      best = format;
+    }
+  }
+  return best_confidence >= kAsterixMinConfidence ? best : Format::Auto;
+}
+
+/// Buffers the start of a stream until its format is known, then hands everything to the
+/// decoder of that format.
+class AutoDecoder final : public Decoder {
+ public:
+  explicit AutoDecoder(const DecoderOptions& options) : options_(options) {}
+
+  std::string_view format_name() const override {
+    return inner_ ? inner_->format_name() : std::string_view("auto");
+  }
+  std::size_t max_message_bytes() const override {
+    return inner_ ? std::max(inner_->max_message_bytes(), kDetectMaxBytes) : kDetectMaxBytes;
+  }
+
+  void feed(std::span<const std::byte> bytes, const ReportSink& sink) override {
+    if (inner_) {
+      inner_->feed(bytes, sink);
+      return;
+    }
+    if (unknown_) return;
+    const std::size_t take = std::min(kDetectMaxBytes - head_.size(), bytes.size());
+    head_.insert(head_.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(take));
+    // Detection looks at exactly the first 4 KiB, then exactly the first 64 KiB, so the
+    // outcome does not depend on how the stream was cut into feed() calls.
+    bool decided = false;
+    if (!tried_first_ && head_.size() >= kDetectFirstTryBytes) {
+      tried_first_ = true;
+      decided = try_detect(kDetectFirstTryBytes, false, sink);
+    }
+    if (!decided && head_.size() >= kDetectMaxBytes) decided = try_detect(kDetectMaxBytes, true, sink);
+    if (decided) inner_->feed(bytes.subspan(take), sink);
+  }
+
+  void finish(const ReportSink& sink) override {
+    if (!inner_ && !unknown_ && !head_.empty()) try_detect(head_.size(), true, sink);
+    if (inner_) inner_->finish(sink);
+    inner_.reset();
+    unknown_ = false;
+    tried_first_ = false;
+    head_.clear();
+  }
+
+ private:
+  /// Detects on the first `head_bytes` of the buffered head; on success makes the decoder
+  /// and feeds it the whole head. When `last_try`, an unknown format is final (counted).
+  bool try_detect(std::size_t head_bytes, bool last_try, const ReportSink& sink) {
+    const Format format = detect_format(std::span<const std::byte>(head_).first(head_bytes));
+    if (format == Format::Auto) {
+      if (last_try) {
+        rejections().reject("unknown_format",
+                            fmt::format("auto: the first {} bytes match no known format; "
+                                        "stream ignored", head_bytes));
+        unknown_ = true;
+        head_.clear();
+      }
+      return false;
+    }
+    inner_ = make_decoder(format, options_);
+    text::forward_rejections(*inner_, rejections());
+    inner_->feed(head_, sink);
+    head_.clear();
+    return true;
+  }
+
+  DecoderOptions options_;
+  std::unique_ptr<Decoder> inner_;
+  std::vector<std::byte> head_;
+  bool tried_first_ = false;
+  bool unknown_ = false;
+};
+
+std::unique_ptr<Decoder> make_plain_decoder(Format format, const DecoderOptions& options) {
+  switch (format) {
+    case Format::Ndjson:
+      return make_ndjson_decoder({.max_line_bytes = options.max_line_bytes});
+    case Format::Sbs:
+      return make_sbs_decoder(
+          {.utc_offset_s = options.sbs_utc_offset_s, .max_line_bytes = options.max_line_bytes});
+    case Format::OpenskyCsv:
+      return make_opensky_csv_decoder({.max_line_bytes = options.max_line_bytes});
+    case Format::OpenskyJson:
+      return make_opensky_json_decoder({.max_object_bytes = options.max_line_bytes});
+    case Format::ReadsbJson:
+      return make_readsb_decoder({.max_line_bytes = options.max_line_bytes});
+    case Format::AsterixRaw:
+      return make_asterix_decoder(AsterixFraming::RawBlocks, options.asterix);
+    case Format::AsterixFinalFormat:
+      return make_asterix_decoder(AsterixFraming::FinalFormat, options.asterix);
+    case Format::AsterixPcap:
+      return make_asterix_decoder(AsterixFraming::Pcap, options.asterix);
+    case Format::AsterixDatagram:
+      return make_asterix_decoder(AsterixFraming::Datagram, options.asterix);
+    case Format::Auto:
+      break;
+  }
+  return std::make_unique<AutoDecoder>(options);
+}
+
+}  // namespace
+
+std::string_view to_string(Format format) {
+  for (const auto& [f, name] : kNames)
+    if (f == format) return name;
+  return "auto";
+}
+
+bool parse_format(std::string_view name, Format& out) {
+  for (const auto& [f, known] : kNames) {
+    if (known == name) {
+      out = f;
+      return true;
+    }
+  }
+  return false;
+}
+
+Format detect_format(std::span<const std::byte> head) {
+  if (has_gzip_magic(head)) {
+    const std::vector<std::byte> inflated = gunzip_prefix(head, kDetectMaxBytes);
+    // A gzip file holding gzip is not a recording format.
+    if (has_gzip_magic(inflated)) return Format::Auto;
+    return detect_format(inflated);
+  }
+  const std::string_view text = as_text(head);
+  if (looks_like_text(text)) return detect_text(text);
+  return detect_binary(head);
+}
+
+std::unique_ptr<Decoder> make_decoder(Format format, const DecoderOptions& options) {
+  std::unique_ptr<Decoder> decoder = make_plain_decoder(format, options);
+  // A datagram decoder needs each feed() to be one datagram, which the gzip sniffer
+  // could split; live UDP is never compressed anyway. The auto decoder wraps what it makes.
+  if (format == Format::AsterixDatagram || format == Format::Auto) return decoder;
+  return make_gzip_decoder(std::move(decoder), GzipMode::WhenMagic);
+}
+
+std::size_t decode_file(const std::string& path, Format format, const DecoderOptions& options,
+                        const ReportSink& sink, Rejections& rejections) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) {
+    rejections.reject("file_unreadable", fmt::format("{}: {}", path, std::strerror(errno)));
+    return 0;
+  }
+  std::vector<std::byte> chunk(kFileChunkBytes);
+  std::size_t got = std::fread(chunk.data(), 1, chunk.size(), file);
+  if (format == Format::Auto) {
+    format = detect_format(std::span<const std::byte>(chunk.data(), got));
+    if (format == Format::Auto) {
+      rejections.reject("unknown_format", fmt::format("{}: matches no known format", path));
+      std::fclose(file);
+      return 0;
+    }
+  }
+  const std::unique_ptr<Decoder> decoder = make_decoder(format, options);
+  text::forward_rejections(*decoder, rejections);
+  std::size_t reports = 0;
+  const ReportSink counting_sink = [&](const TrackReport& report) {
+    ++reports;
+    sink(report);
+  };
+  while (got > 0) {
+    decoder->feed(std::span<const std::byte>(chunk.data(), got), counting_sink);
+    got = std::fread(chunk.data(), 1, chunk.size(), file);
+  }
+  if (std::ferror(file) != 0)
+    rejections.reject("file_unreadable", fmt::format("{}: read error", path));
+  decoder->finish(counting_sink);
+  std::fclose(file);
+  return reports;
+}
+
+}  // namespace kew::protocol

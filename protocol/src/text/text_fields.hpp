@@ -1,0 +1,66 @@
+#pragma once
+// Field parsing shared by the text decoders (SBS, OpenSky, readsb, NDJSON): numbers,
+// addresses, squawks, civil dates, units, and the checks every decoded report passes.
+// Internal to kew_protocol.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "kew/track/track_report.hpp"
+
+namespace kew::protocol::text {
+
+/// Why one line (or JSON element) was refused: a stable snake_case reason for
+/// Rejections and a human-readable detail (the decoder adds the line number).
+struct LineProblem {
+  std::string_view reason;
+  std::string detail;
+};
+/// nullopt when the line was used (or had nothing to report and is not an error).
+using LineResult = std::optional<LineProblem>;
+
+inline LineProblem problem(std::string_view reason, std::string detail) {
+  return LineProblem{reason, std::move(detail)};
+}
+
+// Unit conversions by their defining constants (1 ft = 0.3048 m, 1 NM = 1852 m), in the
+// order of operations a reader would write, so independent checks get the same bits.
+inline double metres_to_feet(double metres) { return metres / 0.3048; }
+inline double metres_per_second_to_knots(double mps) { return mps * 3600.0 / 1852.0; }
+inline double metres_per_second_to_feet_per_minute(double mps) { return mps * 60.0 / 0.3048; }
+inline double unchanged(double value) { return value; }
+
+/// Removes ASCII spaces and tabs (and a CR) at both ends.
+std::string_view trim(std::string_view s);
+
+/// Parses the whole of `s` (surrounding blanks allowed) as a finite decimal number.
+/// False for empty text, trailing garbage, NaN and infinities.
+bool parse_finite_double(std::string_view s, double& out);
+
+/// A 24-bit ICAO address as 6 hex digits, optionally prefixed by '~' (readsb and
+/// dump1090 mark non-ICAO / TIS-B addresses so). `id` receives the canonical form:
+/// upper-case digits, '~' kept, so that "~abc123" and "ABC123" stay distinct tracks.
+/// `key` receives the address with bit 24 set for '~' addresses (a compact map key).
+bool parse_address(std::string_view text, std::string& id, std::uint32_t& key);
+
+/// A Mode 3/A code as exactly 4 octal digits ("7700" → 0xFC0), surrounding blanks allowed.
+bool parse_mode3a(std::string_view text, std::uint16_t& code);
+
+/// Days from 1970-01-01 to the proleptic Gregorian date y-m-d (negative before 1970).
+/// Month 1..12, day 1..31 (not checked against the month length).
+std::int64_t days_from_civil(std::int64_t year, unsigned month, unsigned day);
+
+/// Resets every field to its default but keeps the strings' capacity, so that a decoder
+/// reusing one report allocates nothing per record.
+void clear_report(TrackReport& report);
+
+/// The checks every decoded report passes before it leaves a decoder: non-empty id,
+/// finite time and altitude, latitude in [-90, 90], longitude in [-180, 180], ground
+/// speed finite and >= 0, finite vertical rate. A finite track angle is wrapped into
+/// [0, 360) (sources use -180..180 too). Plausibility (absurd speeds, time order) is the
+/// track table's business, not the decoder's.
+LineResult check_report(TrackReport& report);
+
+}  // namespace kew::protocol::text

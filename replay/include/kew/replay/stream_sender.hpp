@@ -1,0 +1,34 @@
+#pragma once
+// `kew-replay --to`: streams records as canonical NDJSON to a daemon input over TCP
+// (one connection, lines back to back) or UDP (datagrams of whole lines, at most
+// `max_datagram_bytes`), paced like the recording.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "kew/replay/recording_reader.hpp"
+
+namespace kew::replay {
+
+struct StreamTarget {
+  enum class Protocol { Tcp, Udp } protocol = Protocol::Tcp;
+  std::string host;
+  std::uint16_t port = 0;
+};
+
+/// "tcp://HOST:PORT", "udp://HOST:PORT" or "HOST:PORT" (TCP); false when malformed.
+bool parse_stream_target(const std::string& text, StreamTarget& out);
+
+struct StreamFigures {
+  std::uint64_t records = 0;
+  std::uint64_t bytes = 0;
+  std::uint64_t datagrams = 0;  ///< UDP only
+};
+
+/// Sends every record of `recordings` to `target`, each no earlier than its due time at
+/// `speed` (0: as fast as possible). Throws std::runtime_error when the connection fails.
+StreamFigures stream_records(MergedRecordings& recordings, const StreamTarget& target, double speed,
+                             std::size_t max_datagram_bytes = 1400);
+
+}  // namespace kew::replay

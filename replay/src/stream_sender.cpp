@@ -1,0 +1,104 @@
+#include "kew/replay/stream_sender.hpp"
+
+#include <stdexcept>
+#include <thread>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/write.hpp>
+
+#include "kew/protocol/ndjson_writer.hpp"
+#include "kew/replay/pacer.hpp"
+
+namespace kew::replay {
+
+namespace asio = boost::asio;
+
+bool parse_stream_target(const std::string& text, StreamTarget& out) {
+  std::string rest = text;
+  out.protocol = StreamTarget::Protocol::Tcp;
+  if (rest.rfind("tcp://", 0) == 0) {
+    rest = rest.substr(6);
+  } else if (rest.rfind("udp://", 0) == 0) {
+    out.protocol = StreamTarget::Protocol::Udp;
+    rest = rest.substr(6);
+  }
+  const auto colon = rest.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == rest.size()) return false;
+  std::string host = rest.substr(0, colon);
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  unsigned port = 0;
+  for (char c : rest.substr(colon + 1)) {
+    if (c < '0' || c > '9' || port > 65535) return false;
+    port = port * 10 + static_cast<unsigned>(c - '0');
+  }
+  if (port == 0 || port > 65535) return false;
+  out.host = host;
+  out.port = static_cast<std::uint16_t>(port);
+  return true;
+}
+
+namespace {
+
+// Collects lines that are due at the same moment and hands them to `send` in batches.
+template <class Send>
+StreamFigures pump(MergedRecordings& recordings, double speed, std::size_t batch_bytes, Send&& send) {
+  StreamFigures figures;
+  Pacer pacer(speed);
+  std::string batch, line;
+  TrackReport report;
+  while (recordings.next(report)) {
+    const auto due = pacer.due(report.t);
+    if (!batch.empty() && std::chrono::steady_clock::now() < due) {
+      send(batch);
+      batch.clear();
+    }
+    std::this_thread::sleep_until(due);
+    line.clear();
+    protocol::append_ndjson(line, report);
+    line += '\n';
+    if (!batch.empty() && batch.size() + line.size() > batch_bytes) {
+      send(batch);
+      batch.clear();
+    }
+    batch += line;
+    ++figures.records;
+    figures.bytes += line.size();
+  }
+  if (!batch.empty()) send(batch);
+  return figures;
+}
+
+}  // namespace
+
+StreamFigures stream_records(MergedRecordings& recordings, const StreamTarget& target, double speed,
+                             std::size_t max_datagram_bytes) {
+  asio::io_context io;
+  const std::string port = std::to_string(target.port);
+  if (target.protocol == StreamTarget::Protocol::Tcp) {
+    asio::ip::tcp::socket socket(io);
+    asio::ip::tcp::resolver resolver(io);
+    boost::system::error_code error;
+    asio::connect(socket, resolver.resolve(target.host, port), error);
+    if (error) throw std::runtime_error("cannot connect to " + target.host + ":" + port + ": " + error.message());
+    StreamFigures figures = pump(recordings, speed, 64 * 1024, [&](const std::string& batch) {
+      asio::write(socket, asio::buffer(batch));
+    });
+    socket.shutdown(asio::ip::tcp::socket::shutdown_send, error);
+    return figures;
+  }
+  asio::ip::udp::resolver resolver(io);
+  const asio::ip::udp::endpoint destination = *resolver.resolve(target.host, port).begin();
+  asio::ip::udp::socket socket(io, destination.protocol());
+  std::uint64_t datagrams = 0;
+  StreamFigures figures = pump(recordings, speed, max_datagram_bytes, [&](const std::string& batch) {
+    socket.send_to(asio::buffer(batch), destination);
+    ++datagrams;
+  });
+  figures.datagrams = datagrams;
+  return figures;
+}
+
+}  // namespace kew::replay

@@ -1,0 +1,235 @@
+// kew-replay (SPEC §5.6): runs the whole pipeline over recordings as fast as possible
+// and writes the ALERT objects as JSON lines, or streams the records to a running kewd
+// paced like the recording.
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "kew/daemon/config.hpp"
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/encoders/alert_json.hpp"
+#include "kew/protocol/version.hpp"
+#include "kew/replay/recording_reader.hpp"
+#include "kew/replay/run_statistics.hpp"
+#include "kew/replay/stream_sender.hpp"
+
+namespace {
+
+constexpr int kUsageError = 64;       // EX_USAGE
+constexpr int kAuditFailed = 1;
+constexpr double kAuditEvery_s = 60.0;  // data time between audits with --audit
+
+struct Options {
+  std::string format = "auto";
+  std::string config_path;
+  double speed = 1.0;
+  bool max_speed = false;
+  std::string to;
+  std::string alerts_path;
+  std::string stats_path;
+  bool audit = false;
+  std::string probe;
+  std::vector<std::string> files;
+};
+
+// Buffered writer of the alert lines: one fwrite per 64 KiB, not per line.
+class AlertWriter {
+ public:
+  explicit AlertWriter(std::FILE* out) : out_(out) {}
+  ~AlertWriter() { flush(); }
+  void write(const kew::AlertEvent& event) {
+    kew::protocol::append_alert_json(buffer_, event, event.seq);
+    if (buffer_.size() >= 64 * 1024) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), out_);
+    buffer_.clear();
+    std::fflush(out_);
+  }
+
+ private:
+  std::FILE* out_;
+  std::string buffer_;
+};
+
+// One status line on a terminal, rewritten in place at most twice a second.
+class Progress {
+ public:
+  Progress() : enabled_(::isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+  void update(std::uint64_t records, const kew::Pipeline& pipeline) {
+    if (!enabled_ || (records & 0xfff) != 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(500)) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    std::fprintf(stderr, "\r\033[Kkew-replay: %llu records, %zu tracks, %zu alerts active, %.0f records/s",
+                 static_cast<unsigned long long>(records), pipeline.live_tracks(), pipeline.alerts().active_count(),
+                 wall > 0 ? static_cast<double>(records) / wall : 0.0);
+  }
+  void done() {
+    if (enabled_) std::fprintf(stderr, "\r\033[K");
+  }
+
+ private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+void report_rejection(const std::string& origin, std::string_view reason, std::string_view message) {
+  std::fprintf(stderr, "kew-replay: %s: rejected (%.*s) %.*s\n", origin.c_str(), static_cast<int>(reason.size()),
+               reason.data(), static_cast<int>(message.size()), message.data());
+}
+
+int stream_to(const Options& options, kew::replay::MergedRecordings& recordings) {
+  kew::replay::StreamTarget target;
+  if (!kew::replay::parse_stream_target(options.to, target)) {
+    std::fprintf(stderr, "kew-replay: --to %s: expected [tcp://|udp://]HOST:PORT\n", options.to.c_str());
+    return kUsageError;
+  }
+  try {
+    const auto figures = kew::replay::stream_records(recordings, target, options.max_speed ? 0.0 : options.speed);
+    std::fprintf(stderr, "kew-replay: sent %llu records (%llu bytes) to %s\n",
+                 static_cast<unsigned long long>(figures.records), static_cast<unsigned long long>(figures.bytes),
+                 options.to.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kew-replay: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+int run_offline(const Options& options, const kew::daemon::Config& config, kew::replay::MergedRecordings& recordings) {
+  std::FILE* out = stdout;
+  if (!options.alerts_path.empty()) {
+    out = std::fopen(options.alerts_path.c_str(), "wb");
+    if (!out) {
+      std::fprintf(stderr, "kew-replay: cannot write %s\n", options.alerts_path.c_str());
+      return 1;
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  kew::Pipeline pipeline(config.pipeline);
+  pipeline.rejections().set_reporter(
+      [](std::string_view reason, std::string_view message) { report_rejection("pipeline", reason, message); });
+  kew::replay::RunFigures figures;
+  {
+    AlertWriter writer(out);
+    pipeline.set_alert_sink([&](const kew::AlertEvent& e) { writer.write(e); });
+    Progress progress;
+    kew::TrackReport report;
+    double next_audit = 0.0;
+    const auto audit = [&] {
+      const kew::kinetic::KineticAudit a = pipeline.audit();
+      ++figures.audits;
+      figures.audit_violations_found += a.violations_found;
+      figures.audit_violations_unrepaired += a.violations_unrepaired;
+    };
+    while (recordings.next(report)) {
+      ++figures.records_decoded;
+      pipeline.process(report);
+      if (options.audit && pipeline.now() >= next_audit) {
+        if (next_audit > 0.0) audit();
+        next_audit = pipeline.now() + kAuditEvery_s;
+      }
+      progress.update(figures.records_decoded, pipeline);
+    }
+    if (options.audit) audit();
+    progress.done();
+  }
+  if (out != stdout) std::fclose(out);
+  figures.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const kew::Rejections decoding = recordings.rejections();
+  const std::string stats = kew::replay::run_statistics_json(pipeline, decoding, figures);
+  if (!options.stats_path.empty()) {
+    std::FILE* f = std::fopen(options.stats_path.c_str(), "wb");
+    if (!f || std::fwrite(stats.data(), 1, stats.size(), f) != stats.size()) {
+      std::fprintf(stderr, "kew-replay: cannot write %s\n", options.stats_path.c_str());
+      if (f) std::fclose(f);
+      return 1;
+    }
+    std::fclose(f);
+  }
+  const auto& counters = pipeline.alerts().counters();
+  std::fprintf(stderr,
+               "kew-replay: %llu records, %llu accepted, %llu rejected, %zu tracks at most, %llu alerts "
+               "(%llu updates, %llu ended), %.2f s\n",
+               static_cast<unsigned long long>(figures.records_decoded),
+               static_cast<unsigned long long>(pipeline.statistics().accepted),
+               static_cast<unsigned long long>(decoding.total() + pipeline.rejections().total()),
+               pipeline.tracks().max_size(), static_cast<unsigned long long>(counters.opened),
+               static_cast<unsigned long long>(counters.updated), static_cast<unsigned long long>(counters.ended),
+               figures.wall_s);
+  if (options.audit) {
+    std::fprintf(stderr, "kew-replay: audit: %llu runs, %llu violations found, %llu unrepaired\n",
+                 static_cast<unsigned long long>(figures.audits),
+                 static_cast<unsigned long long>(figures.audit_violations_found),
+                 static_cast<unsigned long long>(figures.audit_violations_unrepaired));
+    if (figures.audit_violations_unrepaired > 0) return kAuditFailed;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{"kew-replay: run kew's conflict detection over recordings, or stream them to kewd"};
+  app.set_version_flag("--version", std::string("kew-replay ") + std::string(kew::protocol::release()));
+  app.add_option("--format", options.format,
+                 "input format: auto, ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, "
+                 "asterix-pcap")
+      ->default_val("auto");
+  app.add_option("-c,--config", options.config_path, "kew TOML configuration (as kewd's)");
+  auto* speed = app.add_option("--speed", options.speed, "with --to: multiple of recorded speed")->check(
+      CLI::PositiveNumber);
+  app.add_flag("--max-speed", options.max_speed, "with --to: send as fast as possible")->excludes(speed);
+  app.add_option("--to", options.to, "stream records to a kewd input: [tcp://|udp://]HOST:PORT");
+  app.add_option("--alerts", options.alerts_path, "write ALERT lines here instead of stdout");
+  app.add_option("--stats-json", options.stats_path, "write run statistics as one JSON object");
+  app.add_flag("--audit", options.audit, "audit the triangulation every 60 s of data and at the end");
+  app.add_option("--probe", options.probe, "candidate search: exact, edges or brute")
+      ->check(CLI::IsMember({"exact", "edges", "brute"}));
+  app.add_option("files", options.files, "recordings (merged in time order)")->required()->check(
+      CLI::ExistingFile);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kUsageError;
+  }
+
+  kew::protocol::Format format;
+  if (!kew::protocol::parse_format(options.format, format) || format == kew::protocol::Format::AsterixDatagram) {
+    std::fprintf(stderr, "kew-replay: --format %s: not a file format\n", options.format.c_str());
+    return kUsageError;
+  }
+  kew::daemon::Config config;
+  if (!options.config_path.empty()) {
+    try {
+      config = kew::daemon::load_config(options.config_path);
+    } catch (const kew::daemon::ConfigError& e) {
+      std::fprintf(stderr, "kew-replay: %s\n", e.what());
+      return kUsageError;
+    }
+  }
+  if (!options.probe.empty()) kew::probe::parse_probe_mode(options.probe.c_str(), config.pipeline.probe_mode);
+
+  kew::replay::MergedRecordings recordings;
+  for (const std::string& file : options.files) {
+    auto reader = std::make_unique<kew::replay::RecordingReader>(file, format, config.decoding);
+    reader->rejections().set_reporter(
+        [file](std::string_view reason, std::string_view message) { report_rejection(file, reason, message); });
+    recordings.add(std::move(reader));
+  }
+  return options.to.empty() ? run_offline(options, config, recordings) : stream_to(options, recordings);
+}

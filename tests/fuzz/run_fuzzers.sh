@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Smoke run of every libFuzzer target built in a KEW_BUILD_FUZZERS build:
+#   bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz [SECONDS_EACH]
+# Each fuzz_* executable runs for SECONDS_EACH (default 20) from a seed corpus cut from
+# tests/data, two at a time on two cores. Any crash, sanitizer report, leak, timeout
+# or out-of-memory fails the script (exit 1) after printing the end of that target's log;
+# the input that triggered it is left in BUILD_DIR/tests/fuzz/artifacts/.
+set -euo pipefail
+
+bin_dir=$(cd "$1" && pwd)
+seconds=${2:-20}
+here=$(cd "$(dirname "$0")/../.." && pwd)
+data=$here/tests/data
+jobs=$(nproc)
+work=$bin_dir/fuzz-run
+rm -rf "$work"
+mkdir -p "$work" "$bin_dir/artifacts"
+
+# The text targets read 4 control bytes (chunk boundaries) before the stream; a seed gets
+# a prefix that cuts it into three chunks. Seeds are cut to 16 KiB (the run's max_len
+# trims them further).
+text_seed() {  # NAME SOURCE_FILE [gunzip]
+  local out=$work/seeds/$target/$1
+  mkdir -p "$(dirname "$out")"
+  { printf '\003\020\200\360'
+    if [ "${3:-}" = gunzip ]; then gzip -dc "$2" | head -c 16384; else head -c 16384 "$2"; fi
+  } >"$out" || true  # head closing the pipe early is fine
+}
+
+binary_seeds() {  # DIR: every file below, cut to 16 KiB, no prefix
+  local i=0
+  mkdir -p "$work/seeds/$target"
+  while IFS= read -r -d '' f; do
+    head -c 16384 "$f" >"$work/seeds/$target/seed$((i++))"
+  done < <(find "$1" -type f ! -name '*.md' ! -name '*.py' ! -name '*.json' -print0 2>/dev/null)
+}
+
+seed() {
+  case "$target" in
+    fuzz_ndjson) text_seed canonical "$data/text/canonical_sample.ndjson" ;;
+    fuzz_sbs) text_seed japan "$data/text/sbs_japan_13501-16500.csv" ;;
+    fuzz_opensky_csv) text_seed states "$data/text/opensky_states_sample.csv" ;;
+    fuzz_opensky_json) text_seed switzerland "$data/text/opensky_switzerland_first2000.json.gz" gunzip ;;
+    fuzz_readsb) text_seed minutes "$data/text/readsb_20minutes.json" ;;
+    fuzz_gzip)
+      mkdir -p "$work/seeds/$target"
+      { printf '\003\020\200\360'; gzip -c "$data/text/canonical_sample.ndjson"; } >"$work/seeds/$target/member"
+      { printf '\003\020\200\360'; gzip -c "$data/text/canonical_sample.ndjson"
+        gzip -c "$data/text/opensky_states_sample.csv"; } >"$work/seeds/$target/two_members"
+      text_seed switzerland "$data/text/opensky_switzerland_first2000.json.gz" ;;
+    fuzz_detect)
+      text_seed canonical "$data/text/canonical_sample.ndjson"
+      text_seed japan "$data/text/sbs_japan_13501-16500.csv"
+      text_seed states "$data/text/opensky_states_sample.csv"
+      text_seed minutes "$data/text/readsb_20minutes.json"
+      text_seed switzerland_gz "$data/text/opensky_switzerland_first2000.json.gz" ;;
+    fuzz_asterix*) binary_seeds "$data/asterix" ;;
+    fuzz_cat004*) binary_seeds "$data/cat004" ;;
+    *) mkdir -p "$work/seeds/$target" ;;
+  esac
+}
+
+run_one() {  # TARGET: exit status of the fuzzer
+  local target=$1
+  # Text inputs of a few KiB reach every path (lines are short) and run ten times
+  # faster than 64 KiB ones; binary framings get room for several blocks.
+  local max_len=4096
+  case "$target" in fuzz_asterix*|fuzz_cat004*) max_len=65536 ;; esac
+  mkdir -p "$work/corpus/$target"
+  "$bin_dir/$target" "$work/corpus/$target" "$work/seeds/$target" \
+    -max_total_time="$seconds" -rss_limit_mb=2048 -max_len="$max_len" -timeout=20 \
+    -print_final_stats=1 -artifact_prefix="$bin_dir/artifacts/$target-" \
+    >"$work/$target.log" 2>&1
+}
+
+targets=()
+for exe in "$bin_dir"/fuzz_*; do
+  [ -f "$exe" ] && [ -x "$exe" ] || continue
+  target=$(basename "$exe")
+  seed
+  targets+=("$target")
+done
+[ ${#targets[@]} -gt 0 ] || { echo "run_fuzzers: no fuzz_* executables in $bin_dir" >&2; exit 1; }
+
+echo "run_fuzzers: ${#targets[@]} targets, ${seconds} s each, $jobs at a time"
+failed=()
+pids=()
+names=()
+wait_one() {
+  local status=0
+  wait "${pids[0]}" || status=$?
+  if [ $status -ne 0 ]; then
+    failed+=("${names[0]}")
+    echo "run_fuzzers: ${names[0]} FAILED (exit $status); end of its log:" >&2
+    tail -n 60 "$work/${names[0]}.log" >&2
+  else
+    echo "run_fuzzers: ${names[0]} ok ($(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' "$work/${names[0]}.log" | grep -o '[0-9]*$') runs)"
+  fi
+  pids=("${pids[@]:1}")
+  names=("${names[@]:1}")
+}
+for target in "${targets[@]}"; do
+  run_one "$target" &
+  pids+=($!)
+  names+=("$target")
+  [ ${#pids[@]} -lt "$jobs" ] || wait_one
+done
+while [ ${#pids[@]} -gt 0 ]; do wait_one; done
+
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "run_fuzzers: failed: ${failed[*]}" >&2
+  exit 1
+fi
+echo "run_fuzzers: all ${#targets[@]} targets ran clean"

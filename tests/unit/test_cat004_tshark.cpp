@@ -1,0 +1,403 @@
+// CAT004 against Wireshark's ASTERIX dissector (tshark), SPEC §5.4:
+//  - what kew's encoder writes is decoded by tshark to the values encoded, without
+//    malformed-packet or expert reports;
+//  - the jASTERIX CAT004 test vectors (bundled, GPL-3.0, see tests/data/cat004/SOURCE.md)
+//    are read by kew's reader to the values tshark shows.
+// The datagrams are wrapped into a pcap (Ethernet/IPv4/UDP, port 8600, the dissector's
+// default) written here byte by byte. Without tshark on PATH the tshark checks skip
+// loudly; the reader checks on the bundled vectors always run.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "kew/protocol/encoders/cat004.hpp"
+#include "kew/protocol/encoders/cat004_reader.hpp"
+
+namespace kew::protocol {
+namespace {
+
+using Datagram = std::vector<std::byte>;
+
+// ---------------------------------------------------------------------------------------
+// pcap writing (libpcap format, microsecond timestamps, link type 1 = Ethernet)
+
+void put_le32(std::vector<std::byte>& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::byte>((v >> (8 * i)) & 0xFF));
+}
+void put_le16(std::vector<std::byte>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::byte>(v & 0xFF));
+  out.push_back(static_cast<std::byte>(v >> 8));
+}
+void put_be16(std::vector<std::byte>& out, std::size_t v) {
+  out.push_back(static_cast<std::byte>((v >> 8) & 0xFF));
+  out.push_back(static_cast<std::byte>(v & 0xFF));
+}
+
+constexpr std::uint16_t kAsterixPort = 8600;
+
+/// One Ethernet frame carrying `payload` in a UDP datagram 127.0.0.1:8600 → :8600.
+std::vector<std::byte> udp_frame(const Datagram& payload) {
+  std::vector<std::byte> frame(12, std::byte{0});  // destination and source MAC
+  put_be16(frame, 0x0800);                         // IPv4
+  const std::size_t ip_start = frame.size();
+  const std::size_t udp_length = 8 + payload.size();
+  const std::array<unsigned, 12> ip_header{0x45, 0x00, 0, 0, 0x00, 0x00,
+                                           0x40, 0x00, 64, 17, 0, 0};  // TTL 64, UDP
+  for (unsigned v : ip_header) frame.push_back(static_cast<std::byte>(v));
+  for (int i = 0; i < 2; ++i) {
+    for (unsigned v : {127u, 0u, 0u, 1u}) frame.push_back(static_cast<std::byte>(v));
+  }
+  const std::size_t total = 20 + udp_length;
+  frame[ip_start + 2] = static_cast<std::byte>(total >> 8);
+  frame[ip_start + 3] = static_cast<std::byte>(total & 0xFF);
+  std::uint32_t sum = 0;  // RFC 791 header checksum
+  for (std::size_t i = 0; i < 20; i += 2) {
+    sum += static_cast<std::uint32_t>(frame[ip_start + i]) << 8 |
+           static_cast<std::uint32_t>(frame[ip_start + i + 1]);
+  }
+  while (sum >> 16) sum = (sum & 0xFFFF) + (sum >> 16);
+  const std::uint32_t checksum = ~sum & 0xFFFF;
+  frame[ip_start + 10] = static_cast<std::byte>(checksum >> 8);
+  frame[ip_start + 11] = static_cast<std::byte>(checksum & 0xFF);
+  put_be16(frame, kAsterixPort);
+  put_be16(frame, kAsterixPort);
+  put_be16(frame, udp_length);
+  put_be16(frame, 0);  // no UDP checksum (allowed over IPv4)
+  frame.insert(frame.end(), payload.begin(), payload.end());
+  return frame;
+}
+
+std::vector<std::byte> make_pcap(const std::vector<Datagram>& datagrams) {
+  std::vector<std::byte> out;
+  put_le32(out, 0xA1B2C3D4);  // magic, microsecond resolution
+  put_le16(out, 2);
+  put_le16(out, 4);
+  put_le32(out, 0);       // time zone
+  put_le32(out, 0);       // accuracy
+  put_le32(out, 65535);   // snap length
+  put_le32(out, 1);       // Ethernet
+  std::uint32_t second = 1714400000;
+  for (const Datagram& d : datagrams) {
+    const auto frame = udp_frame(d);
+    put_le32(out, second++);
+    put_le32(out, 0);
+    put_le32(out, static_cast<std::uint32_t>(frame.size()));
+    put_le32(out, static_cast<std::uint32_t>(frame.size()));
+    out.insert(out.end(), frame.begin(), frame.end());
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// running tshark
+
+bool tshark_on_path() {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return false;
+  std::stringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (!dir.empty() && ::access((dir + "/tshark").c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+#define KEW_REQUIRE_TSHARK()                                                             \
+  do {                                                                                   \
+    if (!tshark_on_path()) {                                                             \
+      std::fprintf(stderr, "\n*** tshark is not on PATH: the CAT004 check against "      \
+                           "Wireshark's decoder was NOT run (apt-get install tshark) ***\n"); \
+      GTEST_SKIP() << "tshark is not on PATH";                                           \
+    }                                                                                    \
+  } while (false)
+
+std::string write_pcap(const std::vector<Datagram>& datagrams, const std::string& name) {
+  const std::string path = ::testing::TempDir() + "kew_" + name + "_" +
+                           std::to_string(::getpid()) + ".pcap";
+  const auto bytes = make_pcap(datagrams);
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+std::string run(const std::string& command) {
+  std::string output;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return output;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
+  ::pclose(pipe);
+  return output;
+}
+
+/// Per frame, per field: the values tshark shows for every record of the frame, in order.
+using FieldValues = std::map<std::string, std::vector<std::string>>;
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::stringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.emplace_back();
+  return parts;
+}
+
+std::vector<FieldValues> tshark_fields(const std::string& pcap, const std::vector<std::string>& fields) {
+  std::string command = "tshark -n -r '" + pcap + "' -T fields -E separator=/t -E occurrence=a -E aggregator=';'";
+  for (const auto& f : fields) command += " -e " + f;
+  command += " 2>/dev/null";
+  std::vector<FieldValues> frames;
+  for (const std::string& line : split(run(command), '\n')) {
+    if (line.empty()) continue;
+    const auto columns = split(line, '\t');
+    FieldValues values;
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      values[fields[i]] = i < columns.size() && !columns[i].empty() ? split(columns[i], ';')
+                                                                     : std::vector<std::string>{};
+    }
+    frames.push_back(std::move(values));
+  }
+  return frames;
+}
+
+/// Frames tshark flags as malformed or with any expert information.
+std::string tshark_problems(const std::string& pcap) {
+  return run("tshark -n -r '" + pcap +
+             "' -Y '_ws.malformed || _ws.expert' -T fields -e frame.number -e _ws.expert.message"
+             " 2>/dev/null");
+}
+
+double number(const std::string& text) { return std::strtod(text.c_str(), nullptr); }
+long integer(const std::string& text) { return std::strtol(text.c_str(), nullptr, 0); }  // "0x0c"
+
+std::vector<Cat004Record> read_records(const std::vector<Datagram>& datagrams, Cat004Reader& reader) {
+  std::vector<Cat004Record> records;
+  for (const auto& d : datagrams) reader.read(d, [&](const Cat004Record& r) { records.push_back(r); });
+  return records;
+}
+
+// ---------------------------------------------------------------------------------------
+// kew's encoder → tshark
+
+constexpr double kT = 1714400000.25;  // time of day 51200.25 s
+
+AlertEvent stca(AlertState state, Severity severity, std::uint16_t number) {
+  AlertEvent e;
+  e.id = "a1";
+  e.number = number;
+  e.state = state;
+  e.severity = severity;
+  e.t = kT + 4.0 * number;
+  e.opened_t = kT;
+  e.a.id = "4CA123";
+  e.a.callsign = "BAW123";
+  e.a.track_number = 3130;
+  e.b.id = "3C6586";
+  e.b.callsign = "DLH4AB";
+  e.b.track_number = 2417;
+  e.t_los_s = 41.0;
+  e.t_cpa_s = 63.5 + number;
+  e.cpa_h_m = 1234.5;
+  e.cpa_v_ft = 300.0;
+  e.sep_h_m = 15000.0;
+  e.sep_v_ft = 1000.0;
+  return e;
+}
+
+TEST(Cat004Tshark, DecodesEncodedMessagesToTheEncodedValues) {
+  KEW_REQUIRE_TSHARK();
+  Cat004Options options;
+  options.sac = 25;
+  options.sic = 100;
+  options.sdps = Cat004SourceId{25, 7};
+  Cat004Encoder encoder(options);
+  // Datagram 1: an Alive message. Datagram 2: a new STCA alert and its update in one
+  // data block. Datagram 3: the end of the conflict.
+  ASSERT_TRUE(encoder.add_alive({kT, true, false, true}));
+  std::vector<Datagram> datagrams = encoder.take_datagrams();
+  ASSERT_TRUE(encoder.add_alert(stca(AlertState::New, Severity::Caution, 1)));
+  ASSERT_TRUE(encoder.add_alert(stca(AlertState::Update, Severity::Warning, 1)));
+  for (auto& d : encoder.take_datagrams()) datagrams.push_back(std::move(d));
+  AlertEvent end = stca(AlertState::End, Severity::Warning, 1);
+  end.end_reason = AlertEndReason::Cleared;
+  ASSERT_TRUE(encoder.add_alert(end));
+  for (auto& d : encoder.take_datagrams()) datagrams.push_back(std::move(d));
+  ASSERT_EQ(datagrams.size(), 3u);
+
+  const std::string pcap = write_pcap(datagrams, "cat004_encoded");
+  const std::vector<std::string> fields{
+      "asterix.category",          "asterix.004_010_SAC",       "asterix.004_010_SIC",
+      "asterix.004_015_SAC",       "asterix.004_015_SIC",       "asterix.004_000_VALUE",
+      "asterix.004_020_VALUE",     "asterix.004_040_VALUE",     "asterix.004_045_STAT",
+      "asterix.004_060_STCA",      "asterix.004_060_DG",        "asterix.004_060_OF",
+      "asterix.004_060_OL",        "asterix.004_030_VALUE",     "asterix.004_035_VALUE",
+      "asterix.004_170_AI1_VALUE", "asterix.004_171_AI2_VALUE", "asterix.004_070_TC_VALUE",
+      "asterix.004_070_TCA_VALUE",
+      "asterix.004_070_CHS_VALUE", "asterix.004_070_MHS_VALUE", "asterix.004_070_CVS_VALUE",
+      "asterix.004_070_MVS_VALUE", "asterix.004_120_CC_TID",    "asterix.004_120_CC_CS",
+      "asterix.004_120_CD_VALUE",
+  };
+  const auto frames = tshark_fields(pcap, fields);
+  ASSERT_EQ(frames.size(), 3u) << "tshark decoded no frames from " << pcap;
+
+  const FieldValues& alive = frames[0];
+  EXPECT_EQ(alive.at("asterix.category"), std::vector<std::string>{"4"});
+  EXPECT_EQ(integer(alive.at("asterix.004_010_SAC").at(0)), 25);
+  EXPECT_EQ(integer(alive.at("asterix.004_010_SIC").at(0)), 100);
+  EXPECT_EQ(integer(alive.at("asterix.004_015_SAC").at(0)), 25);
+  EXPECT_EQ(integer(alive.at("asterix.004_015_SIC").at(0)), 7);
+  EXPECT_EQ(alive.at("asterix.004_000_VALUE"), std::vector<std::string>{"1"});
+  EXPECT_DOUBLE_EQ(number(alive.at("asterix.004_020_VALUE").at(0)), 51200.25);
+  EXPECT_EQ(alive.at("asterix.004_060_STCA"), std::vector<std::string>{"1"});
+  EXPECT_EQ(alive.at("asterix.004_060_DG"), std::vector<std::string>{"1"});
+  EXPECT_EQ(alive.at("asterix.004_060_OF"), std::vector<std::string>{"0"});
+  EXPECT_EQ(alive.at("asterix.004_060_OL"), std::vector<std::string>{"1"});
+
+  const FieldValues& alerts = frames[1];  // two records: new (caution), update (warning)
+  EXPECT_EQ(alerts.at("asterix.004_000_VALUE"), (std::vector<std::string>{"7", "7"}));
+  ASSERT_EQ(alerts.at("asterix.004_020_VALUE").size(), 2u);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_020_VALUE")[0]), 51204.25);
+  EXPECT_EQ(integer(alerts.at("asterix.004_040_VALUE").at(1)), 1);
+  EXPECT_EQ(alerts.at("asterix.004_045_STAT"), (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(integer(alerts.at("asterix.004_030_VALUE").at(0)), 3130);
+  EXPECT_EQ(integer(alerts.at("asterix.004_035_VALUE").at(0)), 2417);
+  EXPECT_EQ(alerts.at("asterix.004_170_AI1_VALUE").at(0), "BAW123 ");
+  EXPECT_EQ(alerts.at("asterix.004_171_AI2_VALUE").at(1), "DLH4AB ");
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_TC_VALUE").at(0)), 41.0);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_TCA_VALUE").at(1)), 64.5);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_CHS_VALUE").at(0)), 15000.0);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_MHS_VALUE").at(0)), 1234.5);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_CVS_VALUE").at(0)), 1000.0);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_MVS_VALUE").at(0)), 300.0);
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_TID"), (std::vector<std::string>{"0", "0"}));
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_CS"), (std::vector<std::string>{"0", "1"}));
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_120_CD_VALUE").at(1)), 4.0);
+
+  const FieldValues& ended = frames[2];
+  EXPECT_EQ(ended.at("asterix.004_000_VALUE"), std::vector<std::string>{"17"});
+  EXPECT_EQ(integer(ended.at("asterix.004_040_VALUE").at(0)), 1);
+  EXPECT_EQ(ended.at("asterix.004_045_STAT"), std::vector<std::string>{"0"});
+  EXPECT_EQ(integer(ended.at("asterix.004_030_VALUE").at(0)), 3130);
+  EXPECT_EQ(integer(ended.at("asterix.004_035_VALUE").at(0)), 2417);
+  EXPECT_TRUE(ended.at("asterix.004_070_TC_VALUE").empty());
+  EXPECT_TRUE(ended.at("asterix.004_170_AI1_VALUE").empty());
+
+  EXPECT_EQ(tshark_problems(pcap), "") << "tshark reports malformed frames or expert info";
+  std::remove(pcap.c_str());
+}
+
+// ---------------------------------------------------------------------------------------
+// jASTERIX CAT004 vectors → kew's reader, and tshark
+
+std::vector<Datagram> jasterix_blocks() {
+  const std::string path = std::string(KEW_TEST_DATA_DIR) + "/cat004/jasterix-gpl3/cat004ed1.4.bin";
+  std::ifstream file(path, std::ios::binary);
+  EXPECT_TRUE(file) << "missing bundled fixture " << path;
+  const std::vector<char> raw((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  // The file is three data blocks back to back; one datagram each, as a sender would.
+  std::vector<Datagram> blocks;
+  std::size_t offset = 0;
+  while (offset + 3 <= raw.size()) {
+    const std::size_t length = static_cast<std::size_t>(static_cast<unsigned char>(raw[offset + 1])) << 8 |
+                               static_cast<unsigned char>(raw[offset + 2]);
+    if (length < 3 || offset + length > raw.size()) break;
+    Datagram block;
+    for (std::size_t i = 0; i < length; ++i) block.push_back(static_cast<std::byte>(raw[offset + i]));
+    blocks.push_back(std::move(block));
+    offset += length;
+  }
+  EXPECT_EQ(offset, raw.size());
+  return blocks;
+}
+
+// Values tshark 4.0.17 shows for the three vectors (tests/data/cat004/SOURCE.md).
+TEST(Cat004Vectors, ReaderDecodesTheJasterixVectors) {
+  const auto blocks = jasterix_blocks();
+  ASSERT_EQ(blocks.size(), 3u);
+  Cat004Reader reader;
+  const auto records = read_records(blocks, reader);
+  EXPECT_EQ(reader.rejections().total(), 0u);
+  ASSERT_EQ(records.size(), 3u);
+
+  EXPECT_EQ(records[0].source->sac, 0);
+  EXPECT_EQ(records[0].source->sic, 1);
+  EXPECT_EQ(records[0].message_type, 1);  // Alive
+  EXPECT_EQ(records[0].time_of_day_s, 2829.0);
+  EXPECT_EQ(records[0].function_status, std::vector<std::uint8_t>{0x0E});  // APW CLAM STCA
+
+  EXPECT_EQ(records[1].message_type, 6);  // CLAM
+  EXPECT_EQ(records[1].time_of_day_s, 70666.0);
+  EXPECT_EQ(records[1].alert_id, 15496);
+  EXPECT_EQ(records[1].track_number_1, 3027);
+  EXPECT_FALSE(records[1].track_number_2);
+
+  EXPECT_EQ(records[2].message_type, 7);  // STCA
+  EXPECT_EQ(records[2].time_of_day_s, 70658.0);
+  EXPECT_EQ(records[2].alert_id, 15497);
+  EXPECT_EQ(records[2].alert_status, 3);
+  EXPECT_EQ(records[2].track_number_1, 3130);
+  EXPECT_EQ(records[2].track_number_2, 2417);
+  EXPECT_TRUE(records[2].has_conflict_characteristics);  // an empty I004/120
+  EXPECT_FALSE(records[2].conflict_classification);
+}
+
+TEST(Cat004Vectors, ReaderAgreesWithTshark) {
+  KEW_REQUIRE_TSHARK();
+  const auto blocks = jasterix_blocks();
+  Cat004Reader reader;
+  const auto records = read_records(blocks, reader);
+  ASSERT_EQ(records.size(), blocks.size());
+
+  const std::string pcap = write_pcap(blocks, "cat004_jasterix");
+  const std::vector<std::string> fields{
+      "asterix.004_010_SAC",   "asterix.004_010_SIC",   "asterix.004_000_VALUE",
+      "asterix.004_020_VALUE", "asterix.004_040_VALUE", "asterix.004_045_STAT",
+      "asterix.004_030_VALUE", "asterix.004_035_VALUE", "asterix.004_060_APW",
+      "asterix.004_060_CLAM",  "asterix.004_060_STCA",
+  };
+  const auto frames = tshark_fields(pcap, fields);
+  ASSERT_EQ(frames.size(), records.size());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    SCOPED_TRACE("vector " + std::to_string(i + 1));
+    const Cat004Record& r = records[i];
+    const FieldValues& f = frames[i];
+    EXPECT_EQ(integer(f.at("asterix.004_010_SAC").at(0)), r.source->sac);
+    EXPECT_EQ(integer(f.at("asterix.004_010_SIC").at(0)), r.source->sic);
+    EXPECT_EQ(integer(f.at("asterix.004_000_VALUE").at(0)), *r.message_type);
+    EXPECT_DOUBLE_EQ(number(f.at("asterix.004_020_VALUE").at(0)), *r.time_of_day_s);
+    const auto optional_field = [&](const std::string& name, auto value) {
+      if (value) {
+        ASSERT_EQ(f.at(name).size(), 1u) << name;
+        EXPECT_EQ(integer(f.at(name)[0]), static_cast<long>(*value)) << name;
+      } else {
+        EXPECT_TRUE(f.at(name).empty()) << name;
+      }
+    };
+    optional_field("asterix.004_040_VALUE", r.alert_id);
+    optional_field("asterix.004_045_STAT", r.alert_status);
+    optional_field("asterix.004_030_VALUE", r.track_number_1);
+    optional_field("asterix.004_035_VALUE", r.track_number_2);
+    if (!r.function_status.empty()) {
+      const unsigned octet = r.function_status[0];
+      EXPECT_EQ(integer(f.at("asterix.004_060_APW").at(0)), (octet >> 3) & 1);
+      EXPECT_EQ(integer(f.at("asterix.004_060_CLAM").at(0)), (octet >> 2) & 1);
+      EXPECT_EQ(integer(f.at("asterix.004_060_STCA").at(0)), (octet >> 1) & 1);
+    }
+  }
+  EXPECT_EQ(tshark_problems(pcap), "");
+  std::remove(pcap.c_str());
+}
+
+}  // namespace
+}  // namespace kew::protocol

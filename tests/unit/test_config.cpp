@@ -1,0 +1,164 @@
+// The configuration file (SPEC §5.7): deploy/kew.toml documents the defaults the code
+// uses, unknown keys are errors, and errors name the file and line.
+#include "kew/daemon/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace kew::daemon {
+namespace {
+
+TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
+  const Config file = load_config(std::string(KEW_DEPLOY_DIR) + "/kew.toml");
+  const Config defaults;
+  const PipelineConfig& p = file.pipeline;
+  const PipelineConfig& d = defaults.pipeline;
+  EXPECT_EQ(file.service.alert_listen, defaults.service.alert_listen);
+  EXPECT_EQ(file.service.max_subscribers, defaults.service.max_subscribers);
+  EXPECT_EQ(file.service.subscriber_queue, defaults.service.subscriber_queue);
+  EXPECT_EQ(file.service.alive_interval_s, defaults.service.alive_interval_s);
+  EXPECT_EQ(file.service.tick_interval_s, defaults.service.tick_interval_s);
+  EXPECT_EQ(file.service.log_level, defaults.service.log_level);
+  EXPECT_EQ(file.service.alert_log, defaults.service.alert_log);
+  EXPECT_EQ(file.service.alert_log_max_bytes, defaults.service.alert_log_max_bytes);
+  EXPECT_EQ(file.service.alert_log_keep, defaults.service.alert_log_keep);
+  EXPECT_EQ(file.service.record_file, defaults.service.record_file);
+  EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
+  EXPECT_FALSE(p.reference.has_value());
+  EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
+  EXPECT_EQ(p.tracks.track_timeout_s, d.tracks.track_timeout_s);
+  EXPECT_EQ(p.tracks.max_ground_speed_kt, d.tracks.max_ground_speed_kt);
+  EXPECT_EQ(p.tracks.max_vertical_rate_fpm, d.tracks.max_vertical_rate_fpm);
+  EXPECT_EQ(p.tracks.min_altitude_ft, d.tracks.min_altitude_ft);
+  EXPECT_EQ(p.tracks.max_altitude_ft, d.tracks.max_altitude_ft);
+  EXPECT_EQ(p.tracks.exclude_on_ground, d.tracks.exclude_on_ground);
+  EXPECT_EQ(p.tracks.max_tracks, d.tracks.max_tracks);
+  EXPECT_EQ(p.tracks.max_lateness_s, d.tracks.max_lateness_s);
+  EXPECT_EQ(p.tracks.max_derivation_gap_s, d.tracks.max_derivation_gap_s);
+  EXPECT_EQ(p.kinetic.tolerance, d.kinetic.tolerance);
+  EXPECT_EQ(p.kinetic.tolerance_mode, d.kinetic.tolerance_mode);
+  EXPECT_EQ(p.kinetic.horizon_s, d.kinetic.horizon_s);
+  EXPECT_EQ(p.kinetic.reduce_redundant_events, d.kinetic.reduce_redundant_events);
+  EXPECT_EQ(p.probe_mode, d.probe_mode);
+  EXPECT_DOUBLE_EQ(p.minima.horizontal_m, d.minima.horizontal_m);
+  EXPECT_DOUBLE_EQ(p.minima.vertical_m, d.minima.vertical_m);
+  EXPECT_EQ(p.minima.lookahead_s, d.minima.lookahead_s);
+  EXPECT_EQ(p.alerts.confirm, d.alerts.confirm);
+  EXPECT_EQ(p.alerts.clear, d.alerts.clear);
+  EXPECT_EQ(p.alerts.warning_s, d.alerts.warning_s);
+  EXPECT_EQ(p.alerts.update_t_los_s, d.alerts.update_t_los_s);
+  EXPECT_EQ(p.alerts.update_cpa_h_m, d.alerts.update_cpa_h_m);
+  EXPECT_EQ(p.alerts.update_cpa_v_ft, d.alerts.update_cpa_v_ft);
+  EXPECT_EQ(file.cat004.enabled, defaults.cat004.enabled);
+  EXPECT_EQ(file.cat004.destination, defaults.cat004.destination);
+  EXPECT_EQ(file.cat004.interface, defaults.cat004.interface);
+  EXPECT_EQ(file.cat004.ttl, defaults.cat004.ttl);
+  EXPECT_EQ(file.cat004.sac, defaults.cat004.sac);
+  EXPECT_EQ(file.cat004.sic, defaults.cat004.sic);
+  EXPECT_EQ(file.cat004.alive_interval_s, defaults.cat004.alive_interval_s);
+  EXPECT_EQ(file.modbus.enabled, defaults.modbus.enabled);
+  EXPECT_EQ(file.modbus.listen, defaults.modbus.listen);
+  EXPECT_EQ(file.modbus.unit_id, defaults.modbus.unit_id);
+  EXPECT_EQ(file.modbus.table_entries, defaults.modbus.table_entries);
+  EXPECT_EQ(file.modbus.read_only, defaults.modbus.read_only);
+  EXPECT_EQ(file.modbus.max_connections, defaults.modbus.max_connections);
+  EXPECT_EQ(file.decoding.sbs_utc_offset_s, defaults.decoding.sbs_utc_offset_s);
+  EXPECT_EQ(file.decoding.max_line_bytes, defaults.decoding.max_line_bytes);
+  EXPECT_TRUE(file.decoding.asterix.radars.empty());
+  ASSERT_EQ(file.inputs.size(), 2u);
+  EXPECT_EQ(file.inputs[0].format, protocol::Format::AsterixDatagram);
+  EXPECT_EQ(file.inputs[0].transport, Transport::Udp);
+  EXPECT_EQ(file.inputs[1].transport, Transport::TcpServer);
+  EXPECT_EQ(file.inputs[1].address, "127.0.0.1:4748");
+}
+
+TEST(Config, ReadsEverySection) {
+  const Config c = parse_config(R"(
+[projection]
+reference_lat = 41.3
+reference_lon = 2.1
+coverage_radius_km = 300
+[kinetic]
+tolerance = 0.001
+tolerance_mode = "relative"
+horizon_s = 0
+[probe]
+mode = "edges"
+horizontal_nm = 3
+[[radar]]
+sac = 20
+sic = 129
+lat = 41.300702
+lon = 2.102058
+height_m = 27
+[[input]]
+format = "asterix-raw"
+transport = "file"
+address = "/data/x.ast"
+asterix_day = "2023-05-02"
+)");
+  ASSERT_TRUE(c.pipeline.reference.has_value());
+  EXPECT_EQ(c.pipeline.reference->lat_deg, 41.3);
+  EXPECT_EQ(c.pipeline.coverage_radius_m, 300000.0);
+  EXPECT_EQ(c.pipeline.kinetic.tolerance_mode, kinetic::ToleranceMode::Relative);
+  EXPECT_TRUE(std::isinf(c.pipeline.kinetic.horizon_s));
+  EXPECT_EQ(c.pipeline.probe_mode, probe::ProbeMode::Edges);
+  EXPECT_DOUBLE_EQ(c.pipeline.minima.horizontal_m, 5556.0);
+  ASSERT_EQ(c.decoding.asterix.radars.size(), 1u);
+  EXPECT_EQ(c.decoding.asterix.radars[0].sic, 129);
+  ASSERT_EQ(c.inputs.size(), 1u);
+  EXPECT_EQ(c.inputs[0].name, "input1");
+  EXPECT_EQ(c.inputs[0].format, protocol::Format::AsterixRaw);
+  double day = 0;
+  ASSERT_TRUE(parse_utc_day(c.inputs[0].asterix_day, day));
+  EXPECT_EQ(day, 1682985600.0);  // 2023-05-02T00:00:00Z
+}
+
+void expect_error(const char* text, const char* needle) {
+  try {
+    parse_config(text, "t.toml");
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(Config, RefusesMistakesWithFileAndLine) {
+  expect_error("[tracks]\ntimeout = 30\n", "t.toml:2: [tracks] unknown key \"timeout\"");
+  expect_error("[trakcs]\n", "unknown section or key \"trakcs\"");
+  expect_error("[probe]\nmode = \"fast\"\n", "mode = \"fast\": expected one of exact, edges, brute");
+  expect_error("[alerts]\nconfirm = 0\n", "confirm = 0 is outside [1, 1000]");
+  expect_error("[service]\nalert_listen = \"localhost\"\n", "is not HOST:PORT");
+  expect_error("[kinetic]\ntolerance = \"big\"\n", "tolerance must be a number");
+  expect_error("[[input]]\ntransport = \"udp\"\n", "an input needs an address");
+  expect_error("[[input]]\nformat = \"asterix-datagram\"\ntransport = \"file\"\naddress = \"x\"\n",
+               "asterix-datagram needs transport udp");
+  expect_error("[projection]\nreference_lat = 10\n", "go together");
+  expect_error("[service\n", "t.toml:1:");
+  expect_error("input = 3\n", "input must be written as [[input]] tables");
+}
+
+TEST(Config, HostPortAndDays) {
+  std::string host;
+  std::uint16_t port = 0;
+  EXPECT_TRUE(split_host_port("127.0.0.1:4747", host, port));
+  EXPECT_EQ(host, "127.0.0.1");
+  EXPECT_EQ(port, 4747);
+  EXPECT_TRUE(split_host_port("[::1]:1502", host, port));
+  EXPECT_EQ(host, "::1");
+  EXPECT_FALSE(split_host_port("::1:1502", host, port));
+  EXPECT_FALSE(split_host_port("host:70000", host, port));
+  EXPECT_FALSE(split_host_port("host:", host, port));
+  double t = 0;
+  EXPECT_TRUE(parse_utc_day("1970-01-01", t));
+  EXPECT_EQ(t, 0.0);
+  EXPECT_TRUE(parse_utc_day("2024-02-29", t));
+  EXPECT_EQ(t, 1709164800.0);
+  EXPECT_FALSE(parse_utc_day("2024-13-01", t));
+  EXPECT_FALSE(parse_utc_day("24-01-01", t));
+}
+
+}  // namespace
+}  // namespace kew::daemon
