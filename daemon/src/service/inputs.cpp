@@ -1,0 +1,388 @@
+#include "inputs.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <deque>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/ip/multicast.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <spdlog/spdlog.h>
+
+#include "kew/replay/pacer.hpp"
+
+namespace kew::daemon {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+using asio::ip::udp;
+
+namespace {
+
+constexpr std::size_t kReadBytes = 64 * 1024;
+constexpr int kUdpReceiveBuffer = 8 * 1024 * 1024;
+
+// The UTC midnight of today, for ASTERIX time of day in live inputs.
+double today_utc_midnight() {
+  const std::time_t now = std::time(nullptr);
+  return static_cast<double>(now - now % 86400);
+}
+
+protocol::DecoderOptions options_for(const InputConfig& config, protocol::DecoderOptions options) {
+  double day = 0.0;
+  if (!config.asterix_day.empty() && parse_utc_day(config.asterix_day, day)) {
+    options.asterix.day_start_utc_s = day;
+    options.asterix.day_from_pcap = false;
+  } else if (config.transport != Transport::File) {
+    options.asterix.day_start_utc_s = today_utc_midnight();
+  }
+  return options;
+}
+
+template <class Endpoint>
+Endpoint resolve_endpoint(asio::io_context& io, const std::string& address) {
+  std::string host;
+  std::uint16_t port = 0;
+  split_host_port(address, host, port);
+  typename Endpoint::protocol_type::resolver resolver(io);
+  return *resolver.resolve(host, std::to_string(port)).begin();
+}
+
+class UdpInput final : public Input {
+ public:
+  UdpInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
+      : Input(std::move(config), std::move(options), std::move(handler)), socket_(io), buffer_(65536) {
+    const udp::endpoint endpoint = resolve_endpoint<udp::endpoint>(io, config_.address);
+    socket_.open(endpoint.protocol());
+    socket_.set_option(udp::socket::reuse_address(true));
+    socket_.set_option(asio::socket_base::receive_buffer_size(kUdpReceiveBuffer));
+    if (endpoint.address().is_multicast()) {
+      // Bind the group's port on every address, then join the group on the interface.
+      socket_.bind(udp::endpoint(endpoint.protocol(), endpoint.port()));
+      if (endpoint.address().is_v4())
+        socket_.set_option(asio::ip::multicast::join_group(endpoint.address().to_v4(),
+                                                           asio::ip::make_address_v4(config_.interface)));
+      else
+        socket_.set_option(asio::ip::multicast::join_group(endpoint.address()));
+    } else {
+      socket_.bind(endpoint);
+    }
+    decoder_ = make_stream_decoder();
+  }
+  void start() override { receive(); }
+  void stop() override {
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+    if (decoder_) retire(*decoder_);
+  }
+  std::uint16_t bound_port() const override { return socket_.local_endpoint().port(); }
+
+ private:
+  void add_open_stream_rejections(Rejections& out) const override {
+    if (decoder_ && socket_.is_open()) out.merge(decoder_->rejections());
+  }
+  void receive() {
+    socket_.async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
+      if (ec == asio::error::operation_aborted) return;
+      if (ec == asio::error::message_size) {
+        ++figures_.oversized_datagrams;
+      } else if (!ec) {
+        // Each datagram is one message: a datagram framing decodes it alone; text
+        // formats get whole lines from a well-behaved sender.
+        feed(*decoder_, buffer_.data(), n);
+      }
+      if (socket_.is_open()) receive();
+    });
+  }
+
+  udp::socket socket_;
+  udp::endpoint sender_;
+  std::vector<char> buffer_;
+  std::unique_ptr<protocol::Decoder> decoder_;
+};
+
+// One TCP byte stream with its decoder, reading until EOF or error.
+class TcpStream : public std::enable_shared_from_this<TcpStream> {
+ public:
+  TcpStream(tcp::socket socket, std::unique_ptr<protocol::Decoder> decoder,
+            std::function<void(protocol::Decoder&, const void*, std::size_t)> feed,
+            std::function<void(TcpStream&)> on_end)
+      : socket_(std::move(socket)), decoder_(std::move(decoder)), feed_(std::move(feed)), on_end_(std::move(on_end)),
+        buffer_(kReadBytes) {}
+  void start() { read(); }
+  void close() {
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+  }
+  protocol::Decoder& decoder() { return *decoder_; }
+  const protocol::Decoder& decoder() const { return *decoder_; }
+  std::string peer() const {
+    boost::system::error_code ec;
+    const auto ep = socket_.remote_endpoint(ec);
+    return ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
+  }
+
+ private:
+  void read() {
+    socket_.async_read_some(asio::buffer(buffer_), [self = shared_from_this()](const boost::system::error_code& ec,
+                                                                               std::size_t n) {
+      if (n > 0) self->feed_(*self->decoder_, self->buffer_.data(), n);
+      if (ec) {
+        if (!self->ended_) {
+          self->ended_ = true;
+          self->on_end_(*self);
+        }
+        return;
+      }
+      self->read();
+    });
+  }
+
+  tcp::socket socket_;
+  std::unique_ptr<protocol::Decoder> decoder_;
+  std::function<void(protocol::Decoder&, const void*, std::size_t)> feed_;
+  std::function<void(TcpStream&)> on_end_;
+  std::vector<char> buffer_;
+  bool ended_ = false;
+};
+
+class TcpServerInput final : public Input {
+ public:
+  TcpServerInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
+      : Input(std::move(config), std::move(options), std::move(handler)),
+        acceptor_(io, resolve_endpoint<tcp::endpoint>(io, config_.address)) {}
+  void start() override { accept(); }
+  void stop() override {
+    stopped_ = true;
+    boost::system::error_code ignored;
+    acceptor_.close(ignored);
+    const auto streams = streams_;
+    for (const auto& s : streams) s->close();
+  }
+  std::uint16_t bound_port() const override { return acceptor_.local_endpoint().port(); }
+
+ private:
+  void add_open_stream_rejections(Rejections& out) const override {
+    for (const auto& s : streams_) out.merge(s->decoder().rejections());
+  }
+  void accept() {
+    acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
+      if (stopped_ || ec == asio::error::operation_aborted) return;
+      if (!ec) {
+        if (streams_.size() >= config_.max_connections) {
+          ++figures_.connections_refused;
+          spdlog::warn("input {}: refusing a feed connection (max_connections = {})", config_.name,
+                       config_.max_connections);
+          boost::system::error_code ignored;
+          socket.close(ignored);
+        } else {
+          ++figures_.connections;
+          auto stream = std::make_shared<TcpStream>(
+              std::move(socket), make_stream_decoder(),
+              [this](protocol::Decoder& d, const void* data, std::size_t n) { feed(d, data, n); },
+              [this](TcpStream& s) { end(s); });
+          streams_.push_back(stream);
+          spdlog::info("input {}: feed connected from {}", config_.name, stream->peer());
+          stream->start();
+        }
+      }
+      accept();
+    });
+  }
+  void end(TcpStream& stream) {
+    retire(stream.decoder());
+    spdlog::info("input {}: feed disconnected", config_.name);
+    std::erase_if(streams_, [&](const auto& s) { return s.get() == &stream; });
+  }
+
+  tcp::acceptor acceptor_;
+  std::vector<std::shared_ptr<TcpStream>> streams_;
+  bool stopped_ = false;
+};
+
+class TcpClientInput final : public Input {
+ public:
+  TcpClientInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
+      : Input(std::move(config), std::move(options), std::move(handler)), io_(io), timer_(io),
+        backoff_s_(config_.reconnect_min_s) {}
+  void start() override { connect(); }
+  void stop() override {
+    stopped_ = true;
+    timer_.cancel();
+    if (socket_) {
+      boost::system::error_code ignored;
+      socket_->close(ignored);
+    }
+    if (stream_) stream_->close();
+  }
+
+ private:
+  void add_open_stream_rejections(Rejections& out) const override {
+    if (stream_) out.merge(stream_->decoder().rejections());
+  }
+  void connect() {
+    if (stopped_) return;
+    std::string host;
+    std::uint16_t port = 0;
+    split_host_port(config_.address, host, port);
+    socket_ = std::make_shared<tcp::socket>(io_);
+    auto resolver = std::make_shared<tcp::resolver>(io_);
+    resolver->async_resolve(host, std::to_string(port), [this, resolver](const boost::system::error_code& ec,
+                                                                         tcp::resolver::results_type results) {
+      if (stopped_) return;
+      if (ec) return retry(ec.message());
+      asio::async_connect(*socket_, results, [this](const boost::system::error_code& cec, const tcp::endpoint&) {
+        if (stopped_) return;
+        if (cec) return retry(cec.message());
+        ++figures_.connections;
+        backoff_s_ = config_.reconnect_min_s;
+        spdlog::info("input {}: connected to {}", config_.name, config_.address);
+        stream_ = std::make_shared<TcpStream>(
+            std::move(*socket_), make_stream_decoder(),
+            [this](protocol::Decoder& d, const void* data, std::size_t n) { feed(d, data, n); },
+            [this](TcpStream& s) {
+              retire(s.decoder());
+              stream_.reset();
+              retry("connection closed");
+            });
+        stream_->start();
+      });
+    });
+  }
+  void retry(const std::string& why) {
+    if (stopped_) return;
+    spdlog::warn("input {}: {} ({}); reconnecting in {:.1f} s", config_.name, config_.address, why, backoff_s_);
+    timer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(backoff_s_)));
+    backoff_s_ = std::min(backoff_s_ * 2.0, config_.reconnect_max_s);
+    timer_.async_wait([this](const boost::system::error_code& ec) {
+      if (!ec) connect();
+    });
+  }
+
+  asio::io_context& io_;
+  asio::steady_timer timer_;
+  double backoff_s_;
+  std::shared_ptr<tcp::socket> socket_;
+  std::shared_ptr<TcpStream> stream_;
+  bool stopped_ = false;
+};
+
+// Reads a file in chunks posted one at a time, so that other inputs and subscribers
+// are served between chunks; paced files release each report at its due time.
+class FileInput final : public Input {
+ public:
+  FileInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
+      : Input(std::move(config), std::move(options), std::move(handler)), io_(io), timer_(io),
+        pacer_(config_.pace ? 1.0 : 0.0), buffer_(kReadBytes) {}
+  ~FileInput() override {
+    if (file_) std::fclose(file_);
+  }
+  void start() override {
+    file_ = std::fopen(config_.address.c_str(), "rb");
+    if (!file_) {
+      figures_.rejections.reject("file_unreadable", config_.address);
+      spdlog::error("input {}: cannot open {}", config_.name, config_.address);
+      return;
+    }
+    decoder_ = make_stream_decoder();
+    asio::post(io_, [this] { step(); });
+  }
+  void stop() override {
+    stopped_ = true;
+    timer_.cancel();
+  }
+
+ private:
+  void add_open_stream_rejections(Rejections& out) const override {
+    if (decoder_ && !eof_) out.merge(decoder_->rejections());
+  }
+  void step() {
+    if (stopped_) return;
+    const auto now = std::chrono::steady_clock::now();
+    while (!pending_.empty()) {
+      const auto due = pacer_.due(pending_.front().t);
+      if (due > now) {
+        timer_.expires_at(due);
+        timer_.async_wait([this](const boost::system::error_code& ec) {
+          if (!ec) step();
+        });
+        return;
+      }
+      handler_(pending_.front());
+      pending_.pop_front();
+    }
+    if (eof_) {
+      spdlog::info("input {}: {} read to the end ({} reports)", config_.name, config_.address, figures_.reports);
+      return;
+    }
+    const std::size_t n = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+    figures_.bytes += n;
+    const auto sink = [this](const TrackReport& r) {
+      ++figures_.reports;
+      pending_.push_back(r);
+    };
+    if (n > 0) decoder_->feed(std::span<const std::byte>(reinterpret_cast<const std::byte*>(buffer_.data()), n), sink);
+    if (n < buffer_.size()) {
+      decoder_->finish(sink);
+      figures_.rejections.merge(decoder_->rejections());
+      eof_ = true;
+    }
+    asio::post(io_, [this] { step(); });
+  }
+
+  asio::io_context& io_;
+  asio::steady_timer timer_;
+  replay::Pacer pacer_;
+  std::vector<char> buffer_;
+  std::FILE* file_ = nullptr;
+  std::unique_ptr<protocol::Decoder> decoder_;
+  std::deque<TrackReport> pending_;
+  bool eof_ = false;
+  bool stopped_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<protocol::Decoder> Input::make_stream_decoder() {
+  auto decoder = protocol::make_decoder(config_.format, options_for(config_, options_));
+  const std::string name = config_.name;
+  decoder->rejections().set_reporter([name](std::string_view reason, std::string_view message) {
+    spdlog::warn("input {}: rejected ({}) {}", name, reason, message);
+  });
+  return decoder;
+}
+
+void Input::feed(protocol::Decoder& decoder, const void* data, std::size_t n) {
+  figures_.bytes += n;
+  decoder.feed(std::span<const std::byte>(static_cast<const std::byte*>(data), n), [this](const TrackReport& r) {
+    ++figures_.reports;
+    handler_(r);
+  });
+}
+
+void Input::retire(protocol::Decoder& decoder) {
+  decoder.finish([this](const TrackReport& r) {
+    ++figures_.reports;
+    handler_(r);
+  });
+  figures_.rejections.merge(decoder.rejections());
+  decoder.rejections() = Rejections();
+}
+
+std::unique_ptr<Input> make_input(asio::io_context& io, const InputConfig& config,
+                                  const protocol::DecoderOptions& options, Input::ReportHandler handler) {
+  switch (config.transport) {
+    case Transport::Udp: return std::make_unique<UdpInput>(io, config, options, std::move(handler));
+    case Transport::TcpServer: return std::make_unique<TcpServerInput>(io, config, options, std::move(handler));
+    case Transport::TcpClient: return std::make_unique<TcpClientInput>(io, config, options, std::move(handler));
+    case Transport::File: break;
+  }
+  return std::make_unique<FileInput>(io, config, options, std::move(handler));
+}
+
+}  // namespace kew::daemon

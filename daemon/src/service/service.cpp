@@ -1,0 +1,344 @@
+#include "service.hpp"
+
+#include <systemd/sd-daemon.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "logging.hpp"
+#include "kew/protocol/ndjson_writer.hpp"
+#include "kew/protocol/version.hpp"
+
+namespace kew::daemon {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+namespace {
+
+constexpr auto kShutdownGrace = std::chrono::seconds(5);
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+/// "127.0.0.1:4747" → "0.0.0.0:4747" (and "[::1]:P" → "[::]:P") when the operator asked
+/// for every interface; other addresses were chosen on purpose and are kept.
+std::string widen_if_loopback(const std::string& address) {
+  std::string host;
+  std::uint16_t port = 0;
+  if (!split_host_port(address, host, port)) return address;
+  if (host == "127.0.0.1" || host == "localhost") return fmt::format("0.0.0.0:{}", port);
+  if (host == "::1") return fmt::format("[::]:{}", port);
+  return address;
+}
+
+tcp::endpoint resolve_listen(asio::io_context& io, const std::string& address) {
+  std::string host;
+  std::uint16_t port = 0;
+  if (!split_host_port(address, host, port)) throw std::runtime_error("bad listen address " + address);
+  tcp::resolver resolver(io);
+  return *resolver.resolve(host, std::to_string(port), tcp::resolver::passive).begin();
+}
+
+std::string json_string(std::string_view text) {
+  std::string quoted;
+  protocol::append_json_string(quoted, text);
+  return quoted;
+}
+
+void append_rejections(fmt::memory_buffer& out, const Rejections& r) {
+  out.push_back('{');
+  bool first = true;
+  for (const auto& [reason, count] : r.by_reason()) {
+    fmt::format_to(std::back_inserter(out), "{}{}:{}", first ? "" : ",", json_string(reason), count);
+    first = false;
+  }
+  out.push_back('}');
+}
+
+}  // namespace
+
+Service::Service(Config config, ServiceOptions options)
+    : signals_(io_, SIGTERM, SIGINT, SIGHUP),
+      tick_timer_(io_),
+      alive_timer_(io_),
+      watchdog_timer_(io_),
+      shutdown_timer_(io_),
+      config_(std::move(config)),
+      options_(std::move(options)),
+      pipeline_(config_.pipeline),
+      started_(std::chrono::steady_clock::now()),
+      last_alive_(started_) {
+  pipeline_.set_alert_sink([this](const AlertEvent& e) { on_alert(e); });
+  pipeline_.rejections().set_reporter([](std::string_view reason, std::string_view message) {
+    spdlog::warn("record rejected ({}): {}", reason, message);
+  });
+
+  if (!config_.service.alert_log.empty())
+    alert_log_ = std::make_unique<LineFile>(config_.service.alert_log, config_.service.alert_log_max_bytes,
+                                            config_.service.alert_log_keep);
+  if (!config_.service.record_file.empty())
+    record_file_ = std::make_unique<LineFile>(config_.service.record_file, 0, 0);
+  if (config_.cat004.enabled) cat004_ = std::make_unique<Cat004Sender>(io_, config_.cat004);
+
+  std::string listen = config_.service.alert_listen;
+  if (options_.listen_any) listen = widen_if_loopback(listen);
+  SubscriberServer::Source source;
+  source.snapshot = [this] { return pipeline_.alerts().snapshot(); };
+  source.seq = [this] { return last_alert_seq_; };
+  source.stats = [this] { return stats_json(); };
+  subscribers_ = std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), config_.service.max_subscribers,
+                                                    config_.service.subscriber_queue, config_.service.tracks_stream,
+                                                    std::move(source));
+
+  for (InputConfig input : config_.inputs) {
+    if (options_.listen_any && (input.transport == Transport::TcpServer || input.transport == Transport::Udp))
+      input.address = widen_if_loopback(input.address);
+    inputs_.push_back(make_input(io_, input, config_.decoding, [this](const TrackReport& r) { on_report(r); }));
+  }
+}
+
+Service::~Service() = default;
+
+int Service::run() {
+  subscribers_->start();
+  for (auto& input : inputs_) input->start();
+  spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
+               inputs_.size());
+  for (const auto& input : inputs_) {
+    const std::uint16_t port = input->bound_port();
+    spdlog::info("input {}: {} {} {}{}", input->config().name, protocol::to_string(input->config().format),
+                 to_string(input->config().transport), input->config().address,
+                 port ? fmt::format(" (port {})", port) : std::string());
+  }
+  wait_for_signal();
+  schedule_tick();
+  schedule_alive();
+  std::uint64_t watchdog_us = 0;
+  if (sd_watchdog_enabled(0, &watchdog_us) > 0 && watchdog_us > 0)
+    schedule_watchdog(std::chrono::microseconds(watchdog_us / 2));
+  sd_notifyf(0, "READY=1\nSTATUS=serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
+  io_.run();
+  if (alert_log_) alert_log_->flush();
+  if (record_file_) record_file_->flush();
+  spdlog::info("kewd stopped: {} records, {} alerts opened", pipeline_.statistics().records,
+               pipeline_.alerts().counters().opened);
+  spdlog::default_logger()->flush();
+  return 0;
+}
+
+void Service::on_report(const TrackReport& report) {
+  if (stopping_) return;
+  if (record_file_) {
+    line_.clear();
+    protocol::append_ndjson(line_, report);
+    record_file_->append(line_);
+  }
+  if (subscribers_->anyone_wants_tracks()) subscribers_->broadcast_track(report);
+  pipeline_.process(report);
+  any_record_ = true;
+  last_record_wall_ = std::chrono::steady_clock::now();
+}
+
+void Service::on_alert(const AlertEvent& event) {
+  last_alert_seq_ = event.seq;
+  if (alert_log_) {
+    // Flushed per alert: an alert nobody was subscribed to must survive a crash.
+    line_.clear();
+    protocol::append_alert_json(line_, event, event.seq);
+    alert_log_->append(line_);
+    alert_log_->flush();
+  }
+  subscribers_->broadcast_alert(event);
+  if (cat004_) cat004_->send_alert(event);
+}
+
+double Service::data_clock_now() const {
+  // Live mode: the data clock runs on with the wall clock between records, so that
+  // tracks of a silent feed time out and kinetic events happen on time.
+  const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_record_wall_).count();
+  return pipeline_.statistics().last_data_time + idle;
+}
+
+void Service::schedule_tick() {
+  tick_timer_.expires_after(seconds(config_.service.tick_interval_s));
+  tick_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    tick();
+    schedule_tick();
+  });
+}
+
+void Service::tick() {
+  if (record_file_) record_file_->flush();
+  if (!any_record_) return;
+  const auto idle = std::chrono::steady_clock::now() - last_record_wall_;
+  // While records flow, their own times drive the clock; only a feed silent for a whole
+  // tick moves it on.
+  if (idle >= seconds(config_.service.tick_interval_s)) pipeline_.advance_to(data_clock_now());
+}
+
+void Service::schedule_alive() {
+  alive_timer_.expires_after(seconds(config_.service.alive_interval_s));
+  alive_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    alive();
+    schedule_alive();
+  });
+}
+
+bool Service::feed_healthy() const {
+  if (!any_record_) return false;
+  const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_record_wall_).count();
+  return idle <= config_.pipeline.tracks.track_timeout_s;
+}
+
+void Service::alive() {
+  const auto now = std::chrono::steady_clock::now();
+  const double span = std::chrono::duration<double>(now - last_alive_).count();
+  const PipelineStatistics& s = pipeline_.statistics();
+  const std::uint64_t updates = pipeline_.kinetic_statistics().updates;
+  if (span > 0) {
+    records_per_s_ = static_cast<double>(s.accepted - accepted_at_last_alive_) / span;
+    updates_per_s_ = static_cast<double>(updates - updates_at_last_alive_) / span;
+  }
+  accepted_at_last_alive_ = s.accepted;
+  updates_at_last_alive_ = updates;
+  last_alive_ = now;
+
+  protocol::AliveStatus status;
+  if (any_record_) status.last_data_t = s.last_data_time;
+  status.tracks = pipeline_.live_tracks();
+  status.alerts = pipeline_.alerts().active_count();
+  status.records_per_s = records_per_s_;
+  status.updates_per_s = updates_per_s_;
+  status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
+  status.degraded = !feed_healthy();
+  subscribers_->broadcast_alive(status);
+  if (cat004_) {
+    protocol::Cat004Alive a;
+    a.t = any_record_ ? data_clock_now() : static_cast<double>(std::time(nullptr));
+    a.degraded = status.degraded;
+    cat004_->send_alive(a);
+  }
+}
+
+void Service::schedule_watchdog(std::chrono::microseconds period) {
+  watchdog_timer_.expires_after(period);
+  watchdog_timer_.async_wait([this, period](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    // Sent from the I/O thread: a stuck pipeline stops the pings and systemd restarts us.
+    sd_notify(0, "WATCHDOG=1");
+    schedule_watchdog(period);
+  });
+}
+
+void Service::wait_for_signal() {
+  signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
+    if (ec) return;
+    if (signal == SIGHUP) {
+      reload();
+      wait_for_signal();
+      return;
+    }
+    spdlog::info("kewd: {} received, shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    shutdown();
+  });
+}
+
+void Service::reload() {
+  if (options_.config_path.empty()) {
+    spdlog::info("SIGHUP: no configuration file to reload");
+    return;
+  }
+  sd_notify(0, "RELOADING=1");
+  try {
+    const Config fresh = load_config(options_.config_path);
+    // What can change in flight: logging, subscriber limits, timers. Inputs, outputs and
+    // pipeline parameters would change results mid-stream: they need a restart.
+    set_log_level(fresh.service.log_level);
+    config_.service.log_level = fresh.service.log_level;
+    subscribers_->set_limits(fresh.service.max_subscribers, fresh.service.subscriber_queue);
+    config_.service.max_subscribers = fresh.service.max_subscribers;
+    config_.service.subscriber_queue = fresh.service.subscriber_queue;
+    config_.service.alive_interval_s = fresh.service.alive_interval_s;
+    config_.service.tick_interval_s = fresh.service.tick_interval_s;
+    spdlog::info("SIGHUP: reloaded {} (log level {}, {} subscribers of {} queued objects at most)",
+                 options_.config_path, fresh.service.log_level, fresh.service.max_subscribers,
+                 fresh.service.subscriber_queue);
+    spdlog::info("SIGHUP: inputs, outputs and pipeline settings apply at the next restart");
+  } catch (const std::exception& e) {
+    spdlog::error("SIGHUP: {} (configuration kept)", e.what());
+  }
+  sd_notify(0, "READY=1");
+}
+
+void Service::shutdown() {
+  if (stopping_) return;
+  stopping_ = true;
+  sd_notify(0, "STOPPING=1");
+  for (auto& input : inputs_) input->stop();
+  boost::system::error_code ignored;
+  signals_.cancel(ignored);
+  tick_timer_.cancel();
+  alive_timer_.cancel();
+  watchdog_timer_.cancel();
+  // Subscribers get what is queued for them, then the connection closes; io_.run()
+  // returns when the last one is done, or the grace period ends it.
+  subscribers_->shutdown();
+  shutdown_timer_.expires_after(kShutdownGrace);
+  shutdown_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec) io_.stop();
+  });
+  if (subscribers_->sessions() == 0) shutdown_timer_.cancel();
+  subscribers_->on_empty([this] { shutdown_timer_.cancel(); });
+}
+
+std::string Service::stats_json() const {
+  fmt::memory_buffer out;
+  const PipelineStatistics& s = pipeline_.statistics();
+  const kinetic::KineticStatistics& k = pipeline_.kinetic_statistics();
+  const auto& counters = pipeline_.alerts().counters();
+  const auto uptime = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  fmt::format_to(std::back_inserter(out),
+                 "{{\"class\":\"STATS\",\"seq\":{},\"uptime_s\":{:.0f},\"records\":{},\"accepted\":{},"
+                 "\"rejected\":",
+                 last_alert_seq_, uptime, s.records, s.accepted);
+  append_rejections(out, pipeline_.rejections());
+  fmt::format_to(std::back_inserter(out),
+                 ",\"tracks\":{},\"tracks_max\":{},\"alerts_active\":{},\"alerts_new\":{},\"alerts_updated\":{},"
+                 "\"alerts_ended\":{},\"unacknowledged\":{},\"updates\":{},\"reinsertions\":{},"
+                 "\"events_executed\":{},\"queue\":{},\"queue_max\":{},\"repairs\":{}",
+                 pipeline_.live_tracks(), pipeline_.tracks().max_size(), pipeline_.alerts().active_count(),
+                 counters.opened, counters.updated, counters.ended, pipeline_.alerts().unacknowledged_count(),
+                 k.updates, k.reinsertions, k.events_executed, k.queue_now, k.queue_max, k.repairs);
+  const SubscriberFigures& sub = subscribers_->figures();
+  fmt::format_to(std::back_inserter(out),
+                 ",\"subscribers\":{{\"now\":{},\"accepted\":{},\"refused\":{},\"cut_off\":{},\"bad_requests\":{}}}",
+                 subscribers_->sessions(), sub.accepted, sub.refused, sub.cut_off, sub.bad_requests);
+  fmt::format_to(std::back_inserter(out), ",\"inputs\":[");
+  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+    const InputFigures& f = inputs_[i]->figures();
+    fmt::format_to(std::back_inserter(out),
+                   "{}{{\"name\":{},\"bytes\":{},\"reports\":{},\"connections\":{},\"connections_refused\":{},"
+                   "\"oversized_datagrams\":{},\"rejected\":",
+                   i ? "," : "", json_string(inputs_[i]->config().name), f.bytes, f.reports, f.connections, f.connections_refused,
+                   f.oversized_datagrams);
+    append_rejections(out, inputs_[i]->rejections());
+    out.push_back('}');
+  }
+  out.push_back(']');
+  if (cat004_)
+    fmt::format_to(std::back_inserter(out), ",\"cat004\":{{\"datagrams\":{},\"errors\":{}}}",
+                   cat004_->datagrams_sent(), cat004_->send_errors());
+  if (alert_log_) fmt::format_to(std::back_inserter(out), ",\"alert_log_errors\":{}", alert_log_->write_errors());
+  out.append(std::string_view("}\n"));
+  return fmt::to_string(out);
+}
+
+}  // namespace kew::daemon

@@ -1,0 +1,82 @@
+#pragma once
+// kewd's service: one Boost.Asio I/O thread runs the inputs, the pipeline (so alerts
+// are deterministic for a given record order), the subscriber stream and the outputs;
+// the Modbus server has its own thread and receives copies of the alarm state.
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "cat004_sender.hpp"
+#include "inputs.hpp"
+#include "line_file.hpp"
+#include "subscribers.hpp"
+#include "kew/daemon/config.hpp"
+#include "kew/pipeline/pipeline.hpp"
+
+namespace kew::daemon {
+
+
+struct ServiceOptions {
+  std::string config_path;  ///< re-read on SIGHUP; empty: built-in defaults
+  bool listen_any = false;  ///< serve subscribers (and Modbus) on every interface
+};
+
+class Service {
+ public:
+  /// Binds every socket and opens every file; throws std::exception on failure.
+  Service(Config config, ServiceOptions options);
+  ~Service();
+  /// Runs until SIGTERM or SIGINT, then shuts down cleanly. Returns the exit status.
+  int run();
+
+ private:
+  void on_report(const TrackReport& report);
+  void on_alert(const AlertEvent& event);
+  void schedule_tick();
+  void schedule_alive();
+  void schedule_watchdog(std::chrono::microseconds period);
+  void tick();
+  void alive();
+  void wait_for_signal();
+  void reload();
+  void shutdown();
+  std::string stats_json() const;
+  double data_clock_now() const;
+  /// A record arrived within the track timeout.
+  bool feed_healthy() const;
+
+  boost::asio::io_context io_;
+  boost::asio::signal_set signals_;
+  boost::asio::steady_timer tick_timer_;
+  boost::asio::steady_timer alive_timer_;
+  boost::asio::steady_timer watchdog_timer_;
+  boost::asio::steady_timer shutdown_timer_;
+  Config config_;
+  ServiceOptions options_;
+  Pipeline pipeline_;
+  std::unique_ptr<SubscriberServer> subscribers_;
+  std::vector<std::unique_ptr<Input>> inputs_;
+  std::unique_ptr<LineFile> alert_log_;
+  std::unique_ptr<LineFile> record_file_;
+  std::unique_ptr<Cat004Sender> cat004_;
+  std::string line_;  // scratch for encoding
+
+  std::chrono::steady_clock::time_point started_;
+  std::chrono::steady_clock::time_point last_record_wall_{};
+  bool any_record_ = false;
+  std::uint64_t last_alert_seq_ = 0;
+  std::uint64_t accepted_at_last_alive_ = 0;
+  std::uint64_t updates_at_last_alive_ = 0;
+  std::chrono::steady_clock::time_point last_alive_;
+  double records_per_s_ = 0.0;
+  double updates_per_s_ = 0.0;
+  bool stopping_ = false;
+};
+
+}  // namespace kew::daemon

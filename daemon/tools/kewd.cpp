@@ -1,0 +1,136 @@
+// kewd (SPEC §5.6): the kew service. Without -N it forks into the background and logs
+// to syslog; under systemd (Type=notify) it runs with -N and logs to the journal.
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "logging.hpp"
+#include "service.hpp"
+#include "kew/daemon/config.hpp"
+#include "kew/protocol/version.hpp"
+
+namespace {
+
+constexpr int kUsageError = 64;   // EX_USAGE: bad flags or configuration
+constexpr int kStartFailed = 1;
+constexpr const char* kSystemConfig = "/etc/kew/kew.toml";
+
+struct Flags {
+  std::string config_path;
+  bool foreground = false;
+  bool listen_any = false;
+  bool check_config = false;
+  std::string log_level;
+};
+
+/// Detaches from the terminal. Returns in the daemon process with the write end of a
+/// pipe on which it reports readiness; the original process waits for that report so
+/// that a daemon that cannot start (port in use) fails the command that started it.
+int daemonize() {
+  int ready[2];
+  if (::pipe(ready) != 0) {
+    std::perror("kewd: pipe");
+    std::exit(kStartFailed);
+  }
+  const pid_t child = ::fork();
+  if (child < 0) {
+    std::perror("kewd: fork");
+    std::exit(kStartFailed);
+  }
+  if (child > 0) {
+    ::close(ready[1]);
+    char status = 1;
+    const bool started = ::read(ready[0], &status, 1) == 1 && status == 0;
+    std::exit(started ? 0 : kStartFailed);
+  }
+  ::close(ready[0]);
+  ::setsid();
+  // A second fork: the daemon is not a session leader and cannot reacquire a terminal.
+  const pid_t grandchild = ::fork();
+  if (grandchild < 0) std::exit(kStartFailed);
+  if (grandchild > 0) std::_Exit(0);
+  ::umask(022);
+  const int null = ::open("/dev/null", O_RDWR);
+  if (null >= 0) {
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    if (null > STDERR_FILENO) ::close(null);
+  }
+  return ready[1];
+}
+
+void report_ready(int fd, bool ok) {
+  if (fd < 0) return;
+  const char status = ok ? 0 : 1;
+  [[maybe_unused]] const auto written = ::write(fd, &status, 1);
+  ::close(fd);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Flags flags;
+  CLI::App app{"kewd: kinetic early warning of losses of separation between aircraft"};
+  app.set_version_flag("--version", std::string("kewd ") + std::string(kew::protocol::release()));
+  app.add_option("-c,--config", flags.config_path,
+                 std::string("configuration file (default: ") + kSystemConfig + " if present, else built-in defaults)")
+      ->check(CLI::ExistingFile);
+  app.add_flag("-N,--foreground", flags.foreground, "stay in the foreground and log to stderr (systemd, terminals)");
+  app.add_flag("--listen-any", flags.listen_any,
+               "serve subscribers and loopback inputs on every interface, not only loopback");
+  app.add_flag("--check-config", flags.check_config, "validate the configuration, then exit 0, or 64 on error");
+  app.add_option("-l,--log-level", flags.log_level, "trace, debug, info, warning, error or critical (overrides the file)")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warning", "error", "critical", "off"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kUsageError;
+  }
+
+  if (flags.config_path.empty() && std::filesystem::exists(kSystemConfig)) flags.config_path = kSystemConfig;
+  kew::daemon::Config config;
+  if (!flags.config_path.empty()) {
+    try {
+      config = kew::daemon::load_config(flags.config_path);
+    } catch (const kew::daemon::ConfigError& e) {
+      std::fprintf(stderr, "kewd: %s\n", e.what());
+      return kUsageError;
+    }
+  }
+  if (!flags.log_level.empty()) config.service.log_level = flags.log_level;
+  if (flags.check_config) {
+    std::printf("kewd: %s is valid: %zu inputs, alerts on %s%s%s\n",
+                flags.config_path.empty() ? "the built-in configuration" : flags.config_path.c_str(),
+                config.inputs.size(), config.service.alert_listen.c_str(), config.cat004.enabled ? ", CAT004" : "",
+                config.modbus.enabled ? ", Modbus" : "");
+    return 0;
+  }
+
+  const int ready_fd = flags.foreground ? -1 : daemonize();
+  kew::daemon::setup_logging(flags.foreground ? kew::daemon::LogTarget::Stderr : kew::daemon::LogTarget::Syslog,
+                             config.service.log_level);
+  try {
+    kew::daemon::ServiceOptions options;
+    options.config_path = flags.config_path.empty() ? std::string() : std::filesystem::absolute(flags.config_path).string();
+    options.listen_any = flags.listen_any;
+    kew::daemon::Service service(std::move(config), options);
+    report_ready(ready_fd, true);
+    if (!flags.foreground && ::chdir("/") != 0) spdlog::warn("kewd: cannot change directory to /");
+    return service.run();
+  } catch (const std::exception& e) {
+    spdlog::critical("kewd: cannot start: {}", e.what());
+    spdlog::default_logger()->flush();
+    report_ready(ready_fd, false);
+    return kStartFailed;
+  }
+}
