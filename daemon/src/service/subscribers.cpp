@@ -14,6 +14,7 @@ using asio::ip::tcp;
 
 namespace {
 constexpr auto kCloseGrace = std::chrono::seconds(5);  // a stuck client gets this long for its ERROR
+constexpr std::size_t kMaxLinesPerWrite = 512;          // iovecs per gathered write (IOV_MAX is 1024)
 }
 
 SubscriberSession::SubscriberSession(tcp::socket socket, SubscriberServer& server)
@@ -32,7 +33,7 @@ void SubscriberSession::start() {
 
 bool SubscriberSession::enqueue(Line line) {
   if (closing_) return false;
-  if (queue_.size() >= server_.queue_limit()) {
+  if (queue_.size() - in_flight_ >= server_.queue_limit()) {
     ++server_.figures_.cut_off;
     spdlog::warn("subscriber {} fell {} objects behind; disconnecting it", id_, queue_.size());
     close_with_error("too slow: the subscriber queue overflowed");
@@ -47,8 +48,7 @@ void SubscriberSession::close_with_error(std::string_view message) {
   if (closing_) return;
   // What the client has not yet read is dropped; the ERROR goes right after the line
   // being written, if any.
-  if (writing_) queue_.erase(queue_.begin() + 1, queue_.end());
-  else queue_.clear();
+  queue_.erase(queue_.begin() + static_cast<std::ptrdiff_t>(in_flight_), queue_.end());
   std::string error;
   protocol::append_error_json(error, message, server_.source().seq());
   queue_.push_back(std::make_shared<const std::string>(std::move(error)));
@@ -124,6 +124,8 @@ void SubscriberSession::handle_request(std::string_view line) {
   watching_ = watch_.enable;
   alerts_sent_.clear();
   if (!watching_) return;
+  spdlog::info("subscriber {} watching alerts from {}{}", id_, to_string(watch_.min_severity),
+               watch_.tracks ? ", with tracks" : "");
   // The snapshot restores a reconnecting client's view: every active alert that passes
   // its filter, and these ids count as sent.
   std::vector<AlertEvent> active = server_.source().snapshot();
@@ -146,14 +148,21 @@ void SubscriberSession::write_next() {
     return;
   }
   writing_ = true;
-  asio::async_write(socket_, asio::buffer(*queue_.front()),
+  // Everything queued goes in one gathered write: the pipeline may queue hundreds of
+  // lines per input read, and a write per line would let the queue grow without bound.
+  in_flight_ = std::min(queue_.size(), kMaxLinesPerWrite);
+  gather_.clear();
+  for (std::size_t i = 0; i < in_flight_; ++i) gather_.push_back(asio::buffer(*queue_[i]));
+  asio::async_write(socket_, gather_,
                     [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                       if (self->closed_) return;
                       if (ec) {
                         self->close();
                         return;
                       }
-                      self->queue_.pop_front();
+                      self->queue_.erase(self->queue_.begin(),
+                                         self->queue_.begin() + static_cast<std::ptrdiff_t>(self->in_flight_));
+                      self->in_flight_ = 0;
                       self->write_next();
                     });
 }
@@ -193,7 +202,7 @@ void SubscriberServer::accept() {
         ++figures_.accepted;
         sessions_.push_back(session);
         session->start();
-        spdlog::info("subscriber {} connected ({} now)", session->id(), sessions_.size());
+        spdlog::debug("subscriber {} connected ({} now)", session->id(), sessions_.size());
       }
     }
     accept();

@@ -54,7 +54,9 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   SubscriberServer& server_;
   boost::asio::streambuf input_;
   boost::asio::steady_timer grace_;
-  std::deque<Line> queue_;
+  std::deque<Line> queue_;               // front in_flight_ lines are being written
+  std::size_t in_flight_ = 0;
+  std::vector<boost::asio::const_buffer> gather_;
   bool writing_ = false;
   bool closing_ = false;
   bool closed_ = false;

@@ -12,15 +12,17 @@ class Pacer {
   /// `speed` > 0: multiple of real time; 0: as fast as possible (no waiting).
   explicit Pacer(double speed) : speed_(speed) {}
 
-  /// Wall-clock instant at which a record of data time `t` (UTC s) is due.
+  /// Wall-clock instant at which a record of data time `t` (UTC s) is due; the
+  /// distant past when not pacing.
   std::chrono::steady_clock::time_point due(double t) {
+    if (speed_ <= 0.0) return std::chrono::steady_clock::time_point::min();
     const auto now = std::chrono::steady_clock::now();
     if (!started_) {
       started_ = true;
       t0_ = t;
       w0_ = now;
     }
-    if (speed_ <= 0.0 || t <= t0_) return speed_ <= 0.0 ? now : w0_;
+    if (t <= t0_) return w0_;
     return w0_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                      std::chrono::duration<double>((t - t0_) / speed_));
   }

@@ -1,0 +1,208 @@
+"""Test harness for end-to-end tests of the real kewd binary (issue 6, SPEC §6).
+
+Starts kewd in the foreground on loopback with ephemeral ports, learns the ports from its
+log, and talks to it as subscribers, feeds and operators do. Binaries come from the
+environment (set by ctest): KEWD, KEW_REPLAY, KEW_GEN, KEW_WATCH.
+"""
+
+import json
+import os
+import signal
+import socket
+import struct
+import subprocess
+import tempfile
+import threading
+import time
+
+KEWD = os.environ.get("KEWD", "kewd")
+KEW_REPLAY = os.environ.get("KEW_REPLAY", "kew-replay")
+KEW_GEN = os.environ.get("KEW_GEN", "kew-gen")
+KEW_WATCH = os.environ.get("KEW_WATCH", "kew-watch")
+
+STARTUP_TIMEOUT_S = 20.0
+
+
+def wait_until(predicate, timeout_s, what):
+    """Polls `predicate` until it returns a true value; fails with `what` on timeout."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
+        time.sleep(0.05)
+
+
+class Kewd:
+    """One kewd process with its configuration in a temporary directory."""
+
+    def __init__(self, config_text, workdir, extra_args=()):
+        self.workdir = workdir
+        self.config_path = os.path.join(workdir, "kew.toml")
+        with open(self.config_path, "w") as f:
+            f.write(config_text)
+        self.log_lines = []
+        self._log_lock = threading.Lock()
+        self.process = subprocess.Popen(
+            [KEWD, "-N", "-c", self.config_path, *extra_args],
+            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+        self._reader = threading.Thread(target=self._read_log, daemon=True)
+        self._reader.start()
+        self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,
+                                         "kewd to listen").split("alerts on port ")[1].split()[0])
+
+    def _read_log(self):
+        for line in self.process.stderr:
+            with self._log_lock:
+                self.log_lines.append(line.rstrip("\n"))
+
+    def _find_log(self, text):
+        with self._log_lock:
+            for line in self.log_lines:
+                if text in line:
+                    return line
+        if self.process.poll() is not None:
+            raise AssertionError("kewd exited with %s:\n%s" % (self.process.returncode, "\n".join(self.log_lines)))
+        return None
+
+    def log(self):
+        with self._log_lock:
+            return "\n".join(self.log_lines)
+
+    def wait_log(self, text, timeout_s=10.0):
+        return wait_until(lambda: self._find_log(text), timeout_s, f"'{text}' in kewd's log")
+
+    def input_port(self, name):
+        """The port an input actually bound (configured with port 0)."""
+        line = self.wait_log(f"input {name}: ")
+        return int(line.split("(port ")[1].rstrip(")"))
+
+    def stats(self):
+        """The daemon's STATS object (the answer to ?STATS)."""
+        with socket.create_connection(("127.0.0.1", self.alert_port), timeout=10) as s:
+            s.sendall(b"?STATS\n")
+            reader = s.makefile("r")
+            for line in reader:
+                obj = json.loads(line)
+                if obj["class"] == "STATS":
+                    return obj
+        raise AssertionError("no STATS object")
+
+    def wait_records(self, n, timeout_s=60.0):
+        return wait_until(lambda: self.stats()["records"] >= n, timeout_s, f"{n} records processed")
+
+    def running(self):
+        return self.process.poll() is None
+
+    def terminate(self, timeout_s=20.0):
+        """SIGTERM, then the exit status."""
+        self.process.send_signal(signal.SIGTERM)
+        return self.process.wait(timeout=timeout_s)
+
+    def kill(self):
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+        self._reader.join(timeout=5)
+        self.process.stderr.close()
+
+
+class Subscriber:
+    """A client of the alert stream: connects, reads VERSION, sends ?WATCH."""
+
+    opened = []  # closed by the tests' tearDown
+
+    def __init__(self, port, min_severity="caution", tracks=False, receive_buffer=None, read=True):
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        if receive_buffer:
+            self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, receive_buffer)
+        self.sock.connect(("127.0.0.1", port))
+        Subscriber.opened.append(self)
+        self.file = self.sock.makefile("rb")
+        self.version = json.loads(self.file.readline())
+        request = {"enable": True, "min_severity": min_severity, "tracks": tracks}
+        self.sock.sendall(b"?WATCH=" + json.dumps(request).encode() + b"\n")
+        self.lines = []
+        self.closed = False
+        self._thread = None
+        if read:
+            self.start_reading()
+
+    def start_reading(self):
+        self._thread = threading.Thread(target=self._read, daemon=True)
+        self._thread.start()
+
+    def _read(self):
+        for raw in self.file:
+            self.lines.append(raw.decode())
+        self.closed = True
+
+    def objects(self, cls=None):
+        out = [json.loads(line) for line in list(self.lines)]
+        return [o for o in out if cls is None or o["class"] == cls]
+
+    def alert_lines(self):
+        return [line for line in list(self.lines) if line.startswith('{"class":"ALERT",')]
+
+    def wait_closed(self, timeout_s=15.0):
+        wait_until(lambda: self.closed, timeout_s, "the server to close the subscriber")
+
+    def close(self):
+        try:
+            self.sock.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
+        if self._thread:
+            self._thread.join(timeout=5)
+        self.file.close()
+        self.sock.close()
+
+
+def generate(path, scenario="airways", aircraft=300, duration=300, seed=5):
+    subprocess.run([KEW_GEN, "--scenario", scenario, "--aircraft", str(aircraft), "--duration", str(duration),
+                    "--seed", str(seed), "-o", path], check=True)
+
+
+def offline_alerts(config_path, recording):
+    """kew-replay's offline ALERT lines for `recording` under the same configuration."""
+    result = subprocess.run([KEW_REPLAY, "--config", config_path, recording], check=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    return result.stdout.splitlines(keepends=True)
+
+
+def replay_to(target, recording, *pace):
+    subprocess.run([KEW_REPLAY, "--to", target, *pace, recording], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def active_at_end(alert_lines):
+    """id → last event of every alert not ended, from ALERT lines."""
+    last = {}
+    for line in alert_lines:
+        event = json.loads(line)
+        last[event["id"]] = event
+    return {i: e for i, e in last.items() if e["state"] != "end"}
+
+
+def count_lines(path):
+    with open(path) as f:
+        return sum(1 for line in f if line.strip() and not line.startswith("#"))
+
+
+def write_pcap(path, datagrams, udp_port=8600):
+    """Classic pcap (Ethernet/IPv4/UDP) of `datagrams`, for tshark; port 8600 is the
+    port Wireshark decodes as ASTERIX by default."""
+    with open(path, "wb") as f:
+        f.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 1))
+        for i, payload in enumerate(datagrams):
+            udp = struct.pack("!HHHH", 40000, udp_port, 8 + len(payload), 0) + payload
+            ip = struct.pack("!BBHHHBBH4s4s", 0x45, 0, 20 + len(udp), i & 0xFFFF, 0, 64, 17, 0,
+                             bytes([127, 0, 0, 1]), bytes([127, 0, 0, 1])) + udp
+            frame = b"\x00" * 12 + b"\x08\x00" + ip
+            f.write(struct.pack("<IIII", 1700000000 + i, 0, len(frame), len(frame)) + frame)
+
+
+def temporary_directory():
+    return tempfile.TemporaryDirectory(prefix="kew-e2e-")
