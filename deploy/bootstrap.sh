@@ -56,6 +56,35 @@ sanitize_and_fuzz() {
   bash "$here/tests/fuzz/run_fuzzers.sh" "$sanitize_build/tests/fuzz" "${KEW_FUZZ_SECONDS:-15}"
 }
 
+# The main job: kewd replays a bundled CAT062 recording (deploy/demo.toml) and kew-watch
+# shows its alerts as they happen; after KEW_DEMO_SECONDS (default 80: the recording at
+# 4x, then the last tracks time out) kewd is stopped with SIGTERM.
+run_demo() {
+  local demo="$build/demo"
+  mkdir -p "$demo"
+  sed "s|@KEW_SOURCE_DIR@|$here|g" "$here/deploy/demo.toml" >"$demo/kew.toml"
+  rm -f "$demo/demo-alerts.jsonl"
+  (cd "$demo" && exec "$build/daemon/kewd" -N -c kew.toml) 2>"$demo/kewd.log" &
+  local kewd_pid=$!
+  trap 'kill "$kewd_pid" 2>/dev/null || true' EXIT
+  local tries=0
+  until (exec 3<>/dev/tcp/127.0.0.1/4747) 2>/dev/null; do
+    tries=$((tries + 1))
+    if [ "$tries" -gt 100 ] || ! kill -0 "$kewd_pid" 2>/dev/null; then
+      echo "bootstrap: kewd did not start:" >&2
+      cat "$demo/kewd.log" >&2
+      exit 1
+    fi
+    sleep 0.1
+  done
+  echo "kewd is replaying a recorded CAT062 feed; kew-watch shows its alerts (Ctrl-C stops)."
+  timeout "${KEW_DEMO_SECONDS:-80}" "$build/daemon/kew-watch" --alive 127.0.0.1:4747 || true
+  kill -TERM "$kewd_pid"
+  wait "$kewd_pid" || true
+  trap - EXIT
+  echo "kewd stopped. Its log: $demo/kewd.log; every alert: $demo/demo-alerts.jsonl"
+}
+
 install_dependencies
 configure_and_build
 case "$mode" in
@@ -63,9 +92,7 @@ case "$mode" in
     ctest --test-dir "$build" --output-on-failure -j "$jobs"
     ;;
   run)
-    # Until the daemon exists, the main job is the kinetic engine on a generated radar
-    # workload, printing the thesis' three effects side by side.
-    "$build/tests/bench/kew_thesis_bench" --quick
+    run_demo
     ;;
   *)
     echo "usage: $0 test|run" >&2

@@ -21,7 +21,7 @@ namespace {
 
 constexpr int kUsageError = 64;   // EX_USAGE: bad flags or configuration
 constexpr int kStartFailed = 1;
-constexpr const char* kSystemConfig = "/etc/kew/kew.toml";
+constexpr const char* kSystemConfig = KEW_SYSTEM_CONFIG;  // set by CMake from the install prefix
 
 struct Flags {
   std::string config_path;

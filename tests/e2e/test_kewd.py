@@ -333,5 +333,39 @@ class Operations(E2eCase):
                                           stdout=subprocess.DEVNULL).returncode != 0, 10, "the daemon to stop")
 
 
+class Install(E2eCase):
+    def test_install_tree_unit_and_configuration(self):
+        build = os.environ.get("KEW_BUILD_DIR")
+        if not build:
+            self.skipTest("KEW_BUILD_DIR is not set (ctest sets it)")
+        prefix = self.path("prefix")
+        subprocess.run(["cmake", "--install", build, "--prefix", prefix], check=True, stdout=subprocess.DEVNULL)
+        for binary in ("kewd", "kew-watch", "kew-replay", "kew-gen"):
+            self.assertTrue(os.access(os.path.join(prefix, "bin", binary), os.X_OK), binary)
+        config = os.path.join(prefix, "etc", "kew", "kew.toml")
+        result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", config],
+                                stdout=subprocess.PIPE, text=True)
+        self.assertEqual(result.returncode, 0, result.stdout)
+        with open(config) as f:
+            self.assertIn('alert_log = "/var/log/kew/alerts.jsonl"', f.read())
+        unit = os.path.join(prefix, "lib", "systemd", "system", "kewd.service")
+        with open(unit) as f:
+            text = f.read()
+        for setting in ("Type=notify", "DynamicUser=yes", "NoNewPrivileges=yes", "ProtectSystem=strict",
+                        "RestrictAddressFamilies=AF_INET AF_INET6 AF_UNIX", "WatchdogSec="):
+            self.assertIn(setting, text)
+        if shutil.which("systemd-analyze") is None:
+            self.skipTest("systemd-analyze is not installed: the unit was NOT verified")
+        # The unit names the configured prefix; point it at the staged tree to verify it.
+        staged = os.path.join(self.workdir, "kewd.service")
+        installed_prefix = text.split("ExecStart=")[1].split("/bin/kewd")[0]
+        with open(staged, "w") as f:
+            f.write(text.replace(installed_prefix + "/", prefix + "/"))
+        verify = subprocess.run(["systemd-analyze", "verify", staged], stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+        self.assertEqual(verify.returncode, 0, verify.stdout)
+        self.assertNotIn("kewd.service", verify.stdout, verify.stdout)
+
+
 if __name__ == "__main__":
     unittest.main()

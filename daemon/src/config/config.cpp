@@ -264,6 +264,7 @@ void read_input(TableReader& r, InputConfig& in) {
   r.number("reconnect_max_s", in.reconnect_max_s, 0.01, 86400.0);
   r.integer("max_connections", in.max_connections, 1, 1024);
   r.boolean("pace", in.pace);
+  r.number("speed", in.speed, 0.001, 1000.0);
   r.string("asterix_day", in.asterix_day);
   if (in.address.empty()) r.fail(nullptr, "an input needs an address (HOST:PORT or a file path)");
   std::string host;

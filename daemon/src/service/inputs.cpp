@@ -278,7 +278,7 @@ class FileInput final : public Input {
  public:
   FileInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
       : Input(std::move(config), std::move(options), std::move(handler)), io_(io), timer_(io),
-        pacer_(config_.pace ? 1.0 : 0.0), buffer_(kReadBytes) {}
+        pacer_(config_.pace ? config_.speed : 0.0), buffer_(kReadBytes) {}
   ~FileInput() override {
     if (file_) std::fclose(file_);
   }

@@ -37,7 +37,8 @@ struct InputConfig {
   double reconnect_min_s = 1.0;       ///< tcp-client backoff, doubling up to max
   double reconnect_max_s = 30.0;
   std::size_t max_connections = 4;    ///< tcp-server
-  bool pace = false;                  ///< file: replay at recorded speed
+  bool pace = false;                  ///< file: replay paced like the recording
+  double speed = 1.0;                 ///< file with pace: multiple of recorded speed
   /// Data day for ASTERIX time of day (UTC midnight, "YYYY-MM-DD"); empty: today (live)
   /// or the pcap timestamps (files).
   std::string asterix_day;
