@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -36,6 +37,7 @@ struct Options {
   std::string alerts_path;
   std::string stats_path;
   bool audit = false;
+  bool sort = false;
   std::string probe;
   std::vector<std::string> files;
 };
@@ -133,7 +135,21 @@ int run_offline(const Options& options, const kew::daemon::Config& config, kew::
       figures.audit_violations_found += a.violations_found;
       figures.audit_violations_unrepaired += a.violations_unrepaired;
     };
-    while (recordings.next(report)) {
+    // --sort: the whole input in memory, in time order (stable: ties keep file order).
+    std::vector<kew::TrackReport> sorted;
+    std::size_t sorted_next = 0;
+    if (options.sort) {
+      while (recordings.next(report)) sorted.push_back(report);
+      std::stable_sort(sorted.begin(), sorted.end(),
+                       [](const kew::TrackReport& a, const kew::TrackReport& b) { return a.t < b.t; });
+    }
+    const auto next = [&](kew::TrackReport& record) {
+      if (!options.sort) return recordings.next(record);
+      if (sorted_next == sorted.size()) return false;
+      record = std::move(sorted[sorted_next++]);
+      return true;
+    };
+    while (next(report)) {
       ++figures.records_decoded;
       pipeline.process(report);
       if (options.audit && pipeline.now() >= next_audit) {
@@ -196,6 +212,8 @@ int main(int argc, char** argv) {
   app.add_option("--to", options.to, "stream records to a kewd input: [tcp://|udp://]HOST:PORT");
   app.add_option("--alerts", options.alerts_path, "write ALERT lines here instead of stdout");
   app.add_option("--stats-json", options.stats_path, "write run statistics as one JSON object");
+  app.add_flag("--sort", options.sort,
+               "read everything first and replay in time order (recordings grouped by flight, not by time)");
   app.add_flag("--audit", options.audit, "audit the triangulation every 60 s of data and at the end");
   app.add_option("--probe", options.probe, "candidate search: exact, edges or brute")
       ->check(CLI::IsMember({"exact", "edges", "brute"}));
