@@ -1,0 +1,280 @@
+// Sustained ingestion of a running kewd over loopback (issue 6): records are streamed to
+// a TCP or UDP input at a target rate (or as fast as possible) while a subscriber reads
+// the alert stream. Reports the rate the daemon sustained and the record-to-alert latency
+// percentiles: for every ALERT, the time from sending the record that triggered it (the
+// record of track a or b at the alert's data time) to receiving the line.
+//
+//   kew_ingest_bench --kewd build/daemon/kewd --records traffic.ndjson --transport tcp [--rate R] [--json FILE]
+//
+// It starts its own kewd (loopback, ephemeral ports) and stops it with SIGTERM.
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ip/udp.hpp>
+#include <boost/asio/read_until.hpp>
+#include <boost/asio/streambuf.hpp>
+#include <boost/asio/write.hpp>
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "kew/protocol/encoders/alert_json_reader.hpp"
+
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+using asio::ip::udp;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string kewd;
+  std::string records;
+  std::string transport = "tcp";
+  double rate = 0.0;  // records per second; 0 = as fast as possible
+  std::string json;
+};
+
+struct Record {
+  std::string line;  // with its '\n'
+  std::string key;   // id + data time, to find the record an alert came from
+};
+
+std::string record_key(std::string_view id, double t) { return fmt::format("{}@{:.3f}", id, t); }
+
+std::vector<Record> load_records(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::vector<Record> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    // Only "t" and "id" are needed; canonical lines start with them.
+    const auto t_at = line.find("\"t\":");
+    const auto id_at = line.find("\"id\":\"");
+    if (t_at == std::string::npos || id_at == std::string::npos) continue;
+    const double t = std::stod(line.substr(t_at + 4));
+    const auto id_end = line.find('"', id_at + 6);
+    out.push_back({line + "\n", record_key(std::string_view(line).substr(id_at + 6, id_end - id_at - 6), t)});
+  }
+  return out;
+}
+
+/// kewd as a child process with its stderr in a pipe; learns its ports from its log.
+class Daemon {
+ public:
+  Daemon(const std::string& binary, const std::string& transport, const std::string& config_path) {
+    std::ofstream(config_path) << fmt::format(
+        "[service]\nalert_listen = \"127.0.0.1:0\"\ntick_interval_s = 60\nsubscriber_queue = 1000000\n"
+        "log_level = \"info\"\n[[input]]\nname = \"bench\"\nformat = \"ndjson\"\ntransport = \"{}\"\n"
+        "address = \"127.0.0.1:0\"\n",
+        transport == "udp" ? "udp" : "tcp-server");
+    int err[2];
+    if (::pipe(err) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(err[1], STDERR_FILENO);
+      ::close(err[0]);
+      ::execl(binary.c_str(), binary.c_str(), "-N", "-c", config_path.c_str(), static_cast<char*>(nullptr));
+      std::_Exit(127);
+    }
+    ::close(err[1]);
+    log_ = ::fdopen(err[0], "r");
+    char buffer[1024];
+    while ((alert_port_ == 0 || input_port_ == 0) && std::fgets(buffer, sizeof buffer, log_)) {
+      const std::string line = buffer;
+      if (const auto at = line.find("alerts on port "); at != std::string::npos)
+        alert_port_ = static_cast<std::uint16_t>(std::stoi(line.substr(at + 15)));
+      if (const auto at = line.find("(port "); at != std::string::npos && line.find("input bench") != std::string::npos)
+        input_port_ = static_cast<std::uint16_t>(std::stoi(line.substr(at + 6)));
+    }
+    if (alert_port_ == 0 || input_port_ == 0) throw std::runtime_error("kewd did not start");
+    // Keep draining the log so that kewd never blocks on a full pipe.
+    drain_ = std::thread([this] {
+      char sink[4096];
+      while (std::fgets(sink, sizeof sink, log_)) {
+      }
+    });
+  }
+  ~Daemon() {
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    drain_.join();
+    std::fclose(log_);
+  }
+  std::uint16_t alert_port() const { return alert_port_; }
+  std::uint16_t input_port() const { return input_port_; }
+
+  /// Records the pipeline has been offered so far (from ?STATS).
+  std::uint64_t records_processed() const {
+    asio::io_context io;
+    tcp::socket s(io);
+    s.connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), alert_port_));
+    asio::write(s, asio::buffer(std::string("?STATS\n")));
+    asio::streambuf buffer;
+    for (;;) {
+      const std::size_t n = asio::read_until(s, buffer, '\n');
+      std::string line(asio::buffers_begin(buffer.data()), asio::buffers_begin(buffer.data()) + static_cast<long>(n));
+      buffer.consume(n);
+      if (line.find("\"class\":\"STATS\"") == std::string::npos) continue;
+      const auto at = line.find("\"records\":");
+      return std::stoull(line.substr(at + 10));
+    }
+  }
+
+ private:
+  pid_t pid_ = -1;
+  std::FILE* log_ = nullptr;
+  std::thread drain_;
+  std::uint16_t alert_port_ = 0;
+  std::uint16_t input_port_ = 0;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5);
+  return v[std::min(i, v.size() - 1)];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{"kew_ingest_bench: sustained ingestion and record-to-alert latency of kewd over loopback"};
+  app.add_option("--kewd", options.kewd, "kewd binary")->required()->check(CLI::ExistingFile);
+  app.add_option("--records", options.records, "canonical NDJSON to send (kew-gen output)")->required()->check(
+      CLI::ExistingFile);
+  app.add_option("--transport", options.transport, "tcp or udp")->check(CLI::IsMember({"tcp", "udp"}));
+  app.add_option("--rate", options.rate, "records per second to send (0: as fast as possible)");
+  app.add_option("--json", options.json, "write the results as one JSON object");
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<Record> records = load_records(options.records);
+  const std::string config = fmt::format("/tmp/kew_ingest_bench_{}.toml", ::getpid());
+  Daemon daemon(options.kewd, options.transport, config);
+
+  // Subscriber: every ALERT line's receive time and the records it may come from.
+  struct Received {
+    Clock::time_point at;
+    std::string key_a, key_b;
+  };
+  std::vector<Received> received;
+  std::mutex received_mutex;
+  std::atomic<bool> subscribed{false};
+  asio::io_context io;
+  tcp::socket subscriber(io);
+  subscriber.connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), daemon.alert_port()));
+  asio::write(subscriber, asio::buffer(std::string("?WATCH={\"enable\":true}\n")));
+  std::thread reader([&] {
+    kew::protocol::AlertStreamReader parser;
+    asio::streambuf buffer;
+    boost::system::error_code ec;
+    for (;;) {
+      const std::size_t n = asio::read_until(subscriber, buffer, '\n', ec);
+      if (ec) return;
+      const auto now = Clock::now();
+      std::string line(asio::buffers_begin(buffer.data()), asio::buffers_begin(buffer.data()) + static_cast<long>(n));
+      buffer.consume(n);
+      if (!parser.read(line)) continue;
+      if (parser.object_class() == kew::protocol::StreamObjectClass::Alerts) subscribed = true;
+      if (parser.object_class() != kew::protocol::StreamObjectClass::Alert) continue;
+      const kew::AlertEvent& e = parser.alert();
+      if (e.state == kew::AlertState::End) continue;  // ends may come from a timeout, not a record
+      std::lock_guard lock(received_mutex);
+      received.push_back({now, record_key(e.a.id, e.t), record_key(e.b.id, e.t)});
+    }
+  });
+  while (!subscribed) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+
+  // Sender: batches of lines, each batch stamped with its send time.
+  std::unordered_map<std::string, Clock::time_point> sent_at;
+  sent_at.reserve(records.size());
+  const auto start = Clock::now();
+  {
+    tcp::socket tcp_socket(io);
+    udp::socket udp_socket(io);
+    const auto address = asio::ip::make_address("127.0.0.1");
+    if (options.transport == "tcp") tcp_socket.connect(tcp::endpoint(address, daemon.input_port()));
+    else udp_socket.open(udp::v4());
+    const std::size_t batch_bytes = options.transport == "tcp" ? 16384 : 1400;
+    std::string batch;
+    std::size_t sent = 0;
+    std::size_t i = 0;
+    while (i < records.size()) {
+      batch.clear();
+      const std::size_t first = i;
+      while (i < records.size() && batch.size() + records[i].line.size() <= batch_bytes) batch += records[i++].line;
+      if (i == first) batch += records[i++].line;  // a line longer than a batch goes alone
+      if (options.rate > 0) {
+        const auto due = start + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(static_cast<double>(sent) / options.rate));
+        std::this_thread::sleep_until(due);
+      }
+      const auto now = Clock::now();
+      for (std::size_t k = first; k < i; ++k) sent_at.emplace(records[k].key, now);
+      if (options.transport == "tcp") asio::write(tcp_socket, asio::buffer(batch));
+      else udp_socket.send_to(asio::buffer(batch), udp::endpoint(address, daemon.input_port()));
+      sent = i;
+    }
+  }
+  const auto sent_all = Clock::now();
+  // Wait until kewd has taken everything (UDP: until it stops progressing).
+  std::uint64_t processed = 0, last = ~0ull;
+  auto progressed = Clock::now();
+  while (processed < records.size()) {
+    processed = daemon.records_processed();
+    if (processed != last) {
+      last = processed;
+      progressed = Clock::now();
+    } else if (Clock::now() - progressed > std::chrono::seconds(2)) {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const auto done = progressed;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // last alerts in flight
+  subscriber.shutdown(tcp::socket::shutdown_both);
+  reader.join();
+  std::remove(config.c_str());
+
+  std::vector<double> latencies_us;
+  for (const Received& r : received) {
+    auto a = sent_at.find(r.key_a), b = sent_at.find(r.key_b);
+    Clock::time_point from{};
+    if (a != sent_at.end()) from = a->second;
+    if (b != sent_at.end() && b->second > from) from = b->second;
+    if (from == Clock::time_point{}) continue;
+    latencies_us.push_back(std::chrono::duration<double, std::micro>(r.at - from).count());
+  }
+  const double seconds = std::chrono::duration<double>(done - start).count();
+  const double send_seconds = std::chrono::duration<double>(sent_all - start).count();
+  char host[256] = "?";
+  ::gethostname(host, sizeof host);
+  const std::string result = fmt::format(
+      "{{\"bench\":\"ingest\",\"host\":\"{}\",\"transport\":\"{}\",\"target_rate\":{},\"records\":{},"
+      "\"processed\":{},\"lost\":{},\"send_s\":{:.3f},\"seconds\":{:.3f},\"records_per_s\":{:.0f},"
+      "\"alerts\":{},\"latency_us\":{{\"p50\":{:.0f},\"p90\":{:.0f},\"p99\":{:.0f},\"max\":{:.0f}}}}}\n",
+      host, options.transport, options.rate, records.size(), processed, records.size() - processed, send_seconds,
+      seconds, static_cast<double>(processed) / seconds, latencies_us.size(), percentile(latencies_us, 0.5),
+      percentile(latencies_us, 0.9), percentile(latencies_us, 0.99), percentile(latencies_us, 1.0));
+  std::fputs(result.c_str(), stdout);
+  if (!options.json.empty()) std::ofstream(options.json) << result;
+  return 0;
+}
