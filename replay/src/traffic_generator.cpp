@@ -86,6 +86,15 @@ double round_decimals(double value, double scale) { return std::round(value * sc
 
 bool in_range(double value, double lo, double hi) { return std::isfinite(value) && value >= lo && value <= hi; }
 
+/// Seed of the master generator: the user's seed mixed with the scenario. Without the
+/// scenario, every scenario run with one seed would share its sampling draws (phases,
+/// jitter, misses) and so give exactly the same record count. For one scenario the
+/// mapping is a bijection of the 64-bit seeds (xor, then SplitMix64's bijective step).
+std::uint64_t master_seed(std::uint64_t seed, Scenario scenario) {
+  const auto salt = (static_cast<std::uint64_t>(scenario) + 1) * 0xD1B54A32D192ED03ULL;
+  return RandomStream(seed ^ salt).bits();
+}
+
 }  // namespace
 
 bool parse_scenario(std::string_view name, Scenario& out) {
@@ -191,7 +200,7 @@ class TrafficGenerator::Impl {
 
 TrafficGenerator::Impl::Impl(const GeneratorConfig& c)
     : config(c), stream_margin_s_(c.jitter_s + 1e-3), end_time_(c.start_time + c.duration_s) {
-  std::mt19937_64 master(c.seed);
+  std::mt19937_64 master(master_seed(c.seed, c.scenario));
   address_key_ = static_cast<std::uint32_t>(master() & kAddressMask);
   RandomStream layout(master());
   std::vector<SlotPlan> plans = plan_slots(master);
@@ -206,7 +215,7 @@ TrafficGenerator::Impl::Impl(const GeneratorConfig& c)
     slot.sensor = RandomStream(master());
     slot.phase_s = slot.sensor.uniform(0, c.period_s);
     start_flight(slot, airspace_->initial(slot.plan, c.start_time, slot.path, last_airway));
-    if (slot.plan.kind == FlightKind::Airways) last_airway = &slot.flight;
+    if (slot.plan.kind == FlightKind::Airways && !slot.flight.in_trail) last_airway = &slot.flight;
   }
   // Ties of equal phase keep the slot order (stable), so the order is reproducible.
   std::stable_sort(slots_.begin(), slots_.end(),

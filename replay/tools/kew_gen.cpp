@@ -52,6 +52,11 @@ std::string header_line(const kew::replay::GeneratorConfig& c) {
       c.center_lon_deg, c.radius_km, c.report_velocity ? "" : " --no-velocity");
 }
 
+/// CLI11 2.1 reads "-5" into an unsigned option as 2⁶⁴ − 5: refuse a sign instead.
+std::string reject_negative(const std::string& value) {
+  return value.find('-') != std::string::npos ? "must not be negative" : "";
+}
+
 int usage_error(std::string_view message) {
   fmt::print(stderr, "kew-gen: {}\nRun 'kew-gen --help' for usage.\n", message);
   return kExitUsage;
@@ -96,9 +101,12 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("kew-gen ") + std::string(kew::protocol::release()));
   app.add_option("--scenario", scenario, "random | airways | stacks | tma | mixed")->capture_default_str();
   app.add_option("--aircraft", config.aircraft, "aircraft airborne at every instant, 1 to 1000000")
+      ->check(reject_negative)
       ->capture_default_str();
   app.add_option("--duration", config.duration_s, "seconds of traffic")->capture_default_str();
-  app.add_option("--seed", config.seed, "random seed (unsigned 64-bit)")->capture_default_str();
+  app.add_option("--seed", config.seed, "random seed (unsigned 64-bit)")
+      ->check(reject_negative)
+      ->capture_default_str();
   app.add_option("--period", config.period_s, "radar period, seconds (0.1 to 3600)")->capture_default_str();
   app.add_option("--jitter", config.jitter_s, "uniform jitter of each sample time, ± seconds")
       ->capture_default_str();
@@ -113,7 +121,8 @@ int main(int argc, char** argv) {
   app.add_option("--termination", config.termination_probability_per_hour,
                  "early track terminations per aircraft-hour (each replaced by a new aircraft)")
       ->capture_default_str();
-  app.add_option("--start", config.start_time, "UTC seconds of the first radar period")->capture_default_str();
+  app.add_option("--start", config.start_time, "UTC seconds of the first radar period")
+      ->default_str(fmt::format("{}", config.start_time));
   app.add_option("--center", center, "region centre LAT,LON in degrees (default 50,8)");
   app.add_option("--radius", config.radius_km, "region radius, km (20 to 2000)")->capture_default_str();
   app.add_flag("--no-velocity", no_velocity, "write positions only (no gs_kt, trk_deg, vr_fpm)");

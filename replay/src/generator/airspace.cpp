@@ -259,6 +259,7 @@ Flight Airspace::trailing_flight(const Flight& leader, double t, RandomStream& r
   }
   f.vertical = VerticalProfile::level(level);
   f.end_time = f.leg_end_time();
+  f.in_trail = true;
   return f;
 }
 

@@ -121,6 +121,9 @@ class Flight {
   double leg_start_time = 0;    ///< UTC s when the leg begins (= begin_time without a hold)
   LineLeg leg;
   VerticalProfile vertical;
+  /// Placed behind another aircraft of its airway, faster, to overtake it. Such a flight
+  /// never leads another in-trail one, so speeds do not compound along a chain.
+  bool in_trail = false;
   /// Owner of `leg.line` when no route shares it.
   std::unique_ptr<const GeographicLib::GeodesicLine> own_line;
 

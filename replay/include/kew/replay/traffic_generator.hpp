@@ -15,9 +15,11 @@
 // are identical everywhere; positions go through GeographicLib and the C library's
 // sin/cos, and outputs are rounded (1e-7°, 1 ms, 25 ft, 0.1 kt, 0.01°, 1 ft/min), so
 // other platforms give the same records unless a value lies within a last-bit
-// difference of a rounding boundary. Each aircraft's true path comes from its own
-// random stream, separate from the measurement stream (phase, jitter, noise, misses), so
-// changing only the noise or sampling settings leaves the true trajectories unchanged.
+// difference of a rounding boundary. The scenario is mixed into the seed, so scenarios
+// run with one seed do not share their sampling draws. Each aircraft's true path comes
+// from its own random stream, separate from the measurement stream (phase, jitter,
+// noise, misses), so changing only the noise or sampling settings leaves the true
+// trajectories unchanged.
 
 #include <cstddef>
 #include <cstdint>
