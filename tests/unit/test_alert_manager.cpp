@@ -136,10 +136,15 @@ TEST_F(Lifecycle, SnapshotAcknowledgeAndSeverity) {
   EXPECT_EQ(manager.snapshot()[0].a.id, "A1");  // opening order
   EXPECT_EQ(manager.highest_severity(), Severity::Warning);
   EXPECT_EQ(manager.unacknowledged_count(), 2u);
-  manager.acknowledge_all();
+  const std::vector<std::string> acknowledged = manager.acknowledge_all();
+  ASSERT_EQ(acknowledged.size(), 2u);
+  EXPECT_EQ(acknowledged[0], manager.snapshot()[0].id);  // alert-number order
+  EXPECT_EQ(acknowledged[1], manager.snapshot()[1].id);
   EXPECT_EQ(manager.unacknowledged_count(), 0u);
+  EXPECT_TRUE(manager.acknowledge_all().empty());  // nothing new to acknowledge
   evaluate(3, 4, 108.0, true, {0.0, 500.0, 0.0, Severity::Loss});  // escalation re-arms
   EXPECT_EQ(manager.unacknowledged_count(), 1u);
+  EXPECT_EQ(manager.acknowledge_all().size(), 1u);
   EXPECT_FALSE(events.back().acknowledged);
   EXPECT_EQ(manager.highest_severity(), Severity::Loss);
 }

@@ -177,9 +177,18 @@ Severity AlertManager::highest_severity() const {
   return highest;
 }
 
-void AlertManager::acknowledge_all() {
-  for (auto& [key, s] : pairs_)
-    if (s.active) s.last.acknowledged = true;
+std::vector<std::string> AlertManager::acknowledge_all() {
+  std::vector<const AlertEvent*> newly;
+  for (auto& [key, s] : pairs_) {
+    if (!s.active || s.last.acknowledged) continue;
+    s.last.acknowledged = true;
+    newly.push_back(&s.last);
+  }
+  std::sort(newly.begin(), newly.end(), [](const AlertEvent* a, const AlertEvent* b) { return a->number < b->number; });
+  std::vector<std::string> ids;
+  ids.reserve(newly.size());
+  for (const AlertEvent* e : newly) ids.push_back(e->id);
+  return ids;
 }
 
 std::size_t AlertManager::unacknowledged_count() const {

@@ -6,10 +6,12 @@
 #include <cmath>
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "logging.hpp"
+#include "kew/daemon/modbus_server.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
 
@@ -21,6 +23,9 @@ using asio::ip::tcp;
 namespace {
 
 constexpr auto kShutdownGrace = std::chrono::seconds(5);
+// Alarm state goes to the Modbus thread at most this often (a copy of every active
+// alert per publish), and at least once a second for the data age and uptime.
+constexpr auto kModbusPublishPeriod = std::chrono::milliseconds(200);
 
 std::chrono::steady_clock::duration seconds(double s) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
@@ -69,6 +74,7 @@ Service::Service(Config config, ServiceOptions options)
       alive_timer_(io_),
       watchdog_timer_(io_),
       shutdown_timer_(io_),
+      modbus_timer_(io_),
       config_(std::move(config)),
       options_(std::move(options)),
       pipeline_(config_.pipeline),
@@ -85,6 +91,14 @@ Service::Service(Config config, ServiceOptions options)
   if (!config_.service.record_file.empty())
     record_file_ = std::make_unique<LineFile>(config_.service.record_file, 0, 0);
   if (config_.cat004.enabled) cat004_ = std::make_unique<Cat004Sender>(io_, config_.cat004);
+
+  if (config_.modbus.enabled) {
+    ModbusConfig modbus = config_.modbus;
+    if (options_.listen_any) modbus.listen = widen_if_loopback(modbus.listen);
+    modbus_ = std::make_unique<ModbusServer>(modbus, [this] {
+      asio::post(io_, [this] { acknowledge("modbus"); });
+    });
+  }
 
   std::string listen = config_.service.alert_listen;
   if (options_.listen_any) listen = widen_if_loopback(listen);
@@ -115,6 +129,12 @@ int Service::run() {
     spdlog::info("input {}: {} {} {}{}", input->config().name, protocol::to_string(input->config().format),
                  to_string(input->config().transport), input->config().address,
                  port ? fmt::format(" (port {})", port) : std::string());
+  }
+  if (modbus_) {
+    publish_modbus();
+    modbus_->start();
+    spdlog::info("Modbus TCP alarm map on port {} (unit id {})", modbus_->bound_port(), config_.modbus.unit_id);
+    schedule_modbus_publish();
   }
   wait_for_signal();
   schedule_tick();
@@ -156,6 +176,51 @@ void Service::on_alert(const AlertEvent& event) {
   }
   subscribers_->broadcast_alert(event);
   if (cat004_) cat004_->send_alert(event);
+  modbus_dirty_ = true;
+}
+
+void Service::schedule_modbus_publish() {
+  modbus_timer_.expires_after(kModbusPublishPeriod);
+  modbus_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    publish_modbus();
+    schedule_modbus_publish();
+  });
+}
+
+void Service::publish_modbus() {
+  if (!modbus_) return;
+  const auto now = std::chrono::steady_clock::now();
+  // Unchanged alarms are republished once a second anyway: data age and uptime move.
+  if (!modbus_dirty_ && now - last_modbus_publish_ < std::chrono::seconds(1)) return;
+  protocol::AlarmSnapshot snapshot;
+  snapshot.active = pipeline_.alerts().snapshot();
+  snapshot.live_tracks = static_cast<std::uint32_t>(pipeline_.live_tracks());
+  if (any_record_) snapshot.seconds_since_last_record = std::chrono::duration<double>(now - last_record_wall_).count();
+  snapshot.feed_healthy = feed_healthy();
+  snapshot.degraded = !snapshot.feed_healthy;
+  snapshot.uptime_s = static_cast<std::uint32_t>(std::chrono::duration<double>(now - started_).count());
+  snapshot.unacknowledged = static_cast<std::uint32_t>(pipeline_.alerts().unacknowledged_count());
+  modbus_->publish(snapshot);
+  modbus_dirty_ = false;
+  last_modbus_publish_ = now;
+}
+
+void Service::acknowledge(std::string_view by) {
+  if (stopping_) return;
+  const std::vector<std::string> ids = pipeline_.alerts().acknowledge_all();
+  spdlog::info("{} acknowledged {} alerts", by, ids.size());
+  if (ids.empty()) return;
+  const double t = pipeline_.statistics().last_data_time;
+  if (alert_log_) {
+    line_.clear();
+    protocol::append_ack_json(line_, ids, t, by, last_alert_seq_);
+    alert_log_->append(line_);
+    alert_log_->flush();
+  }
+  subscribers_->broadcast_ack(ids, t, by);
+  modbus_dirty_ = true;
+  publish_modbus();
 }
 
 double Service::data_clock_now() const {
@@ -287,6 +352,8 @@ void Service::shutdown() {
   signals_.cancel(ignored);
   tick_timer_.cancel();
   alive_timer_.cancel();
+  modbus_timer_.cancel();
+  if (modbus_) modbus_->stop();
   watchdog_timer_.cancel();
   // Subscribers get what is queued for them, then the connection closes; io_.run()
   // returns when the last one is done, or the grace period ends it.
@@ -336,6 +403,16 @@ std::string Service::stats_json() const {
   if (cat004_)
     fmt::format_to(std::back_inserter(out), ",\"cat004\":{{\"datagrams\":{},\"errors\":{}}}",
                    cat004_->datagrams_sent(), cat004_->send_errors());
+  if (modbus_) {
+    const ModbusServer::Stats m = modbus_->stats();
+    fmt::format_to(std::back_inserter(out),
+                   ",\"modbus\":{{\"requests\":{},\"exceptions\":{},\"connections_open\":{},\"accepted\":{},"
+                   "\"refused\":{},\"dropped\":{},\"acknowledgements\":{},\"rejected\":",
+                   m.requests, m.exceptions, m.connections_open, m.connections_accepted, m.connections_refused,
+                   m.connections_dropped, m.acknowledgements);
+    append_rejections(out, modbus_->rejections());
+    out.push_back('}');
+  }
   if (alert_log_) fmt::format_to(std::back_inserter(out), ",\"alert_log_errors\":{}", alert_log_->write_errors());
   out.append(std::string_view("}\n"));
   return fmt::to_string(out);

@@ -21,6 +21,8 @@
 
 namespace kew::daemon {
 
+class ModbusServer;
+
 
 struct ServiceOptions {
   std::string config_path;  ///< re-read on SIGHUP; empty: built-in defaults
@@ -43,6 +45,10 @@ class Service {
   void schedule_watchdog(std::chrono::microseconds period);
   void tick();
   void alive();
+  void schedule_modbus_publish();
+  void publish_modbus();
+  /// Coil 0 written 1 (posted from the Modbus thread).
+  void acknowledge(std::string_view by);
   void wait_for_signal();
   void reload();
   void shutdown();
@@ -57,6 +63,7 @@ class Service {
   boost::asio::steady_timer alive_timer_;
   boost::asio::steady_timer watchdog_timer_;
   boost::asio::steady_timer shutdown_timer_;
+  boost::asio::steady_timer modbus_timer_;
   Config config_;
   ServiceOptions options_;
   Pipeline pipeline_;
@@ -65,6 +72,9 @@ class Service {
   std::unique_ptr<LineFile> alert_log_;
   std::unique_ptr<LineFile> record_file_;
   std::unique_ptr<Cat004Sender> cat004_;
+  std::unique_ptr<ModbusServer> modbus_;
+  bool modbus_dirty_ = true;  // alarm state changed since the last publish
+  std::chrono::steady_clock::time_point last_modbus_publish_{};
   std::string line_;  // scratch for encoding
 
   std::chrono::steady_clock::time_point started_;

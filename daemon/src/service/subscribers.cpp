@@ -250,6 +250,19 @@ void SubscriberServer::broadcast_alive(const protocol::AliveStatus& status) {
   }
 }
 
+void SubscriberServer::broadcast_ack(std::span<const std::string> ids, double t, std::string_view by) {
+  Line line;
+  for (const auto& s : sessions_) {
+    if (!s->watching()) continue;
+    if (!line) {
+      std::string text;
+      protocol::append_ack_json(text, ids, t, by, source_.seq());
+      line = std::make_shared<const std::string>(std::move(text));
+    }
+    s->enqueue(line);
+  }
+}
+
 bool SubscriberServer::anyone_wants_tracks() const {
   return std::any_of(sessions_.begin(), sessions_.end(),
                      [](const auto& s) { return s->watching() && s->watch().tracks; });

@@ -198,6 +198,24 @@ void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_
   out.push_back('\n');
 }
 
+void append_ack_json(std::string& out, std::span<const std::string> ids, double t, std::string_view by,
+                     std::uint64_t seq) {
+  ObjectWriter o(out);
+  o.text("class", "ACK");
+  o.integer("seq", seq);
+  o.fixed("t", t, 3);
+  o.text("by", by);
+  o.key("ids");
+  out.push_back('[');
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (i) out.push_back(',');
+    append_json_string(out, ids[i]);
+  }
+  out.push_back(']');
+  o.close();
+  out.push_back('\n');
+}
+
 void append_error_json(std::string& out, std::string_view message, std::uint64_t seq) {
   ObjectWriter o(out);
   o.text("class", "ERROR");

@@ -301,6 +301,21 @@ bool AlertStreamReader::read(std::string_view line) {
   } else if (cls == "TRACK") {
     parsed_class = StreamObjectClass::Track;
     ok = read_track(object, track_, error_);
+  } else if (cls == "ACK") {
+    parsed_class = StreamObjectClass::Ack;
+    dom::array ids;
+    ok = m.required("by", text_) && m.required("ids", ids);
+    acknowledged_.clear();
+    if (!ok) return false;
+    for (dom::element element : ids) {
+      if (!ok) break;
+      std::string_view id;
+      if (element.get_string().get(id) != simdjson::SUCCESS) {
+        ok = m.fail("member \"ids\" must hold strings");
+        break;
+      }
+      acknowledged_.emplace_back(id);
+    }
   } else if (cls == "ERROR") {
     parsed_class = StreamObjectClass::Error;
     ok = m.required("message", text_);

@@ -88,9 +88,10 @@ class AlertManager {
   /// Highest severity among active alerts (None when there is none).
   Severity highest_severity() const;
 
-  /// Marks every active alert acknowledged (Modbus coil 0). An alert whose severity later
-  /// rises becomes unacknowledged again.
-  void acknowledge_all();
+  /// Marks every active alert acknowledged (Modbus coil 0) and returns the ids of those
+  /// that were not yet, in alert-number order. An alert whose severity later rises
+  /// becomes unacknowledged again.
+  std::vector<std::string> acknowledge_all();
   std::size_t unacknowledged_count() const;
 
   struct Counters {

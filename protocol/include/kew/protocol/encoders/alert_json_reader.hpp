@@ -45,7 +45,7 @@ inline constexpr std::size_t kMaxWatchRequestBytes = 4096;
 WatchParseResult parse_watch_request(std::string_view line);
 
 /// Class of one object of the stream.
-enum class StreamObjectClass : std::uint8_t { Version, Alert, Alerts, Alive, Error, Track };
+enum class StreamObjectClass : std::uint8_t { Version, Alert, Alerts, Alive, Error, Track, Ack };
 
 /// Reads the stream's lines back into kew's types. One reader is reused for many lines
 /// (it keeps its parser and buffers); not thread-safe.
@@ -73,6 +73,8 @@ class AlertStreamReader {
   const std::vector<AlertEvent>& alerts() const { return alerts_; }
   const AliveStatus& alive() const { return alive_; }
   const TrackReport& track() const { return track_; }
+  /// ACK: the acknowledged alert ids; text() names the interface ("modbus").
+  const std::vector<std::string>& acknowledged() const { return acknowledged_; }
   /// ERROR: the message. VERSION: the release.
   const std::string& text() const { return text_; }
   /// VERSION: the protocol version.
@@ -91,6 +93,7 @@ class AlertStreamReader {
   AliveStatus alive_;
   TrackReport track_;
   std::string text_;
+  std::vector<std::string> acknowledged_;
   int proto_ = 0;
   std::string error_;
 };

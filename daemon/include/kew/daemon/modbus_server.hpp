@@ -1,0 +1,70 @@
+#pragma once
+// The Modbus TCP server of the alarm register map (SPEC §5.5, README.md, "Modbus TCP alarm map").
+// libmodbus contexts are not thread-safe, so one thread owns the one context: it accepts
+// clients, answers their requests from the latest published snapshot and increments the
+// heartbeat register once a second. The daemon's thread only publishes copies of its
+// state (under a lock) and receives acknowledgements through a callback.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include "kew/daemon/config.hpp"
+#include "kew/protocol/modbus_map.hpp"
+#include "kew/util/rejections.hpp"
+
+namespace kew::daemon {
+
+class ModbusServer {
+ public:
+  /// A client that completes no request for this long is disconnected, so that silent
+  /// connections cannot hold the `max_connections` slots for ever.
+  static constexpr std::chrono::seconds kIdleTimeout{120};
+
+  /// Binds and listens on `config.listen` ("HOST:PORT"; port 0 binds an ephemeral port,
+  /// see bound_port()). `on_acknowledge` is called on the server thread each time a client
+  /// writes 1 to coil 0; it must be cheap and must not call back into this object (the
+  /// daemon posts it to its own thread). Throws std::runtime_error when the address is
+  /// malformed, the configuration is out of range (unit_id 0–247, table_entries 0–64,
+  /// max_connections ≥ 1) or the socket cannot be bound.
+  ModbusServer(const ModbusConfig& config, std::function<void()> on_acknowledge);
+  /// Stops (see stop()).
+  ~ModbusServer();
+  ModbusServer(const ModbusServer&) = delete;
+  ModbusServer& operator=(const ModbusServer&) = delete;
+
+  /// Spawns the server thread; the heartbeat starts at 0. A second call does nothing.
+  void start();
+  /// Wakes the server thread, joins it, closes every client connection and the listening
+  /// socket. Final: the server cannot be started again. Returns within milliseconds.
+  void stop();
+
+  /// Replaces the served state with a copy of `snapshot`. Thread-safe; clients see it from
+  /// their next request on.
+  void publish(const protocol::AlarmSnapshot& snapshot);
+
+  /// The TCP port actually bound (the configured one, or the ephemeral one for port 0).
+  std::uint16_t bound_port() const;
+
+  struct Stats {
+    std::uint64_t requests = 0;              ///< complete requests answered or refused
+    std::uint64_t exceptions = 0;            ///< exception responses sent
+    std::uint64_t connections_accepted = 0;
+    std::uint64_t connections_refused = 0;   ///< closed at once: max_connections reached
+    std::uint64_t acknowledgements = 0;      ///< coil 0 written 1
+    std::uint64_t connections_dropped = 0;   ///< closed by kew: bad framing, idle, send failure
+    std::uint64_t connections_open = 0;      ///< now
+  };
+  /// Counters since construction. Thread-safe.
+  Stats stats() const;
+  /// Refused requests and dropped connections by reason (keys "modbus_*", documented in
+  /// README.md, "Modbus TCP alarm map"). Thread-safe; a copy.
+  Rejections rejections() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kew::daemon

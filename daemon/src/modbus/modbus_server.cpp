@@ -1,0 +1,358 @@
+#include "kew/daemon/modbus_server.hpp"
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <fcntl.h>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "libmodbus_context.hpp"
+
+namespace kew::daemon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::chrono::seconds kHeartbeatPeriod{1};
+/// Bytes read from one client per poll round: a client that floods is served a chunk at a
+/// time, taking turns with the others.
+constexpr std::size_t kReadChunkBytes = 1024;
+
+/// Owns one file descriptor.
+class UniqueFd {
+ public:
+  UniqueFd() = default;
+  explicit UniqueFd(int fd) : fd_(fd) {}
+  UniqueFd(UniqueFd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+  UniqueFd& operator=(UniqueFd&& other) noexcept {
+    if (this != &other) {
+      reset();
+      fd_ = std::exchange(other.fd_, -1);
+    }
+    return *this;
+  }
+  UniqueFd(const UniqueFd&) = delete;
+  UniqueFd& operator=(const UniqueFd&) = delete;
+  ~UniqueFd() { reset(); }
+
+  int get() const { return fd_; }
+  bool valid() const { return fd_ >= 0; }
+  void reset() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+/// The self-pipe that interrupts poll() when stop() is called, so stopping never waits
+/// for the heartbeat timeout.
+class WakePipe {
+ public:
+  WakePipe() {
+    int fds[2];
+    if (::pipe2(fds, O_NONBLOCK | O_CLOEXEC) != 0) {
+      throw std::runtime_error("modbus: cannot create the wake-up pipe");
+    }
+    read_end_ = UniqueFd(fds[0]);
+    write_end_ = UniqueFd(fds[1]);
+  }
+  int read_fd() const { return read_end_.get(); }
+  void notify() {
+    const char byte = 1;
+    // A full pipe already holds a pending wake-up: nothing is lost when this fails.
+    [[maybe_unused]] const auto written = ::write(write_end_.get(), &byte, 1);
+  }
+  void drain() {
+    std::array<char, 64> sink;
+    while (::read(read_end_.get(), sink.data(), sink.size()) > 0) {
+    }
+  }
+
+ private:
+  UniqueFd read_end_;
+  UniqueFd write_end_;
+};
+
+struct Client {
+  UniqueFd socket;
+  protocol::MbapFramer framer;
+  Clock::time_point last_request;
+};
+
+LibmodbusContext open_context(const ModbusConfig& config) {
+  std::string host;
+  std::uint16_t port = 0;
+  if (!split_host_port(config.listen, host, port)) {
+    throw std::runtime_error("modbus: listen address \"" + config.listen +
+                             "\" is not HOST:PORT");
+  }
+  if (config.unit_id < 0 || config.unit_id > 247) {
+    throw std::runtime_error("modbus: unit_id must be in 0-247");
+  }
+  if (config.table_entries < 0 || config.table_entries > protocol::kModbusMaxTableEntries) {
+    throw std::runtime_error("modbus: table_entries must be in 0-64");
+  }
+  if (config.max_connections < 1) {
+    throw std::runtime_error("modbus: max_connections must be at least 1");
+  }
+  return LibmodbusContext(host, port, config.max_connections,
+                          protocol::modbus_register_count(config.table_entries));
+}
+
+}  // namespace
+
+class ModbusServer::Impl {
+ public:
+  Impl(const ModbusConfig& config, std::function<void()> on_acknowledge)
+      : config_(config), on_acknowledge_(std::move(on_acknowledge)), modbus_(open_context(config)) {
+    shape_.registers = protocol::modbus_register_count(config.table_entries);
+    shape_.read_only = config.read_only;
+    modbus_.load(protocol::build_register_map(current_, config_.table_entries, heartbeat_));
+  }
+
+  ~Impl() { stop(); }
+
+  void start() {
+    if (thread_.joinable() || stopping_) return;
+    thread_ = std::thread([this] { run(); });
+  }
+
+  void stop() {
+    stopping_ = true;
+    wake_.notify();
+    if (thread_.joinable()) thread_.join();
+    modbus_.close_listener();
+  }
+
+  void publish(const protocol::AlarmSnapshot& snapshot) {
+    std::lock_guard lock(snapshot_mutex_);
+    published_ = snapshot;
+    ++published_generation_;
+  }
+
+  std::uint16_t bound_port() const { return modbus_.bound_port(); }
+
+  Stats stats() const {
+    std::lock_guard lock(stats_mutex_);
+    return stats_;
+  }
+
+  Rejections rejections() const {
+    std::lock_guard lock(stats_mutex_);
+    return rejections_;
+  }
+
+ private:
+  void run() {
+    next_heartbeat_ = Clock::now() + kHeartbeatPeriod;
+    std::vector<pollfd> fds;
+    while (!stopping_) {
+      const Clock::time_point now = Clock::now();
+      const bool beat = advance_heartbeat(now);
+      refresh_map(beat);
+      drop_idle_clients(now);
+
+      fds.clear();
+      fds.push_back({wake_.read_fd(), POLLIN, 0});
+      fds.push_back({modbus_.listen_fd(), POLLIN, 0});
+      for (const Client& c : clients_) fds.push_back({c.socket.get(), POLLIN, 0});
+      const auto wait = std::chrono::ceil<std::chrono::milliseconds>(next_heartbeat_ - now);
+      const int ready = ::poll(fds.data(), fds.size(), static_cast<int>(std::max<long>(wait.count(), 0)));
+      if (ready <= 0) continue;  // heartbeat due, or EINTR
+      if (fds[0].revents != 0) wake_.drain();
+      if (stopping_) break;
+      // Requests are answered from the newest snapshot, even one published during poll().
+      refresh_map(false);
+      for (std::size_t i = 0; i < clients_.size(); ++i) {
+        if (fds[i + 2].revents != 0) serve(clients_[i]);
+      }
+      std::erase_if(clients_, [](const Client& c) { return !c.socket.valid(); });
+      if (fds[1].revents != 0) accept_clients();
+      set_open_connections();
+    }
+    clients_.clear();
+    set_open_connections();
+  }
+
+  /// True when the heartbeat register changed. A stalled thread resumes counting from
+  /// now rather than catching up in a burst: the register says "alive", not "elapsed".
+  bool advance_heartbeat(Clock::time_point now) {
+    if (now < next_heartbeat_) return false;
+    ++heartbeat_;  // wraps 65535 → 0
+    next_heartbeat_ += kHeartbeatPeriod;
+    if (next_heartbeat_ <= now) next_heartbeat_ = now + kHeartbeatPeriod;
+    return true;
+  }
+
+  void refresh_map(bool heartbeat_changed) {
+    bool snapshot_changed = false;
+    {
+      std::lock_guard lock(snapshot_mutex_);
+      if (published_generation_ != served_generation_) {
+        current_ = published_;
+        served_generation_ = published_generation_;
+        snapshot_changed = true;
+      }
+    }
+    if (snapshot_changed || heartbeat_changed) {
+      modbus_.load(protocol::build_register_map(current_, config_.table_entries, heartbeat_));
+    }
+  }
+
+  void accept_clients() {
+    for (int fd = modbus_.accept_client(); fd >= 0; fd = modbus_.accept_client()) {
+      std::lock_guard lock(stats_mutex_);
+      if (clients_.size() >= static_cast<std::size_t>(config_.max_connections)) {
+        ::close(fd);
+        ++stats_.connections_refused;
+        continue;
+      }
+      ++stats_.connections_accepted;
+      clients_.push_back(Client{UniqueFd(fd), {}, Clock::now()});
+    }
+  }
+
+  void drop_idle_clients(Clock::time_point now) {
+    for (Client& c : clients_) {
+      if (now - c.last_request >= kIdleTimeout) drop(c, "modbus_idle_timeout");
+    }
+    std::erase_if(clients_, [](const Client& c) { return !c.socket.valid(); });
+  }
+
+  /// Reads what the client sent and answers every complete request in it.
+  void serve(Client& client) {
+    std::array<std::uint8_t, kReadChunkBytes> buffer;
+    const ssize_t received = ::recv(client.socket.get(), buffer.data(), buffer.size(), 0);
+    if (received == 0 || (received < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      client.socket.reset();  // the client hung up
+      return;
+    }
+    if (received < 0) return;
+    Rejections framing;
+    bool answered = true;
+    const bool framed = client.framer.feed(
+        std::span<const std::uint8_t>(buffer.data(), static_cast<std::size_t>(received)), framing,
+        [&](std::span<const std::uint8_t> adu) {
+          if (answered) answered = answer(client, adu);
+        });
+    if (!framed) {
+      std::lock_guard lock(stats_mutex_);
+      rejections_.merge(framing);
+    }
+    if (!framed) {
+      drop(client, {});
+    } else if (!answered && client.socket.valid()) {
+      drop(client, "modbus_send_failed");
+    }
+  }
+
+  /// Answers one ADU; false when the client must be dropped.
+  bool answer(Client& client, std::span<const std::uint8_t> adu) {
+    client.last_request = Clock::now();
+    const std::uint8_t unit = adu[protocol::MbapFramer::kHeaderBytes - 1];
+    const auto pdu = adu.subspan(protocol::MbapFramer::kHeaderBytes);
+    protocol::ModbusVerdict verdict;
+    if (!protocol::modbus_unit_is_ours(unit, config_.unit_id)) {
+      verdict.exception = protocol::ModbusException::GatewayTargetFailedToRespond;
+      verdict.reason = "modbus_unit_id_mismatch";
+    } else {
+      verdict = protocol::check_modbus_request(pdu, shape_);
+    }
+    count_request(verdict);
+    if (verdict.drop_connection) {
+      drop(client, {});
+      return false;
+    }
+    if (verdict.exception != protocol::ModbusException::None) {
+      return modbus_.reply_exception(client.socket.get(), adu, verdict.exception);
+    }
+    if (verdict.acknowledge) acknowledge();
+    return modbus_.reply(client.socket.get(), adu);
+  }
+
+  void acknowledge() {
+    {
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.acknowledgements;
+    }
+    // The callback belongs to the daemon; whatever it throws must not end this thread.
+    try {
+      if (on_acknowledge_) on_acknowledge_();
+    } catch (...) {
+      std::lock_guard lock(stats_mutex_);
+      rejections_.reject("modbus_acknowledge_callback_failed");
+    }
+  }
+
+  void count_request(const protocol::ModbusVerdict& verdict) {
+    std::lock_guard lock(stats_mutex_);
+    ++stats_.requests;
+    if (verdict.exception != protocol::ModbusException::None && !verdict.drop_connection) {
+      ++stats_.exceptions;
+    }
+    if (!verdict.reason.empty()) rejections_.reject(verdict.reason);
+  }
+
+  /// Closes a client kew gives up on, counting `reason` unless it was counted already.
+  void drop(Client& client, std::string_view reason) {
+    client.socket.reset();
+    std::lock_guard lock(stats_mutex_);
+    ++stats_.connections_dropped;
+    if (!reason.empty()) rejections_.reject(reason);
+  }
+
+  void set_open_connections() {
+    std::lock_guard lock(stats_mutex_);
+    stats_.connections_open = clients_.size();
+  }
+
+  const ModbusConfig config_;
+  const std::function<void()> on_acknowledge_;
+  LibmodbusContext modbus_;
+  protocol::ModbusMapShape shape_;
+  WakePipe wake_;
+  std::thread thread_;
+  std::atomic<bool> stopping_{false};
+
+  // Written by publish(), read by the server thread.
+  mutable std::mutex snapshot_mutex_;
+  protocol::AlarmSnapshot published_;
+  std::uint64_t published_generation_ = 0;
+
+  // The server thread's own state.
+  protocol::AlarmSnapshot current_;
+  std::uint64_t served_generation_ = 0;
+  std::uint16_t heartbeat_ = 0;
+  Clock::time_point next_heartbeat_;
+  std::vector<Client> clients_;
+
+  mutable std::mutex stats_mutex_;
+  Stats stats_;
+  Rejections rejections_;
+};
+
+ModbusServer::ModbusServer(const ModbusConfig& config, std::function<void()> on_acknowledge)
+    : impl_(std::make_unique<Impl>(config, std::move(on_acknowledge))) {}
+
+ModbusServer::~ModbusServer() = default;
+
+void ModbusServer::start() { impl_->start(); }
+void ModbusServer::stop() { impl_->stop(); }
+void ModbusServer::publish(const protocol::AlarmSnapshot& snapshot) { impl_->publish(snapshot); }
+std::uint16_t ModbusServer::bound_port() const { return impl_->bound_port(); }
+ModbusServer::Stats ModbusServer::stats() const { return impl_->stats(); }
+Rejections ModbusServer::rejections() const { return impl_->rejections(); }
+
+}  // namespace kew::daemon
