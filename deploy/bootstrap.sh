@@ -90,7 +90,8 @@ install_dependencies
 configure_and_build
 case "$mode" in
   test)
-    ctest --test-dir "$build" --output-on-failure -j "$jobs"
+    # Tests labelled "long" (hours: 100,000 aircraft) are run by hand: ctest -L long.
+    ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE long
     ;;
   run)
     run_demo
