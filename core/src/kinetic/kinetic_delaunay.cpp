@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 
 #include "kew/kinetic/certificate.hpp"
 #include "kew/kinetic/sturm.hpp"
@@ -25,6 +27,58 @@ namespace {
 constexpr double kFirstRetryDelay = 1e-9;
 constexpr std::uint16_t kMaxRetries = 30;
 const std::vector<PointId> kNoTwins;
+
+/// The certificate, or the zero polynomial when every coefficient is within what the
+/// rounding of the points' positions at `now` (and of their velocity differences) can
+/// produce: the points are then cocircular (3 points: collinear) in real arithmetic
+/// throughout, and the exact predicate on the rounded positions changes sign at instants
+/// that no root of the polynomial tells (e.g. points flying apart from one common
+/// point, whose positions are rounded on the scale of where they came from). Such edges
+/// are watched like identically zero ones. `points`: the 4 (incircle) or 3 (orientation
+/// or order) trajectories the certificate was built from, the first as the base.
+Polynomial unless_rounding_noise(const Polynomial& certificate, std::initializer_list<const Trajectory*> points,
+                                 double now) {
+  if (certificate.is_zero()) return certificate;
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const bool incircle = points.size() == 4;
+  // The certificate is built on coordinates relative to one point. Their size is at
+  // most L(τ) = spread + relative_speed·τ (m), and each carries an error of at most
+  // E(τ) = 2·position_error + eps·L(τ), where position_error bounds (generously) the
+  // rounding of origin + (now − t0)·velocity.
+  const Trajectory& base = **points.begin();
+  const Point2 base_now = base.at(now);
+  double position_error = 0.0, spread = 0.0, relative_speed = 0.0;
+  for (const Trajectory* T : points) {
+    const Point2 p = T->at(now);
+    const double lever = std::abs(now - T->t0);
+    position_error = std::max(position_error, eps * (std::abs(T->origin.x) + std::abs(T->origin.y) + std::abs(p.x) +
+                                                     std::abs(p.y) + 2.0 * lever * (std::abs(T->velocity.x) + std::abs(T->velocity.y))));
+    spread = std::max({spread, std::abs(p.x - base_now.x), std::abs(p.y - base_now.y)});
+    relative_speed = std::max({relative_speed, std::abs(T->velocity.x - base.velocity.x), std::abs(T->velocity.y - base.velocity.y)});
+  }
+  // First-order perturbation bound of the determinant, majorised coefficient by
+  // coefficient, with a factor 2 to spare and 64 ulps of its own computation added:
+  //   incircle (6 coordinates, each partial derivative ≤ 8L³): 192·L³·(E + 4·eps·L);
+  //   orientation or order (4 coordinates, each partial ≤ L):   16·L·(E + 8·eps·L).
+  const double slack = incircle ? 4.0 * eps : 8.0 * eps;
+  const double error_now = 2.0 * position_error + (eps + slack) * spread;
+  const double error_rate = (eps + slack) * relative_speed;
+  const double scale = incircle ? 192.0 : 16.0;
+  // Coefficients of L(τ)³ (incircle) or L(τ) (the others), from τ⁰ up.
+  const std::array<double, 4> size_power =
+      incircle ? std::array<double, 4>{spread * spread * spread, 3.0 * spread * spread * relative_speed,
+                                       3.0 * spread * relative_speed * relative_speed,
+                                       relative_speed * relative_speed * relative_speed}
+               : std::array<double, 4>{spread, relative_speed, 0.0, 0.0};
+  // From τ⁰ up: the value now settles almost every certificate, the derivative nearly
+  // all the rest (a new edge starts near zero only after a flip at its root).
+  for (int k = 0; k <= Polynomial::kMaxDegree; ++k) {
+    const double from_value = k < 4 ? size_power[static_cast<unsigned>(k)] * error_now : 0.0;
+    const double from_rate = k > 0 ? size_power[static_cast<unsigned>(k - 1)] * error_rate : 0.0;
+    if (std::abs(certificate.coefficient(k)) > scale * (from_value + from_rate)) return certificate;
+  }
+  return {};
+}
 }  // namespace
 
 KineticDelaunay::KineticDelaunay(const KineticConfig& config, double start_time)
@@ -143,16 +197,17 @@ Polynomial KineticDelaunay::edge_certificate(FaceIndex f, int i) const {
   if (a == kInfiniteVertex || b == kInfiniteVertex) {
     if (c == d) return {};
     const PointId x = a == kInfiniteVertex ? b : a;
-    Polynomial turn = a == kInfiniteVertex ? orientation_polynomial(T(x), T(c), T(d), now_)
-                                           : orientation_polynomial(T(x), T(d), T(c), now_);
-    // Hull vertices moving on one exact line: certify their order instead.
-    if (turn.is_zero()) return dot_polynomial(T(x), T(c), T(d), now_);
-    return turn;
+    const Polynomial turn = a == kInfiniteVertex ? orientation_polynomial(T(x), T(c), T(d), now_)
+                                                 : orientation_polynomial(T(x), T(d), T(c), now_);
+    // Hull vertices moving on one exact line: certify their order instead. (Only an
+    // exactly zero turn means that; a turn that is rounding noise is watched.)
+    if (turn.is_zero()) return unless_rounding_noise(dot_polynomial(T(x), T(c), T(d), now_), {&T(x), &T(c), &T(d)}, now_);
+    return unless_rounding_noise(turn, {&T(x), &T(c), &T(d)}, now_);
   }
   if (c == kInfiniteVertex && d == kInfiniteVertex) return {};
-  if (d == kInfiniteVertex) return -1.0 * orientation_polynomial(T(a), T(b), T(c), now_);
-  if (c == kInfiniteVertex) return -1.0 * orientation_polynomial(T(b), T(a), T(d), now_);
-  return incircle_polynomial(T(a), T(b), T(c), T(d), now_);
+  if (d == kInfiniteVertex) return unless_rounding_noise(-1.0 * orientation_polynomial(T(a), T(b), T(c), now_), {&T(a), &T(b), &T(c)}, now_);
+  if (c == kInfiniteVertex) return unless_rounding_noise(-1.0 * orientation_polynomial(T(b), T(a), T(d), now_), {&T(b), &T(a), &T(d)}, now_);
+  return unless_rounding_noise(incircle_polynomial(T(a), T(b), T(c), T(d), now_), {&T(a), &T(b), &T(c), &T(d)}, now_);
 }
 
 double KineticDelaunay::approach_offset(FaceIndex f, int i) const {
@@ -200,7 +255,12 @@ void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::ui
     push(now_ + approach, f, i, EntryKind::Approach, 0);
     return;
   }
-  if (certificate.is_zero()) return;  // no event can be computed (watched if it matters)
+  if (certificate.is_zero()) {
+    // No event can be computed (the edge is watched if it constrains anything), but an
+    // approach beyond the window must still be looked for when the window closes.
+    if (std::isfinite(approach) && std::isfinite(end)) push(std::max(end, now_), f, i, EntryKind::Renewal, 0);
+    return;
+  }
   ++stats_.certificates_solved;
   const double window = end - now_;
   if (!(window > from_offset)) {
@@ -573,7 +633,10 @@ void KineticDelaunay::schedule_twin_release(PointId id) {
   const double c = geometry::dot(gap, gap) - r * r;
   const double disc = std::max(0.0, b * b - speed2 * c);
   const double tau = std::max((-b + std::sqrt(disc)) / speed2, kFirstRetryDelay);
-  push(now_ + tau, id, 0, EntryKind::TwinRelease, 0);
+  // On a far epoch now + tau can round back to now; a release looked at again at the
+  // same instant would find the same gap forever.
+  const double at = now_ + tau;
+  push(at > now_ ? at : std::nextafter(now_, kNever), id, 0, EntryKind::TwinRelease, 0);
 }
 
 void KineticDelaunay::adopt_evicted_duplicates() {

@@ -61,15 +61,20 @@ struct KineticStatistics {
   std::uint64_t reinsertions = 0;         ///< updates beyond τ: removed and reinserted
   std::uint64_t repairs = 0;              ///< defects found by audits or degenerate events and fixed
   std::uint64_t repair_flips = 0;
-  /// Flips of edges whose certificate is identically zero (points moving so as to stay
-  /// exactly cocircular, e.g. converging radially at one speed): no event can be
-  /// computed for them, so they are checked exactly whenever advance() returns.
+  /// Flips of edges whose certificate is identically zero, or no larger than the
+  /// rounding of the positions can make it (points moving so as to stay exactly
+  /// cocircular, e.g. converging radially at one speed, or flying apart from one common
+  /// point): no event can be computed for them, so they are checked exactly whenever
+  /// advance() returns.
   std::uint64_t degenerate_flips = 0;
   std::uint64_t repair_reinsertions = 0;
   std::uint64_t rebuilds = 0;             ///< full retriangulations (last-resort repair)
   std::uint64_t twins_created = 0;        ///< points made twins: exact duplicates and approaches
   std::uint64_t twins_released = 0;       ///< twins reinserted once twin_release_distance_m apart
-  std::uint64_t approaches_scheduled = 0; ///< pairs found to come within twin_release_distance_m
+  /// Approach entries scheduled: edges whose two ends come within
+  /// twin_release_distance_m inside the edge's window (counted again when the edge is
+  /// rescheduled, like failures).
+  std::uint64_t approaches_scheduled = 0;
   std::uint64_t approaches_merged = 0;    ///< of those, merged into twins (also in twins_created)
   std::size_t queue_now = 0;              ///< failures and approaches scheduled now
   std::size_t queue_max = 0;
@@ -191,6 +196,8 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// Returns true when it changed the triangulation.
   bool flip_degenerate_edges();
   void solve_edge(triangulation::FaceIndex f, int i, double from_offset, std::uint16_t retries);
+  /// Certificate of edge i of f in time local to now: positive exactly while violated;
+  /// the zero polynomial when it constrains nothing or is only rounding noise.
   Polynomial edge_certificate(triangulation::FaceIndex f, int i) const;
   double earliest_failure(triangulation::FaceIndex f) const;
   void clear_edge(triangulation::FaceIndex f, int i, bool count_discard);
