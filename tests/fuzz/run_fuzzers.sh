@@ -35,6 +35,14 @@ binary_seeds() {  # DIR: every file below, cut to 16 KiB, no prefix
   done < <(find "$1" -type f ! -name '*.md' ! -name '*.py' ! -name '*.json' -print0 2>/dev/null)
 }
 
+prefixed_seeds() {  # DIR: every data file below, cut to 16 KiB, after the 4 control bytes
+  local i=0
+  mkdir -p "$work/seeds/$target"
+  while IFS= read -r -d '' f; do
+    { printf '\003\020\200\360'; head -c 16384 "$f"; } >"$work/seeds/$target/seed$((i++))" || true
+  done < <(find "$1" -type f ! -name '*.md' ! -name '*.py' ! -name '*.txt' ! -name '*.json' -print0 2>/dev/null)
+}
+
 seed() {
   case "$target" in
     fuzz_ndjson) text_seed canonical "$data/text/canonical_sample.ndjson" ;;
@@ -54,6 +62,7 @@ seed() {
       text_seed states "$data/text/opensky_states_sample.csv"
       text_seed minutes "$data/text/readsb_20minutes.json"
       text_seed switzerland_gz "$data/text/opensky_switzerland_first2000.json.gz" ;;
+    fuzz_asterix_raw|fuzz_asterix_ff|fuzz_asterix_pcap|fuzz_asterix_datagram) prefixed_seeds "$data/asterix" ;;
     fuzz_asterix*) binary_seeds "$data/asterix" ;;
     fuzz_cat004*) binary_seeds "$data/cat004" ;;
     *) mkdir -p "$work/seeds/$target" ;;

@@ -94,21 +94,32 @@ void BlockDecoder::decode_records(const Uap& uap,
   }
 }
 
+bool BlockDecoder::records_fit(const Uap& uap, const std::uint8_t* block, std::size_t size) {
+  std::size_t offset = kBlockHeaderBytes;
+  bool any_record = false;
+  while (offset < size) {
+    if (is_zero_padding(block + offset, size - offset)) break;
+    const RecordWalk walk = walk_record(uap, block + offset, size - offset, items_);
+    if (walk.error != WalkError::None || !items_.has(1)) return false;
+    offset += walk.bytes;
+    any_record = true;
+  }
+  return any_record;
+}
+
 bool BlockDecoder::block_is_cat021_v026(const std::uint8_t* block, std::size_t size) {
-  // A profile fits when every record walks, the last one ending at the end of the block,
-  // and carries I021/010 (FRN 1 in both profiles, mandatory in both): short 0.26 records
-  // can happen to walk under 2.x as several records without it.
-  const auto fits = [&](const Uap& uap) {
-    std::size_t offset = kBlockHeaderBytes;
-    while (offset < size) {
-      if (is_zero_padding(block + offset, size - offset)) return true;
-      const RecordWalk walk = walk_record(uap, block + offset, size - offset, items_);
-      if (walk.error != WalkError::None || !items_.has(1)) return false;
-      offset += walk.bytes;
-    }
-    return true;
-  };
-  return !fits(cat021_uap()) && fits(cat021_v026_uap());
+  // Short 0.26 records can happen to walk under 2.x as several records without I021/010:
+  // a profile fits only when every record carries it.
+  return !records_fit(cat021_uap(), block, size) && records_fit(cat021_v026_uap(), block, size);
+}
+
+bool BlockDecoder::walks_cleanly(const std::uint8_t* block, std::size_t size) {
+  switch (block[0]) {
+    case 62: return records_fit(cat062_uap(), block, size);
+    case 48: return records_fit(cat048_uap(), block, size);
+    case 21: return records_fit(cat021_uap(), block, size) || records_fit(cat021_v026_uap(), block, size);
+    default: return false;
+  }
 }
 
 }  // namespace kew::protocol::asterix

@@ -33,6 +33,11 @@ class BlockDecoder {
   /// length that is impossible there ends the payload ("asterix_bad_block_length").
   void decode_blocks(const std::uint8_t* payload, std::size_t size, const ReportSink& sink);
 
+  /// True when `block` (a complete data block of a category kew decodes) splits exactly
+  /// into records that walk under its UAP, trailing zero padding allowed. Framings use it
+  /// as evidence that a block header found after garbage is real.
+  bool walks_cleanly(const std::uint8_t* block, std::size_t size);
+
   /// Pcap: the capture time (UTC s) of the packet whose blocks follow; see DayClock.
   void set_capture_time(std::optional<double> capture_utc_s) { clock_.set_capture_time(capture_utc_s); }
 
@@ -41,6 +46,9 @@ class BlockDecoder {
                       const std::uint8_t* block, std::size_t size, const ReportSink& sink);
   /// True when the block fits the CAT021 0.26 profile and not the 2.x one.
   bool block_is_cat021_v026(const std::uint8_t* block, std::size_t size);
+  /// True when every record of `block` walks under `uap` and carries FRN 1 (the data source
+  /// identifier, mandatory in every category kew decodes), up to the end of the block.
+  bool records_fit(const Uap& uap, const std::uint8_t* block, std::size_t size);
 
   Rejections& rejections_;
   DayClock clock_;

@@ -3,8 +3,9 @@
 // number, line number, recording day, a 24-bit time, then the data block(s), then the
 // padding A5 A5 A5 A5. The header time is the recorder's and does not match the ASTERIX
 // time of day in the recordings we have (MANIFEST: hours off), so it is ignored.
-// A frame is self-checking: its length must land on the A5A5A5A5 trailer; otherwise one
-// byte is skipped and the next candidate tried.
+// A frame is self-checking: its length must land on the A5A5A5A5 trailer and its payload
+// must be a chain of plausible data blocks ending exactly before the trailer; otherwise
+// one byte is skipped ("asterix_resync", once per run) and the next candidate tried.
 
 #include <algorithm>
 #include <array>
@@ -30,6 +31,21 @@ std::span<const std::uint8_t> frame_payload(std::span<const std::uint8_t> frame)
   return frame.subspan(kFrameHeaderBytes, frame.size() - kFrameHeaderBytes - kTrailer.size());
 }
 
+/// True when `payload` is a chain of plausible data block headers ending exactly at its
+/// end: with the trailer, the evidence that a frame found after garbage is real (a length
+/// read from garbage can land on the trailer of a later frame; it then spans several
+/// frames, and its payload does not chain).
+bool payload_chains(std::span<const std::uint8_t> payload) {
+  std::size_t offset = 0;
+  while (offset < payload.size()) {
+    if (payload.size() - offset < 3) return false;
+    const std::size_t length = be16(payload.data() + offset + 1);
+    if (!plausible_block_header(payload[offset], length)) return false;
+    offset += length;
+  }
+  return offset == payload.size();
+}
+
 class FinalFormatDecoder final : public FramedStreamDecoder {
  public:
   explicit FinalFormatDecoder(const AsterixOptions& options)
@@ -40,13 +56,16 @@ class FinalFormatDecoder final : public FramedStreamDecoder {
 
  private:
   Judgement judge(std::span<const std::uint8_t> rest, bool at_end) override {
-    const Judgement incomplete{at_end ? (skipping() ? Verdict::Garbage : Verdict::Truncated)
+    // Cut short by the end of the stream: truncated when in step, else (a length read from
+    // garbage) one more byte of garbage.
+    const Judgement incomplete{at_end ? (unconfirmed() ? Verdict::Garbage : Verdict::Truncated)
                                       : Verdict::Wait};
     if (rest.size() < 2) return incomplete;
     const std::size_t length = be16(rest.data());
     if (length < kMinFrameBytes) return {Verdict::Garbage};
     if (rest.size() < length) return incomplete;
-    if (!has_trailer(rest.first(length))) return {Verdict::Garbage};
+    const auto frame = rest.first(length);
+    if (!has_trailer(frame) || !payload_chains(frame_payload(frame))) return {Verdict::Garbage};
     return {Verdict::Accept, length};
   }
 
@@ -80,8 +99,7 @@ double final_format_confidence(std::span<const std::uint8_t> head) {
     }
     const auto frame = head.subspan(offset, length);
     if (!has_trailer(frame)) break;
-    const auto payload = frame_payload(frame);
-    if (payload.size() < 3 || !plausible_block_header(payload[0], be16(payload.data() + 1))) break;
+    if (!payload_chains(frame_payload(frame))) break;
     ++frames;
     offset += length;
   }

@@ -48,6 +48,9 @@ class FramedStreamDecoder : public Decoder {
   bool skipping() const { return skipping_; }
   /// True until a message has been accepted since the start or since garbage.
   bool unconfirmed() const { return unconfirmed_; }
+  /// Called from accept(): the message just accepted is not evidence that the stream is
+  /// in step (its contents could not be checked), so the next one is judged as after garbage.
+  void distrust() { unconfirmed_ = true; }
 
   BlockDecoder blocks_;
 

@@ -15,7 +15,6 @@ inline constexpr std::size_t kMaxBlockBytes = 65535;
 std::unique_ptr<Decoder> make_raw_blocks_decoder(const AsterixOptions& options);
 std::unique_ptr<Decoder> make_final_format_decoder(const AsterixOptions& options);
 std::unique_ptr<Decoder> make_pcap_decoder(const AsterixOptions& options);
-std::unique_ptr<Decoder> make_datagram_decoder(const AsterixOptions& options);
 
 double raw_blocks_confidence(std::span<const std::uint8_t> head);
 double final_format_confidence(std::span<const std::uint8_t> head);

@@ -50,6 +50,13 @@ FIXTURES = {
     "jasterix/cat062ed1.16.bin": ("jasterix-vectors/cat062ed1.16.bin", "raw", None),
     "asterix4py/cat062.ast": ("jasterix-vectors/asterix4py_cat062.ast", "raw", None),
 }
+# Shared recordings checked in place (never copied): only their expected values are written,
+# to expected/shared__<name>.txt; the C++ test reads the data from the shared directory and
+# skips when it is absent. The UPC Barcelona file has no licence.
+SHARED_ONLY = {
+    "shared/upc-bcn-cat048": ("upc-bcn-cat048/230502-est-080001_BCN_60MN_08_09.ast", "raw"),
+    "shared/jade-cat062-30min": ("jade-cat062-ff/final_frame_062_30min.ff", "ff"),
+}
 # CAT021 edition 0.26 is not in tshark 4.0.17 (it has 0.23, whose I021/130 is 6 bytes):
 # that vector's expected values are decoded by hand in the C++ test.
 NO_TSHARK = {"jasterix/cat021ed0.26.bin"}
@@ -333,6 +340,8 @@ def expected_lines(fixture, framing, blocks):
         return lines
     lines.append(f"reports {len(reports)}")
     lines.append(f"distinct_ids {len({(r['src'], r['id']) for r in reports})}")
+    # Ids of 6 characters are 24-bit addresses (track numbers are 12 or 16 bits: at most 5 digits).
+    lines.append(f"distinct_addresses {len({r['id'] for r in reports if len(r['id']) == 6})}")
     if reports:
         lines.append(f"t_first {fmt(min(r['t'] for r in reports))}")
         lines.append(f"t_last {fmt(max(r['t'] for r in reports))}")
@@ -342,6 +351,24 @@ def expected_lines(fixture, framing, blocks):
         lines.append("sample " + " ".join(f"{k}={fmt(v)}" for k, v in r.items() if k != "cs")
                      + f" cs={r['cs'] or '-'}")
     return lines
+
+
+def wrapped_pcap(data, framing, tmp):
+    """The data as tshark reads it: pcap fixtures as they are, other framings re-wrapped."""
+    pcap = Path(tmp) / "wrapped.pcap"
+    if framing == "pcap":
+        pcap.write_bytes(data)
+    elif framing == "ff":
+        wrap_as_pcap([frame[8:-4] for frame in walk_ff(data)], pcap)
+    else:
+        wrap_as_pcap(walk_raw(data), pcap)
+    return pcap
+
+
+def write_expected(out_dir, name, lines):
+    expected = out_dir / "expected" / (name.replace("/", "__") + ".txt")
+    expected.parent.mkdir(parents=True, exist_ok=True)
+    expected.write_text("\n".join(lines) + "\n")
 
 
 def build(shared, out_dir):
@@ -355,17 +382,14 @@ def build(shared, out_dir):
         if fixture in NO_TSHARK:
             continue
         with tempfile.TemporaryDirectory() as tmp:
-            pcap = Path(tmp) / "wrapped.pcap"
-            if framing == "pcap":
-                shutil.copy(target, pcap)
-            elif framing == "ff":
-                wrap_as_pcap([frame[8:-4] for frame in walk_ff(data)], pcap)
-            else:
-                wrap_as_pcap(walk_raw(data), pcap)
-            lines = expected_lines(fixture, framing, tshark_blocks(pcap))
-        expected = out_dir / "expected" / (fixture.replace("/", "__") + ".txt")
-        expected.parent.mkdir(parents=True, exist_ok=True)
-        expected.write_text("\n".join(lines) + "\n")
+            lines = expected_lines(fixture, framing, tshark_blocks(wrapped_pcap(data, framing, tmp)))
+        write_expected(out_dir, fixture, lines)
+    for name, (origin, framing) in SHARED_ONLY.items():
+        data = (shared / origin).read_bytes()
+        with tempfile.TemporaryDirectory() as tmp:
+            lines = expected_lines(name, framing, tshark_blocks(wrapped_pcap(data, framing, tmp)))
+        lines.insert(2, f"# data read in place from the shared recordings: {origin} (never copied)")
+        write_expected(out_dir, name, lines)
 
 
 def excerpt_ff(data, seconds):

@@ -55,7 +55,8 @@ std::unique_ptr<Decoder> make_asterix_decoder(AsterixFraming framing, AsterixOpt
 
 /// Heuristic used by format auto-detection: 0..1 confidence that `head` (first bytes of a file) is this framing.
 /// Pcap: the file magic. FinalFormat: frames whose A5A5A5A5 trailer sits where the frame
-/// length says. RawBlocks: consecutive plausible block headers. Datagram: half the RawBlocks
+/// length says, holding a chain of data blocks. RawBlocks: consecutive plausible block
+/// headers. Scores are listed in protocol/docs/asterix.md §6. Datagram: half the RawBlocks
 /// score, since a file is never datagram-framed but a captured datagram looks the same.
 double asterix_framing_confidence(AsterixFraming framing, std::span<const std::byte> head);
 
