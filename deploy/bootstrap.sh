@@ -92,6 +92,7 @@ case "$mode" in
   test)
     # Tests labelled "long" (hours: 100,000 aircraft) are run by hand: ctest -L long.
     ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE long
+    sanitize_and_fuzz
     ;;
   run)
     run_demo

@@ -65,6 +65,9 @@ seed() {
     fuzz_asterix_raw|fuzz_asterix_ff|fuzz_asterix_pcap|fuzz_asterix_datagram) prefixed_seeds "$data/asterix" ;;
     fuzz_asterix*) binary_seeds "$data/asterix" ;;
     fuzz_cat004*) binary_seeds "$data/cat004" ;;
+    fuzz_modbus_requests)  # shape byte, then a read of the status registers and a coil-0 write
+      mkdir -p "$work/seeds/$target"
+      printf '\010\000\001\000\000\000\006\001\004\000\000\000\020\000\002\000\000\000\006\001\005\000\000\377\000' >"$work/seeds/$target/read_and_ack" ;;
     *) mkdir -p "$work/seeds/$target" ;;
   esac
 }

@@ -193,7 +193,12 @@ class MbapFramer {
       on_adu(std::span<const std::uint8_t>(buffer_.data() + start, length));
       start += length;
     }
-    buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(start));
+    if (failed_) {
+      buffer_.clear();  // the stream is dead: hold nothing for it
+      buffer_.shrink_to_fit();
+    } else {
+      buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(start));
+    }
     return !failed_;
   }
 
