@@ -211,9 +211,14 @@ int main(int argc, char** argv) {
     tcp::socket tcp_socket(io);
     udp::socket udp_socket(io);
     const auto address = asio::ip::make_address("127.0.0.1");
-    if (options.transport == "tcp") tcp_socket.connect(tcp::endpoint(address, daemon.input_port()));
+    if (options.transport == "tcp") {
+      tcp_socket.connect(tcp::endpoint(address, daemon.input_port()));
+      tcp_socket.set_option(tcp::no_delay(true));  // a live feed does not wait to fill segments
+    }
     else udp_socket.open(udp::v4());
-    const std::size_t batch_bytes = options.transport == "tcp" ? 16384 : 1400;
+    // Paced runs send small batches, as a live feed would; a flat-out TCP run sends big
+    // writes so that the sender is never the bottleneck.
+    const std::size_t batch_bytes = options.transport == "tcp" && options.rate <= 0 ? 16384 : 1400;
     std::string batch;
     std::size_t sent = 0;
     std::size_t i = 0;

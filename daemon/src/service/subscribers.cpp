@@ -193,6 +193,9 @@ void SubscriberServer::accept() {
   acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
     if (stopped_) return;
     if (!ec) {
+      // Alerts are small lines that must leave at once: no Nagle delay.
+      boost::system::error_code ignored;
+      socket.set_option(tcp::no_delay(true), ignored);
       auto session = std::make_shared<SubscriberSession>(std::move(socket), *this);
       if (sessions_.size() >= max_subscribers_) {
         ++figures_.refused;
