@@ -154,6 +154,21 @@ void Pipeline::apply(track::TrackSlot slot) {
 void Pipeline::collect_candidates(track::TrackSlot slot) {
   const track::Track& track = tracks_[slot];
   candidates_.clear();
+  // Pairs pending confirmation or alerting are always evaluated, so they see their clear
+  // evaluations even when the search (edges mode) does not return them; they are marked
+  // so that probe() keeps them and the search does not add them twice.
+  if (++candidate_round_ == 0) {  // wrapped: forget every mark
+    std::fill(partner_mark_.begin(), partner_mark_.end(), 0);
+    candidate_round_ = 1;
+  }
+  if (partner_mark_.size() < probe_state_.size()) partner_mark_.resize(probe_state_.size(), 0);
+  partners_scratch_.clear();
+  alerts_.partners_of(slot, partners_scratch_);
+  for (const track::TrackSlot other : partners_scratch_) {
+    partner_mark_[other] = candidate_round_;
+    // Brute force takes every live track below, partners included.
+    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(other);
+  }
   points_scratch_.clear();
   switch (config_.probe_mode) {
     case probe::ProbeMode::Exact:
@@ -161,55 +176,84 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       break;
     case probe::ProbeMode::Edges:
       search_.neighbours(kdt_, track.point, points_scratch_);
+      // A few points; within() gives each once by construction, this makes sure here.
+      std::sort(points_scratch_.begin(), points_scratch_.end());
+      points_scratch_.erase(std::unique(points_scratch_.begin(), points_scratch_.end()), points_scratch_.end());
       break;
     case probe::ProbeMode::Brute:
       for (track::TrackSlot other = 0; other < probe_state_.size(); ++other)
-        if (probe_state_[other].live) candidates_.push_back(other);
-      break;
+        if (probe_state_[other].live && other != slot) candidates_.push_back(other);
+      return;
   }
-  for (const kinetic::PointId p : points_scratch_) candidates_.push_back(slot_of_point_[p]);
-  // Pairs pending confirmation or alerting are always re-evaluated, so they see their
-  // clear evaluations even when the search (edges mode) does not return them. Brute
-  // force already has every live track, in slot order.
-  if (config_.probe_mode != probe::ProbeMode::Brute) {
-    alerts_.partners_of(slot, candidates_);
-    std::sort(candidates_.begin(), candidates_.end());
-    candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+  // Each point once, never the track's own (within() marks what it visited).
+  for (const kinetic::PointId p : points_scratch_) {
+    const track::TrackSlot other = slot_of_point_[p];
+    if (partner_mark_[other] != candidate_round_) candidates_.push_back(other);
   }
-  candidates_.erase(std::remove(candidates_.begin(), candidates_.end(), slot), candidates_.end());
+}
+
+Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
+                                                   track::TrackSlot other_slot) const {
+  const ProbeState& self = probe_state_[slot];
+  const ProbeState& other = probe_state_[other_slot];
+  PairKinematics pair;
+  pair.scale = geo::Projection::pair_scale(self.scale, other.scale);
+  pair.minima = config_.minima;
+  pair.minima.horizontal_m *= pair.scale;
+  // The lower slot goes first so that a pair's figures do not depend on which of its
+  // two tracks was updated.
+  const bool self_first = slot < other_slot;
+  const probe::Kinematics k_other = other.at(clock_);
+  pair.p = self_first ? slot : other_slot;
+  pair.q = self_first ? other_slot : slot;
+  pair.kp = self_first ? k_self : k_other;
+  pair.kq = self_first ? k_other : k_self;
+  return pair;
 }
 
 void Pipeline::probe(track::TrackSlot slot) {
   collect_candidates(slot);
   ++stats_.probes;
   stats_.candidates += candidates_.size();
+  const probe::Kinematics k_self = probe_state_[slot].at(clock_);
+  // Most candidates are clear and have no pair state, and for those the alert manager
+  // does nothing: only pairs in conflict or with state (the partners, marked above) go
+  // on, in slot order, which fixes the order of the events of one probe (SPEC §2.5).
+  // Sorting these few rather than every candidate found is the same order.
+  evaluated_.clear();
   const ProbeState& self = probe_state_[slot];
-  const probe::Kinematics k_self = self.at(clock_);
-  for (const track::TrackSlot other_slot : candidates_) {
-    const ProbeState& other = probe_state_[other_slot];
-    const probe::Kinematics k_other = other.at(clock_);
+  for (const track::TrackSlot other : candidates_) {
+    if (partner_mark_[other] == candidate_round_) {
+      evaluated_.push_back(other);
+      continue;
+    }
+    // pair_kinematics() without its copies: this loop runs ~100 times per update.
+    const ProbeState& them = probe_state_[other];
+    const probe::Kinematics k_other = them.at(clock_);
     probe::SeparationMinima minima = config_.minima;
-    minima.horizontal_m *= geo::Projection::pair_scale(self.scale, other.scale);
-    // The lower slot goes first so that a pair's figures do not depend on which of its
-    // two tracks was updated.
-    const bool self_first = slot < other_slot;
-    const probe::Kinematics& kp = self_first ? k_self : k_other;
-    const probe::Kinematics& kq = self_first ? k_other : k_self;
+    if (probe::vertically_apart_for_ever(k_self, k_other, minima)) continue;
+    minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
+    if (slot < other ? probe::in_conflict(k_self, k_other, minima) : probe::in_conflict(k_other, k_self, minima))
+      evaluated_.push_back(other);
+  }
+  std::sort(evaluated_.begin(), evaluated_.end());
+  for (const track::TrackSlot other : evaluated_) {
+    const PairKinematics pair = pair_kinematics(slot, k_self, other);
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
-    if (probe::in_conflict(kp, kq, minima)) g = probe::evaluate_pair(kp, kq, minima);
+    if (probe::in_conflict(pair.kp, pair.kq, pair.minima)) g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
     alert::Evaluation e;
     e.in_conflict = g.in_conflict;
     if (g.in_conflict) {
+      if (conflict_tap_) conflict_tap_(pair.p, pair.q);
       e.severity = alerts_.classify(g.lost_now, g.t_los_s);
       e.t_los_s = g.t_los_s;
-      e.cpa_h_m = g.cpa_h_m / geo::Projection::pair_scale(self.scale, other.scale);
+      e.cpa_h_m = g.cpa_h_m / pair.scale;
       e.cpa_v_ft = g.cpa_v_m / kFootToMetre;
     }
-    const track::TrackSlot p = self_first ? slot : other_slot;
-    const track::TrackSlot q = self_first ? other_slot : slot;
     alerts_.evaluate(
-        p, q, e, clock_, [&](AlertEvent& event) { fill_event(event, p, q, g, kp, kq); }, pending_events_);
+        pair.p, pair.q, e, clock_, [&](AlertEvent& event) { fill_event(event, pair.p, pair.q, g, pair.kp, pair.kq); },
+        pending_events_);
   }
   deliver();
 }

@@ -57,6 +57,13 @@ class Pipeline {
   /// Receives every alert event, in sequence order, synchronously.
   void set_alert_sink(AlertSink sink) { sink_ = std::move(sink); }
 
+  /// Told of every pair evaluation that finds a conflict, before the alert manager sees
+  /// it: slots (p < q) of the pair, at now(). Alerts need `confirm` such evaluations;
+  /// the tap sees each one, so benchmarks can check other candidate searches against
+  /// the probe's. Empty by default (no cost beyond a test per conflict).
+  using ConflictTap = std::function<void(track::TrackSlot p, track::TrackSlot q)>;
+  void set_conflict_tap(ConflictTap tap) { conflict_tap_ = std::move(tap); }
+
   /// Processes one record (any data time; see TrackTableConfig for what is refused).
   void process(const TrackReport& report);
 
@@ -97,6 +104,15 @@ class Pipeline {
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
   void collect_candidates(track::TrackSlot slot);
+  /// A pair as the probe evaluates it: lower slot first, minima scaled for the pair.
+  struct PairKinematics {
+    track::TrackSlot p, q;
+    probe::Kinematics kp, kq;
+    probe::SeparationMinima minima;
+    double scale;  // the pair's projection scale
+  };
+  PairKinematics pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
+                                 track::TrackSlot other_slot) const;
   void fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
                   const probe::Kinematics& kp, const probe::Kinematics& kq) const;
   void deliver();
@@ -128,7 +144,12 @@ class Pipeline {
   std::vector<ProbeState> probe_state_;
   std::vector<track::TrackSlot> slot_of_point_;
   std::vector<kinetic::PointId> points_scratch_;
-  std::vector<track::TrackSlot> candidates_;
+  std::vector<track::TrackSlot> candidates_;     // every pair partner of one probe, once each
+  std::vector<track::TrackSlot> evaluated_;      // those the alert manager must see, in slot order
+  std::vector<track::TrackSlot> partners_scratch_;
+  std::vector<std::uint32_t> partner_mark_;      // by slot: == candidate_round_ for this probe's partners
+  std::uint32_t candidate_round_ = 0;
+  ConflictTap conflict_tap_;
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
   double epoch_ = 0.0;  // engine time = data time − epoch (SPEC §4: local time frames)

@@ -50,4 +50,14 @@ ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const S
 /// path for the many pairs that are clear.
 bool in_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
 
+/// True when the pair keeps its vertical separation for ever: the same vertical rate and
+/// at least S_v apart. in_conflict() is then false, decided the same way (an empty
+/// vertical interval), so callers may skip it; inline because most candidate pairs of
+/// en-route traffic are level at different flight levels.
+inline bool vertically_apart_for_ever(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
+  const double dz = b.altitude_m - a.altitude_m;
+  const double wz = b.vertical_rate_mps - a.vertical_rate_mps;
+  return wz == 0.0 && !(dz < minima.vertical_m && -dz < minima.vertical_m);
+}
+
 }  // namespace kew::probe

@@ -39,7 +39,17 @@ class ProximitySearch {
   void neighbours(const kinetic::KineticDelaunay& kdt, PointId center, std::vector<PointId>& out);
 
  private:
-  bool first_visit(PointId p);
+  /// Marks p visited in this round; false when it already was.
+  bool first_visit(PointId p) {
+    if (p >= visited_round_.size()) visited_round_.resize(p + 1, 0);
+    if (visited_round_[p] == round_) return false;
+    visited_round_[p] = round_;
+    return true;
+  }
+  /// kdt.for_each_neighbor(id, f) without its copy and sort; may call f twice for one
+  /// point (a flat chain's end).
+  template <class F>
+  static void for_each_neighbor(const kinetic::KineticDelaunay& kdt, PointId id, F&& f);
 
   std::vector<std::uint32_t> visited_round_;
   std::uint32_t round_ = 0;

@@ -107,6 +107,22 @@ class Tds {
   void incident_faces(VertexIndex v, std::vector<FaceIndex>& out) const;
   /// Vertices adjacent to v in counter-clockwise order (may include the infinite vertex).
   void adjacent_vertices(VertexIndex v, std::vector<VertexIndex>& out) const;
+  /// Calls f(w) for every vertex w adjacent to v, in the order adjacent_vertices() gives
+  /// (the infinite vertex included, a flat chain's end neighbour twice), without
+  /// allocating: the probe's breadth-first search visits ~100 vertices per update.
+  template <class F>
+  void for_each_adjacent_vertex(VertexIndex v, F&& f) const {
+    const FaceIndex start = vertex_face_[v];
+    if (start == kNoFace) return;
+    FaceIndex f_index = start;
+    std::size_t visited = 0;
+    do {
+      const Face& face = faces_[f_index];
+      const auto next = static_cast<unsigned>(ccw(face.index_of(v)));
+      f(face.vertex[next]);
+      f_index = face.neighbor[next];
+    } while (f_index != start && ++visited <= faces_.size());  // bound: a corrupt ring cannot loop forever
+  }
 
   /// Combinatorial validity of the whole structure; O(V + F).
   TdsDefect check() const;

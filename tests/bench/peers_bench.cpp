@@ -1,0 +1,952 @@
+// kew_peers_bench: kew's per-radar-period cost against what an engineer would otherwise
+// build (SPEC §6 Performance, issue 8), on the same generated traffic and in one run:
+//   (a) kew         the Pipeline (track table, projection, kinetic Delaunay updates and
+//                   events, exact BFS probe, alert manager) — no alert output;
+//   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period
+//                   (spatial sort, then insertion with a hint; Epick) + the same BFS probe;
+//   (c) flip        one triangulation kept across periods: every position updated in place
+//                   at the period's start, every edge checked (exact incircle) and
+//                   repaired by Lawson flips (a full rebuild when a face folded over);
+//   (d) grid        a uniform grid of R_max cells rebuilt every period;
+//   (e) brute       every live track for every update: BlueSky's state-based detection
+//                   (all pairs, the same CPA) — sampled when it would take too long.
+//
+// All five evaluate the same thing: on every applied update of track i at time t, each
+// candidate j with the conflict test of the Pipeline (kinematics extrapolated to t, lower
+// slot first, minima scaled by the pair's projection scale). Each must find exactly the
+// pairs in conflict that (a) finds for the same updates; a difference is printed and
+// makes the exit status 1.
+//
+// The baselines index positions at the period's start t0, so an index position lags
+// the track's current one by at most D(t) = v_max·(t − t0) + J, J the largest sum of
+// measurement jumps of one track since t0 (both known online): their searches use
+// R_i + D(t), with R_i = S_h·k_max + T·(|v_i| + v_max) (kew's R_i without its 2τ).
+// Tracks that appeared since t0, or whose jumps add up to more than 500 m, are left out
+// of the index (and of J) and tried by every query instead.
+//
+// Usage: kew_peers_bench [--quick] [--aircraft 1000,10000,100000] [--periods N]
+//                        [--warmup N] [--seed S] [--scenario mixed|random|airways|stacks|tma]
+//                        [--brute-budget PAIRS] [--json FILE]
+//
+// Density: the region grows with √N (one aircraft per 126 km² at every N), but the
+// mixed scenario puts its TMA arrivals (20 %) on one centre and its airways (40 %) on at
+// most 40 routes, so its local density grows with N: at 100,000 aircraft an update has
+// ~4× the candidates of 1,000. --scenario random keeps the density uniform.
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <iterator>
+#include <numeric>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench_report.hpp"
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/replay/traffic_generator.hpp"
+#include "kew/triangulation/delaunay.hpp"
+
+namespace {
+
+using kew::bench::JsonText;
+using kew::bench::Stopwatch;
+using kew::geometry::Point2;
+using kew::geometry::Vector2;
+using kew::probe::Kinematics;
+using Slot = kew::track::TrackSlot;
+constexpr Slot kNone = kew::track::kNoTrack;
+
+// ---------------------------------------------------------------------------------
+// Parameters
+
+struct Params {
+  std::vector<std::size_t> aircraft{1000, 10000, 100000};
+  std::size_t periods = 3;  // measured radar periods per fleet size
+  std::size_t warmup = 2;   // periods replayed first, untimed (the first inserts everyone)
+  double period_s = 4.0;
+  std::uint64_t seed = 8;
+  kew::replay::Scenario scenario = kew::replay::Scenario::Mixed;
+  // Largest number of pair tests brute force runs per period; beyond it every k-th
+  // update is timed and the period's time extrapolated (and labelled so).
+  double brute_budget = 1.5e8;
+  std::string json_path;
+};
+
+// Density: 100,000 aircraft fill the generator's largest region (radius 2,000 km), and
+// smaller fleets get a region scaled by √N, so every fleet size has the same density:
+// one aircraft per 126 km² (twice kew-replay's usual 2,000 aircraft in 400 km).
+double region_radius_km(std::size_t aircraft) {
+  return std::clamp(2000.0 * std::sqrt(static_cast<double>(aircraft) / 100000.0), 20.0, 2000.0);
+}
+
+[[noreturn]] void usage(const std::string& why) {
+  std::cerr << "kew_peers_bench: " << why
+            << "\nusage: kew_peers_bench [--quick] [--aircraft N,N,...] [--periods N] [--warmup N] [--seed S]"
+               " [--scenario NAME] [--brute-budget PAIRS] [--json FILE]\n";
+  std::exit(2);
+}
+
+std::vector<std::size_t> parse_list(const std::string& text) {
+  std::vector<std::size_t> out;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    out.push_back(std::stoul(text.substr(begin, comma - begin)));
+    begin = comma + 1;
+  }
+  return out;
+}
+
+Params parse(int argc, char** argv) {
+  Params p;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage("missing value for " + flag);
+      return argv[++i];
+    };
+    try {
+      if (flag == "--quick") {  // CI smoke run (< 1 min); later flags still override
+        p.aircraft = {1000, 10000};
+        p.periods = 2;
+        p.warmup = 1;
+        p.brute_budget = 3e7;
+      } else if (flag == "--aircraft") {
+        p.aircraft = parse_list(value());
+      } else if (flag == "--periods") {
+        p.periods = std::stoul(value());
+      } else if (flag == "--warmup") {
+        p.warmup = std::stoul(value());
+      } else if (flag == "--scenario") {
+        if (!kew::replay::parse_scenario(value(), p.scenario)) usage("unknown scenario");
+      } else if (flag == "--seed") {
+        p.seed = std::stoull(value());
+      } else if (flag == "--brute-budget") {
+        p.brute_budget = std::stod(value());
+      } else if (flag == "--json") {
+        p.json_path = value();
+      } else {
+        usage("unknown flag " + flag);
+      }
+    } catch (const std::logic_error&) {
+      usage("bad value for " + flag);
+    }
+  }
+  for (const std::size_t n : p.aircraft)
+    if (n < 10 || n > 1000000) usage("aircraft must be in [10, 1000000]");
+  if (p.periods < 1 || p.warmup < 1 || !(p.brute_budget > 0)) usage("need periods >= 1, warmup >= 1, budget > 0");
+  return p;
+}
+
+// ---------------------------------------------------------------------------------
+// Workload: generated records, and what the Pipeline's track table makes of them
+
+// A track's state as the probe reads it (the Pipeline's ProbeState).
+struct TrackState {
+  Kinematics kinematics;  // at t
+  double t = 0.0;
+  double scale = 1.0;
+  Kinematics at(double at_t) const {  // the Pipeline's extrapolation, operation for operation
+    Kinematics k = kinematics;
+    const double dt = at_t - t;
+    k.position = k.position + dt * k.velocity;
+    k.altitude_m += dt * k.vertical_rate_mps;
+    return k;
+  }
+};
+
+// One applied update (the Pipeline probes) or one track leaving the engine.
+struct Step {
+  bool drop = false;
+  Slot slot = 0;
+  std::uint32_t record = 0;  // index in Workload::records
+  double clock = 0.0;        // pipeline clock when it happens (UTC s)
+  TrackState state;          // after the update
+};
+
+struct Workload {
+  std::size_t aircraft = 0;
+  double radius_km = 0.0;
+  kew::PipelineConfig config;
+  std::vector<kew::TrackReport> records;
+  std::vector<Step> steps;
+  std::vector<std::size_t> period_first_record;  // period k: [first[k], first[k+1])
+  std::vector<std::size_t> period_first_step;
+  double v_max = 0.0;  // fastest plane speed of any state (m/s)
+  double k_max = 1.0;  // projection scale bound
+  std::uint64_t rejected = 0;
+};
+
+Workload make_workload(const Params& prm, std::size_t aircraft) {
+  Workload w;
+  w.aircraft = aircraft;
+  w.radius_km = region_radius_km(aircraft);
+  kew::replay::GeneratorConfig g;
+  g.scenario = prm.scenario;
+  g.aircraft = aircraft;
+  g.period_s = prm.period_s;
+  g.duration_s = prm.period_s * static_cast<double>(prm.warmup + prm.periods);
+  g.seed = prm.seed;
+  g.radius_km = w.radius_km;
+  kew::replay::TrafficGenerator generator(g);
+  w.records.reserve(aircraft * (prm.warmup + prm.periods));
+  for (kew::TrackReport r; generator.next(r);) w.records.push_back(r);
+
+  w.config.reference = kew::geo::GeodeticPosition{g.center_lat_deg, g.center_lon_deg};
+  w.config.coverage_radius_m = std::min(3.0e6, std::max(1.5e6, 1.25e3 * w.radius_km + 50e3));
+  const kew::geo::Projection projection(*w.config.reference, w.config.coverage_radius_m);
+  w.k_max = projection.max_scale();
+
+  // The Pipeline's own sequence of track table calls (Pipeline::process), so the slots
+  // and kinematics here are the ones its probe sees.
+  kew::track::TrackTable table(w.config.tracks);
+  std::vector<bool> in_engine;
+  double clock = 0.0;
+  bool started = false;
+  std::size_t period = 0;
+  for (std::uint32_t index = 0; index < w.records.size(); ++index) {
+    const kew::TrackReport& r = w.records[index];
+    while (r.t >= g.start_time + prm.period_s * static_cast<double>(period)) {
+      w.period_first_record.push_back(index);
+      w.period_first_step.push_back(w.steps.size());
+      ++period;
+    }
+    if (!table.plausibility_problem(r).empty()) {
+      ++w.rejected;
+      continue;
+    }
+    if (!started) {
+      started = true;
+      clock = std::floor(r.t);
+    }
+    if (r.t >= clock - table.config().max_lateness_s) {
+      const double to = std::max(clock, r.t);
+      table.expire(to, [&](Slot slot, const kew::track::Track& track) {
+        clock = std::max(clock, track.t + table.config().track_timeout_s);
+        if (in_engine[slot]) w.steps.push_back({true, slot, index, clock, {}});
+        in_engine[slot] = false;
+      });
+      clock = to;
+    }
+    const kew::track::AdmitResult admitted = table.admit(r, clock, projection);
+    if (admitted.admission == kew::track::Admission::Rejected) {
+      ++w.rejected;
+      continue;
+    }
+    if (admitted.slot >= in_engine.size()) in_engine.resize(admitted.slot + 1, false);
+    if (admitted.admission == kew::track::Admission::AwaitingVelocity) {
+      if (in_engine[admitted.slot]) w.steps.push_back({true, admitted.slot, index, clock, {}});
+      in_engine[admitted.slot] = false;
+      continue;
+    }
+    const kew::track::Track& track = table[admitted.slot];
+    in_engine[admitted.slot] = true;
+    w.steps.push_back({false, admitted.slot, index, clock, {track.kinematics, track.t, track.plane.scale}});
+    w.v_max = std::max(w.v_max, kew::geometry::norm(track.kinematics.velocity));
+  }
+  while (w.period_first_record.size() <= prm.warmup + prm.periods) {
+    w.period_first_record.push_back(w.records.size());
+    w.period_first_step.push_back(w.steps.size());
+  }
+  return w;
+}
+
+// ---------------------------------------------------------------------------------
+// Conflicts found, to compare methods
+
+struct Conflict {
+  std::uint32_t record;
+  Slot p, q;  // p < q
+  auto operator<=>(const Conflict&) const = default;
+};
+
+struct PeriodResult {
+  double seconds = 0.0;            // measured (or, for sampled brute force, extrapolated)
+  double measured_seconds = 0.0;   // what the clock said
+  std::uint64_t pairs_tested = 0;  // CPA tests (sampled updates only, when sampled)
+  std::uint64_t queries = 0;
+  std::vector<Conflict> conflicts;
+  std::uint64_t fallbacks = 0;     // (c): periods needing a full rebuild
+  std::uint64_t flips = 0;         // (c)
+  std::uint64_t audit_violations = 0;
+};
+
+struct MethodResult {
+  std::string name;
+  std::string label;
+  std::size_t sample_stride = 1;  // every k-th record's update is evaluated (brute force)
+  std::vector<PeriodResult> periods;
+  std::uint64_t missing = 0, extra = 0;  // against kew, over all periods
+  double mean_seconds() const {
+    double sum = 0.0;
+    for (const PeriodResult& p : periods) sum += p.seconds;
+    return periods.empty() ? 0.0 : sum / static_cast<double>(periods.size());
+  }
+  std::uint64_t total(std::uint64_t PeriodResult::*field) const {
+    std::uint64_t sum = 0;
+    for (const PeriodResult& p : periods) sum += p.*field;
+    return sum;
+  }
+};
+
+// ---------------------------------------------------------------------------------
+// (a) kew
+
+MethodResult run_kew(const Params& prm, const Workload& w) {
+  MethodResult result{"kew", "kew: KDT updates + exact BFS probe (Pipeline)", 1, {}, 0, 0};
+  kew::Pipeline pipeline(w.config);
+  std::uint32_t current = 0;
+  std::vector<Conflict>* sink = nullptr;
+  pipeline.set_conflict_tap([&](Slot p, Slot q) {
+    if (sink) sink->push_back({current, p, q});
+  });
+  for (std::size_t period = 0; period < prm.warmup + prm.periods; ++period) {
+    const bool measured = period >= prm.warmup;
+    PeriodResult out;
+    sink = measured ? &out.conflicts : nullptr;
+    const std::uint64_t probes0 = pipeline.statistics().probes, pairs0 = pipeline.statistics().candidates;
+    const Stopwatch clock;
+    for (std::size_t i = w.period_first_record[period]; i < w.period_first_record[period + 1]; ++i) {
+      current = static_cast<std::uint32_t>(i);
+      pipeline.process(w.records[i]);
+    }
+    out.seconds = out.measured_seconds = clock.seconds();
+    out.queries = pipeline.statistics().probes - probes0;
+    out.pairs_tested = pipeline.statistics().candidates - pairs0;
+    if (measured) result.periods.push_back(std::move(out));
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------
+// The baselines' common driver
+
+// What every baseline knows of the tracks: the probe states, and how stale the index
+// built at the period's start t0 may be.
+struct World {
+  static constexpr double kMaxIndexedJump_m = 500.0;
+  std::vector<TrackState> state;
+  std::vector<std::uint8_t> live;     // in the engine
+  std::vector<std::uint8_t> indexed;  // in this period's index, at its t0 position
+  std::vector<double> jumps;          // Σ |new − predicted| since t0, per indexed track (m)
+  std::vector<Slot> extras;           // live tracks not in the index (appeared since t0)
+  std::vector<std::uint8_t> in_extras;
+  double jump_max = 0.0;
+  double t0 = 0.0;
+
+  void grow(Slot slot) {
+    if (slot < state.size()) return;
+    state.resize(slot + 1);
+    live.resize(slot + 1, 0);
+    indexed.resize(slot + 1, 0);
+    jumps.resize(slot + 1, 0.0);
+    in_extras.resize(slot + 1, 0);
+  }
+  void begin_period(double t) {
+    t0 = t;
+    jump_max = 0.0;
+    for (const Slot s : extras) in_extras[s] = 0;
+    extras.clear();
+    for (std::size_t s = 0; s < live.size(); ++s) {
+      indexed[s] = live[s];
+      jumps[s] = 0.0;
+    }
+  }
+  void apply(const Step& step) {
+    grow(step.slot);
+    const Slot s = step.slot;
+    if (step.drop) {
+      live[s] = 0;
+      indexed[s] = 0;  // the slot may be reused by a new track: its index entry is stale
+      return;
+    }
+    if (indexed[s]) {
+      const Vector2 jump = step.state.at(step.clock).position - state[s].at(step.clock).position;
+      jumps[s] += kew::geometry::norm(jump);
+      // One track that jumped far (a manoeuvre, a bad plot) would widen every search;
+      // it leaves the index instead and is tried by every query until the next rebuild.
+      if (jumps[s] > kMaxIndexedJump_m) indexed[s] = 0;
+      else jump_max = std::max(jump_max, jumps[s]);
+    }
+    if (!indexed[s] && !in_extras[s]) {
+      in_extras[s] = 1;
+      extras.push_back(s);
+    }
+    state[s] = step.state;
+    live[s] = 1;
+  }
+  /// Bound on |current position − index position| of any indexed track at t (m).
+  double staleness(double t, double v_max) const { return v_max * (t - t0) + jump_max; }
+};
+
+// The Pipeline's conflict test of the pair (slot, other) at `clock` (Pipeline::probe).
+bool in_conflict(const World& world, Slot slot, const Kinematics& k_self, Slot other, double clock,
+                 const kew::probe::SeparationMinima& base) {
+  const TrackState& self = world.state[slot];
+  const TrackState& them = world.state[other];
+  kew::probe::SeparationMinima minima = base;
+  minima.horizontal_m *= kew::geo::Projection::pair_scale(self.scale, them.scale);
+  const Kinematics k_other = them.at(clock);
+  return slot < other ? kew::probe::in_conflict(k_self, k_other, minima)
+                      : kew::probe::in_conflict(k_other, k_self, minima);
+}
+
+// An index answers for_each_candidate(world, slot, centre, radius, f): f(j) at least for
+// every indexed track j whose t0 position is within radius of centre (others allowed).
+// rebuild(world, t0) makes it from the live tracks at the period's start.
+template <class Index>
+void run_index(const Params& prm, const Workload& w, Index& index, MethodResult& result) {
+  World world;
+  const kew::probe::SeparationMinima& minima = w.config.minima;
+  const double lookahead = minima.lookahead_s;
+  const std::size_t stride = result.sample_stride;
+  std::size_t step = 0;
+  for (; step < w.period_first_step[prm.warmup]; ++step) world.apply(w.steps[step]);
+  {  // untimed: (c) starts each period from the previous one's triangulation
+    PeriodResult unused;
+    const double t_start = w.records[w.period_first_record[prm.warmup]].t;
+    world.begin_period(t_start);
+    index.rebuild(world, t_start, unused);
+  }
+  for (std::size_t period = prm.warmup; period < prm.warmup + prm.periods; ++period) {
+    PeriodResult out;
+    const double t0 = w.records[w.period_first_record[period]].t;
+    double query_seconds = 0.0;
+    std::uint64_t records_in_period = 0, sampled = 0;
+    const Stopwatch clock;
+    world.begin_period(t0);
+    index.rebuild(world, t0, out);
+    for (; step < w.period_first_step[period + 1]; ++step) {
+      const Step& s = w.steps[step];
+      world.apply(s);
+      if (s.drop) continue;
+      ++records_in_period;
+      if (s.record % stride != 0) continue;
+      ++sampled;
+      std::optional<Stopwatch> query_clock;
+      if (stride > 1) query_clock.emplace();
+      const Kinematics k_self = world.state[s.slot].at(s.clock);
+      const double radius = minima.horizontal_m * w.k_max +
+                            lookahead * (kew::geometry::norm(k_self.velocity) + w.v_max) + 1.0 +
+                            world.staleness(s.clock, w.v_max);
+      const auto test = [&](Slot other) {
+        if (other == s.slot || !world.live[other]) return;
+        ++out.pairs_tested;
+        if (in_conflict(world, s.slot, k_self, other, s.clock, minima))
+          out.conflicts.push_back({s.record, std::min(s.slot, other), std::max(s.slot, other)});
+      };
+      // An index entry of a slot dropped since t0 is stale (the slot may hold a new track,
+      // which is among the extras).
+      index.for_each_candidate(world, s.slot, k_self.position, radius, [&](Slot other) {
+        if (world.indexed[other]) test(other);
+      });
+      for (const Slot other : world.extras) test(other);
+      ++out.queries;
+      if (query_clock) query_seconds += query_clock->seconds();
+    }
+    out.measured_seconds = clock.seconds();
+    out.seconds = out.measured_seconds;
+    if (stride > 1 && sampled > 0)
+      out.seconds += query_seconds * (static_cast<double>(records_in_period) / static_cast<double>(sampled) - 1.0);
+    out.audit_violations += index.audit();
+    result.periods.push_back(std::move(out));
+  }
+}
+
+double squared_distance(Point2 a, Point2 b) {
+  const Vector2 d = a - b;
+  return kew::geometry::dot(d, d);
+}
+
+// ---------------------------------------------------------------------------------
+// (b) CGAL static Delaunay triangulation, rebuilt every period
+
+namespace cgal {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+struct VertexInfo {
+  Slot first = kNone;      // a track at this point; others at exactly the same point chain on
+  std::uint32_t seen = 0;  // BFS round that visited the vertex
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, Kernel>;
+using Structure = CGAL::Triangulation_data_structure_2<VertexBase>;
+using Triangulation = CGAL::Delaunay_triangulation_2<Kernel, Structure>;
+using CgalPoint = Kernel::Point_2;
+using SortTraits = CGAL::Spatial_sort_traits_adapter_2<Kernel, CGAL::Pointer_property_map<CgalPoint>::type>;
+}  // namespace cgal
+
+class CgalRebuild {
+ public:
+  void rebuild(const World& world, double t0, PeriodResult&) {
+    dt_.clear();
+    points_.clear();
+    slots_.clear();
+    for (Slot s = 0; s < world.live.size(); ++s) {
+      if (!world.live[s]) continue;
+      const Point2 p = world.state[s].at(t0).position;
+      points_.emplace_back(p.x, p.y);
+      slots_.push_back(s);
+    }
+    order_.resize(points_.size());
+    std::iota(order_.begin(), order_.end(), std::size_t{0});
+    CGAL::spatial_sort(order_.begin(), order_.end(), cgal::SortTraits(CGAL::make_property_map(points_)));
+    vertex_of_.assign(world.live.size(), {});
+    same_point_next_.assign(world.live.size(), kNone);
+    cgal::Triangulation::Face_handle hint;
+    for (const std::size_t i : order_) {
+      const auto v = dt_.insert(points_[i], hint);
+      hint = v->face();
+      const Slot s = slots_[i];
+      same_point_next_[s] = v->info().first;  // kNone unless a duplicate
+      v->info().first = s;
+      vertex_of_[s] = v;
+    }
+  }
+
+  template <class F>
+  void for_each_candidate(const World& world, Slot slot, Point2 centre, double radius, F&& f) {
+    if (dt_.number_of_vertices() == 0) return;
+    const cgal::CgalPoint c(centre.x, centre.y);
+    // Any vertex in the disk will do as a start (see ProximitySearch): the track's own,
+    // or the nearest to the centre for a track that is not in the index.
+    const auto start = slot < vertex_of_.size() && world.indexed[slot] ? vertex_of_[slot] : dt_.nearest_vertex(c);
+    const double r2 = radius * radius;
+    if (CGAL::squared_distance(start->point(), c) > r2) return;
+    if (++round_ == 0) round_ = 1;  // a wrapped mark could only add candidates
+    frontier_.assign(1, start);
+    start->info().seen = round_;
+    for (std::size_t next = 0; next < frontier_.size(); ++next) {
+      const auto v = frontier_[next];
+      for (Slot s = v->info().first; s != kNone; s = same_point_next_[s]) f(s);
+      if (dt_.dimension() < 2) {  // all collinear: CGAL gives no faces, try every vertex
+        for (auto it = dt_.finite_vertices_begin(); it != dt_.finite_vertices_end(); ++it)
+          if (it->info().seen != round_) {
+            it->info().seen = round_;
+            frontier_.push_back(it);
+          }
+        continue;
+      }
+      auto around = dt_.incident_vertices(v);
+      const auto done = around;
+      do {
+        if (dt_.is_infinite(around) || around->info().seen == round_) continue;
+        around->info().seen = round_;
+        if (CGAL::squared_distance(around->point(), c) <= r2) frontier_.push_back(around);
+      } while (++around != done);
+    }
+  }
+
+  std::uint64_t audit() const { return dt_.is_valid() ? 0 : 1; }
+
+ private:
+  cgal::Triangulation dt_;
+  std::vector<cgal::CgalPoint> points_;
+  std::vector<Slot> slots_;
+  std::vector<std::size_t> order_;
+  std::vector<cgal::Triangulation::Vertex_handle> vertex_of_;
+  std::vector<Slot> same_point_next_;
+  std::vector<cgal::Triangulation::Vertex_handle> frontier_;
+  std::uint32_t round_ = 0;
+};
+
+// ---------------------------------------------------------------------------------
+// (c) One triangulation moved in place, checked edge by edge and repaired by flips
+
+class FlipRepair {
+ public:
+  void rebuild(const World& world, double t0, PeriodResult& out) {
+    using kew::triangulation::kNoVertex;
+    using kew::triangulation::Trajectory;
+    if (vertex_of_.size() < world.live.size()) vertex_of_.resize(world.live.size(), kNoVertex);
+    for (std::vector<Slot>& extra : same_point_) extra.clear();
+    // Tracks gone since the last period leave first, at the positions the structure holds.
+    bool broken = false;
+    for (Slot s = 0; s < vertex_of_.size(); ++s) {
+      const auto v = vertex_of_[s];
+      if (v == kNoVertex || world.live[s]) continue;
+      if (dt_.is_attached(v) && !dt_.detach(v)) broken = true;
+      dt_.destroy_vertex(v);
+      vertex_of_[s] = kNoVertex;
+    }
+    // Every remaining vertex jumps to its track's position at t0 (velocity zero keeps it
+    // there exactly while the period is probed).
+    for (Slot s = 0; s < vertex_of_.size(); ++s)
+      if (vertex_of_[s] != kNoVertex) dt_.set_trajectory(vertex_of_[s], Trajectory{world.state[s].at(t0).position, {}, t0});
+    dt_.set_time(t0);
+    // Check: a folded face (a point moved across an edge) cannot be repaired by flips.
+    const kew::triangulation::Tds& tds = dt_.tds();
+    seeds_.clear();
+    for (kew::triangulation::FaceIndex f = 0; f < tds.face_capacity() && !broken; ++f) {
+      if (!tds.face(f).alive) continue;
+      if (!dt_.is_positive(f)) broken = true;
+      for (int i = 0; i < 3; ++i) seeds_.emplace_back(f, i);
+    }
+    if (!broken) {
+      stuck_.clear();
+      out.flips += dt_.make_locally_delaunay(seeds_, &stuck_);
+      broken = !stuck_.empty();
+    }
+    if (broken) {
+      ++out.fallbacks;
+      dt_.rebuild(&duplicates_);
+      for (const auto& [vertex, same] : duplicates_) forget_duplicate(vertex, same);
+      duplicates_.clear();
+    }
+    // New tracks are inserted into the repaired triangulation.
+    for (Slot s = 0; s < world.live.size(); ++s) {
+      if (!world.live[s] || vertex_of_[s] != kNoVertex) continue;
+      const auto v = dt_.create_vertex(Trajectory{world.state[s].at(t0).position, {}, t0});
+      vertex_of_[s] = v;
+      grow_slot_map(v);
+      slot_of_vertex_[v] = s;
+      kew::triangulation::VertexIndex same = kNoVertex;
+      if (dt_.attach(v, &same, valid_hint()) == kew::triangulation::AttachResult::Duplicate) forget_duplicate(v, same);
+      else hint_ = tds.vertex_face(v);
+    }
+  }
+
+  template <class F>
+  void for_each_candidate(const World& world, Slot slot, Point2 centre, double radius, F&& f) {
+    using kew::triangulation::kInfiniteVertex;
+    if (dt_.size() == 0) return;
+    const kew::triangulation::Tds& tds = dt_.tds();
+    const bool own = slot < vertex_of_.size() && world.indexed[slot] && vertex_of_[slot] != kew::triangulation::kNoVertex;
+    const auto start = own ? vertex_of_[slot] : nearest_vertex(centre);
+    const double r2 = radius * radius;
+    if (squared_distance(dt_.position(start), centre) > r2) return;
+    if (seen_.size() < tds.vertex_capacity()) seen_.resize(tds.vertex_capacity(), 0);
+    if (++round_ == 0) round_ = 1;
+    frontier_.assign(1, start);
+    seen_[start] = round_;
+    for (std::size_t next = 0; next < frontier_.size(); ++next) {
+      const auto v = frontier_[next];
+      f(slot_of_vertex_[v]);
+      for (const Slot s : same_point_[v]) f(s);
+      if (!tds.is_attached(v)) continue;  // fewer than two points: no faces
+      tds.for_each_adjacent_vertex(v, [&](kew::triangulation::VertexIndex w) {
+        if (w == kInfiniteVertex || seen_[w] == round_) return;
+        seen_[w] = round_;
+        if (squared_distance(dt_.position(w), centre) <= r2) frontier_.push_back(w);
+      });
+    }
+  }
+
+  std::uint64_t audit() const { return dt_.audit().violations(); }
+
+ private:
+  // Greedy walk to the vertex nearest `p`: from any vertex some neighbour is closer to p
+  // unless the vertex is the nearest (Delaunay).
+  kew::triangulation::VertexIndex nearest_vertex(Point2 p) const {
+    const kew::triangulation::Tds& tds = dt_.tds();
+    const kew::triangulation::Face& face = tds.face(dt_.locate(p, valid_hint()));
+    auto best = face.vertex[0] != kew::triangulation::kInfiniteVertex ? face.vertex[0] : face.vertex[1];
+    double best_d2 = squared_distance(dt_.position(best), p);
+    for (auto current = kew::triangulation::kNoVertex; current != best;) {
+      current = best;
+      tds.for_each_adjacent_vertex(current, [&](kew::triangulation::VertexIndex w) {
+        if (w == kew::triangulation::kInfiniteVertex) return;
+        const double d2 = squared_distance(dt_.position(w), p);
+        if (d2 < best_d2) {
+          best_d2 = d2;
+          best = w;
+        }
+      });
+    }
+    return best;
+  }
+  kew::triangulation::FaceIndex valid_hint() const {
+    const kew::triangulation::Tds& tds = dt_.tds();
+    return hint_ < tds.face_capacity() && tds.face(hint_).alive ? hint_ : kew::triangulation::kNoFace;
+  }
+  void grow_slot_map(kew::triangulation::VertexIndex v) {
+    if (v >= slot_of_vertex_.size()) {
+      slot_of_vertex_.resize(v + 1, kNone);
+      same_point_.resize(v + 1);
+    }
+  }
+  // A track at exactly another's position rides along with that vertex this period.
+  void forget_duplicate(kew::triangulation::VertexIndex vertex, kew::triangulation::VertexIndex same) {
+    const Slot s = slot_of_vertex_[vertex];
+    grow_slot_map(same);
+    same_point_[same].push_back(s);
+    dt_.destroy_vertex(vertex);
+    vertex_of_[s] = kew::triangulation::kNoVertex;
+  }
+
+  kew::triangulation::DelaunayTriangulation dt_;
+  std::vector<kew::triangulation::VertexIndex> vertex_of_;  // by slot
+  std::vector<Slot> slot_of_vertex_;
+  std::vector<std::vector<Slot>> same_point_;  // by vertex: tracks at exactly its point
+  std::vector<std::pair<kew::triangulation::FaceIndex, int>> seeds_, stuck_;
+  std::vector<std::pair<kew::triangulation::VertexIndex, kew::triangulation::VertexIndex>> duplicates_;
+  std::vector<kew::triangulation::VertexIndex> frontier_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t round_ = 0;
+  kew::triangulation::FaceIndex hint_ = kew::triangulation::kNoFace;
+};
+
+// ---------------------------------------------------------------------------------
+// (d) Uniform grid rebuilt every period
+
+class UniformGrid {
+ public:
+  explicit UniformGrid(double cell_m) : cell_(cell_m) {}
+
+  void rebuild(const World& world, double t0, PeriodResult&) {
+    entries_.clear();
+    double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
+    for (Slot s = 0; s < world.live.size(); ++s) {
+      if (!world.live[s]) continue;
+      const Point2 p = world.state[s].at(t0).position;
+      entries_.push_back({p, s});
+      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+    }
+    if (entries_.empty()) return;
+    origin_ = {min_x, min_y};
+    columns_ = static_cast<std::size_t>((max_x - min_x) / cell_) + 1;
+    rows_ = static_cast<std::size_t>((max_y - min_y) / cell_) + 1;
+    // Counting sort of the entries by cell: each cell's entries are contiguous.
+    cell_start_.assign(columns_ * rows_ + 1, 0);
+    for (const Entry& e : entries_) ++cell_start_[cell_of(e.p) + 1];
+    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+    sorted_.resize(entries_.size());
+    fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (const Entry& e : entries_) sorted_[fill_[cell_of(e.p)]++] = e;
+  }
+
+  template <class F>
+  void for_each_candidate(const World&, Slot, Point2 centre, double radius, F&& f) const {
+    if (sorted_.empty()) return;
+    const double r2 = radius * radius;
+    const std::size_t x0 = clamp_cell(centre.x - radius - origin_.x, columns_);
+    const std::size_t x1 = clamp_cell(centre.x + radius - origin_.x, columns_);
+    const std::size_t y0 = clamp_cell(centre.y - radius - origin_.y, rows_);
+    const std::size_t y1 = clamp_cell(centre.y + radius - origin_.y, rows_);
+    for (std::size_t y = y0; y <= y1; ++y)
+      for (std::size_t i = cell_start_[y * columns_ + x0]; i < cell_start_[y * columns_ + x1 + 1]; ++i)
+        if (squared_distance(sorted_[i].p, centre) <= r2) f(sorted_[i].slot);
+  }
+
+  std::uint64_t audit() const { return 0; }
+
+ private:
+  struct Entry {
+    Point2 p;
+    Slot slot;
+  };
+  std::size_t clamp_cell(double offset, std::size_t count) const {
+    const double cell = std::floor(offset / cell_);
+    return cell <= 0.0 ? 0 : std::min(count - 1, static_cast<std::size_t>(cell));
+  }
+  std::size_t cell_of(Point2 p) const {
+    return clamp_cell(p.y - origin_.y, rows_) * columns_ + clamp_cell(p.x - origin_.x, columns_);
+  }
+
+  double cell_;
+  Point2 origin_;
+  std::size_t columns_ = 0, rows_ = 0;
+  std::vector<Entry> entries_, sorted_;
+  std::vector<std::size_t> cell_start_, fill_;
+};
+
+// ---------------------------------------------------------------------------------
+// (e) Brute force: every live track (BlueSky's state-based detection tests all pairs)
+
+class BruteForce {
+ public:
+  void rebuild(const World&, double, PeriodResult&) {}
+  template <class F>
+  void for_each_candidate(const World& world, Slot, Point2, double, F&& f) const {
+    for (Slot s = 0; s < world.live.size(); ++s)  // the live ones not indexed are the driver's extras
+      if (world.indexed[s]) f(s);
+  }
+  std::uint64_t audit() const { return 0; }
+};
+
+// ---------------------------------------------------------------------------------
+// Comparison and output
+
+void compare(const MethodResult& kew_result, MethodResult& m) {
+  for (std::size_t k = 0; k < m.periods.size(); ++k) {
+    std::vector<Conflict> expected;
+    for (const Conflict& c : kew_result.periods[k].conflicts)
+      if (c.record % m.sample_stride == 0) expected.push_back(c);
+    std::vector<Conflict>& found = m.periods[k].conflicts;
+    std::sort(expected.begin(), expected.end());
+    std::sort(found.begin(), found.end());
+    std::vector<Conflict> missing, extra;
+    std::set_difference(expected.begin(), expected.end(), found.begin(), found.end(), std::back_inserter(missing));
+    std::set_difference(found.begin(), found.end(), expected.begin(), expected.end(), std::back_inserter(extra));
+    m.missing += missing.size();
+    m.extra += extra.size();
+    const auto show = [&](const char* what, const std::vector<Conflict>& list) {
+      for (std::size_t i = 0; i < std::min<std::size_t>(list.size(), 5); ++i)
+        std::cerr << "  MISMATCH " << m.name << " period " << k << ": " << what << " record " << list[i].record
+                  << " slots " << list[i].p << "-" << list[i].q << "\n";
+    };
+    show("kew found, baseline did not:", missing);
+    show("baseline found, kew did not:", extra);
+  }
+}
+
+std::string fixed(double x, int decimals) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%.*f", decimals, x);
+  return text;
+}
+
+struct FleetResult {
+  std::size_t aircraft = 0;
+  double radius_km = 0.0;
+  std::size_t records = 0;
+  std::uint64_t rejected = 0;
+  std::vector<MethodResult> methods;  // kew first
+};
+
+void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
+  std::cout << "\n| aircraft | method | ms / period (mean of " << prm.periods
+            << ") | × kew | µs / update | pairs tested / update | conflicts | mismatches |\n"
+               "|---|---|---|---|---|---|---|---|\n";
+  for (const FleetResult& fleet : fleets) {
+    const double kew_s = fleet.methods.front().mean_seconds();
+    for (const MethodResult& m : fleet.methods) {
+      const double queries = static_cast<double>(m.total(&PeriodResult::queries));
+      const double updates = static_cast<double>(fleet.methods.front().total(&PeriodResult::queries)) /
+                             static_cast<double>(prm.periods);
+      std::string name = m.name;
+      if (m.sample_stride > 1) name += " (1/" + std::to_string(m.sample_stride) + " sampled, extrapolated)";
+      if (m.total(&PeriodResult::fallbacks) > 0)
+        name += " (" + std::to_string(m.total(&PeriodResult::fallbacks)) + " rebuilds)";
+      std::uint64_t conflicts = 0;
+      for (const PeriodResult& p : m.periods) conflicts += p.conflicts.size();
+      std::cout << "| " << fleet.aircraft << " | " << name << " | " << fixed(1e3 * m.mean_seconds(), 1) << " | "
+                << fixed(m.mean_seconds() / kew_s, 2) << " | " << fixed(1e6 * m.mean_seconds() / updates, 2) << " | "
+                << fixed(static_cast<double>(m.total(&PeriodResult::pairs_tested)) / queries, 1) << " | " << conflicts
+                << " | " << (m.missing + m.extra) << " |\n";
+    }
+  }
+}
+
+void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
+  JsonText j;
+  j.begin_object();
+  kew::bench::put_machine(j, KEW_BUILD_TYPE);
+  j.key("parameters").begin_object();
+  j.key("scenario").value(kew::replay::to_string(prm.scenario));
+  j.key("period_s").value(prm.period_s);
+  j.key("periods").value(std::uint64_t{prm.periods});
+  j.key("warmup_periods").value(std::uint64_t{prm.warmup});
+  j.key("seed").value(prm.seed);
+  j.key("density_km2_per_aircraft").value(3.14159265358979 * 2000.0 * 2000.0 / 100000.0);
+  j.end_object();
+  j.key("fleets").begin_array();
+  for (const FleetResult& fleet : fleets) {
+    const double kew_s = fleet.methods.front().mean_seconds();
+    j.begin_object();
+    j.key("aircraft").value(std::uint64_t{fleet.aircraft});
+    j.key("region_radius_km").value(fleet.radius_km);
+    j.key("records").value(std::uint64_t{fleet.records});
+    j.key("records_rejected").value(fleet.rejected);
+    j.key("methods").begin_object();
+    for (const MethodResult& m : fleet.methods) {
+      j.key(m.name).begin_object();
+      j.key("label").value(m.label);
+      j.key("sample_stride").value(std::uint64_t{m.sample_stride});
+      j.key("mean_s_per_period").value(m.mean_seconds());
+      j.key("ratio_to_kew").value(m.mean_seconds() / kew_s);
+      j.key("missing_vs_kew").value(m.missing);
+      j.key("extra_vs_kew").value(m.extra);
+      j.key("periods").begin_array();
+      for (const PeriodResult& p : m.periods) {
+        j.begin_object();
+        j.key("s").value(p.seconds);
+        j.key("measured_s").value(p.measured_seconds);
+        j.key("updates").value(p.queries);
+        j.key("pairs_tested").value(p.pairs_tested);
+        j.key("conflicts").value(std::uint64_t{p.conflicts.size()});
+        j.key("full_rebuilds").value(p.fallbacks);
+        j.key("flips").value(p.flips);
+        j.key("audit_violations").value(p.audit_violations);
+        j.end_object();
+      }
+      j.end_array();
+      j.end_object();
+    }
+    j.end_object();
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+  if (!j.save(prm.json_path)) {
+    std::cerr << "kew_peers_bench: cannot write " << prm.json_path << "\n";
+    std::exit(1);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Params prm = parse(argc, argv);
+  std::cout << "machine: " << kew::bench::cpu_model_name() << ", " << kew::bench::hardware_threads()
+            << " hardware threads, build " << KEW_BUILD_TYPE << "\n"
+            << "traffic: kew-gen scenario " << kew::replay::to_string(prm.scenario) << ", P = " << prm.period_s << " s, " << prm.warmup << " warm-up + "
+            << prm.periods << " measured periods, seed " << prm.seed
+            << ", one aircraft per 126 km² (region radius 2,000 km·√(N/100,000))\n";
+  std::vector<FleetResult> fleets;
+  bool all_agree = true;
+  for (const std::size_t n : prm.aircraft) {
+    std::cerr << n << " aircraft: generating...\n";
+    const Workload w = make_workload(prm, n);
+    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}};
+    std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
+              << fixed(w.radius_km, 0) << " km; (a) kew...\n";
+    fleet.methods.push_back(run_kew(prm, w));
+
+    const double r_max = w.config.minima.horizontal_m * w.k_max + 2.0 * w.config.minima.lookahead_s * w.v_max;
+    const auto run = [&](const char* name, const char* label, auto& index, std::size_t stride) {
+      std::cerr << "  " << name << "...\n";
+      MethodResult m{name, label, stride, {}, 0, 0};
+      run_index(prm, w, index, m);
+      compare(fleet.methods.front(), m);
+      all_agree = all_agree && m.missing == 0 && m.extra == 0;
+      fleet.methods.push_back(std::move(m));
+    };
+    {
+      CgalRebuild cgal;
+      run("cgal", "CGAL Delaunay_triangulation_2 (Epick) rebuilt per period, spatial sort + BFS", cgal, 1);
+    }
+    {
+      FlipRepair flip;
+      run("flip", "positions updated in place, every edge checked (exact incircle), Lawson flips", flip, 1);
+    }
+    UniformGrid grid(r_max);
+    run("grid", "uniform grid (cell = R_max) rebuilt per period", grid, 1);
+    const double pairs = static_cast<double>(n) * static_cast<double>(n);
+    const auto stride = static_cast<std::size_t>(std::max(1.0, std::ceil(pairs / prm.brute_budget)));
+    BruteForce brute;
+    run("brute", "brute force, all pairs per update (BlueSky state-based)", brute, stride);
+    for (const MethodResult& m : fleet.methods)
+      for (const PeriodResult& p : m.periods)
+        if (p.audit_violations) {
+          std::cerr << "  " << m.name << ": triangulation audit found " << p.audit_violations << " violations\n";
+          all_agree = false;
+        }
+    fleets.push_back(std::move(fleet));
+  }
+  print_table(prm, fleets);
+  if (!prm.json_path.empty()) write_json(prm, fleets);
+  if (!all_agree) std::cerr << "kew_peers_bench: a baseline disagrees with kew (see MISMATCH lines)\n";
+  return all_agree ? 0 : 1;
+}
