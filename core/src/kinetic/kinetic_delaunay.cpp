@@ -26,7 +26,6 @@ namespace {
 /// kMaxRetries the root is taken for numerical noise around a tangency.
 constexpr double kFirstRetryDelay = 1e-9;
 constexpr std::uint16_t kMaxRetries = 30;
-const std::vector<PointId> kNoTwins;
 
 /// The certificate, or the zero polynomial when every coefficient is within what the
 /// rounding of the points' positions at `now` (and of their velocity differences) can
@@ -89,10 +88,6 @@ KineticDelaunay::KineticDelaunay(const KineticConfig& config, double start_time)
   twins_.emplace_back();
   release_seq_.push_back(0);
   live_.push_back(false);
-}
-
-const std::vector<PointId>& KineticDelaunay::twins_of(PointId vertex) const {
-  return vertex < twins_.size() ? twins_[vertex] : kNoTwins;
 }
 
 bool KineticDelaunay::contains(PointId id) const { return id < live_.size() && live_[id]; }
@@ -548,9 +543,14 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
     return UpdateKind::VelocityOnly;
   }
   ++stats_.reinsertions;
+  // A report moves an aircraft a few hundred metres at most: the walk that locates it
+  // again starts from where it was, not from an arbitrary face (O(1) steps, not O(√n)).
+  const PointId anchor = attached_neighbour(id);
   detach_point(id);
   dt_.set_trajectory(id, Trajectory{p, v, now_});
-  attach_point(id);
+  const FaceIndex hint =
+      anchor != kNoPoint && dt_.tds().is_attached(anchor) ? dt_.tds().vertex_face(anchor) : kNoFace;
+  attach_point(id, hint);
   advance(now_);
   return UpdateKind::Reinserted;
 }
@@ -564,9 +564,21 @@ void KineticDelaunay::reschedule_star(PointId vertex) {
   }
 }
 
-void KineticDelaunay::attach_point(PointId id) {
+PointId KineticDelaunay::attached_neighbour(PointId id) const {
+  const PointId vertex = host_of(id);
+  if (vertex != id) return vertex;
+  const triangulation::Tds& tds = dt_.tds();
+  if (!tds.is_attached(vertex)) return kNoPoint;
+  PointId found = kNoPoint;
+  tds.for_each_adjacent_vertex(vertex, [&](PointId w) {
+    if (found == kNoPoint && w != kInfiniteVertex) found = w;
+  });
+  return found;
+}
+
+void KineticDelaunay::attach_point(PointId id, FaceIndex hint) {
   PointId same = kNoPoint;
-  AttachResult result = dt_.attach(id, &same);
+  AttachResult result = dt_.attach(id, &same, hint);
   if (result == AttachResult::NotDelaunay) {
     // The neighbourhood is not Delaunay at now (a missed or degenerate event): repair, retry.
     audit_and_repair();

@@ -114,7 +114,7 @@ void Pipeline::leave_engine(track::TrackSlot slot) {
     slot_of_point_[track.point] = track::kNoTrack;
     track.point = kinetic::kNoPoint;
   }
-  if (slot < probe_state_.size()) probe_state_[slot].live = false;
+  if (slot < probe_live_.size()) probe_live_[slot] = 0;
   speeds_.erase(slot);
 }
 
@@ -146,8 +146,12 @@ void Pipeline::apply(track::TrackSlot slot) {
     kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
   }
   speeds_.set(slot, geometry::norm(now.velocity));
-  if (slot >= probe_state_.size()) probe_state_.resize(slot + 1);
-  probe_state_[slot] = {track.kinematics, track.t, track.plane.scale, true};
+  if (slot >= probe_state_.size()) {
+    probe_state_.resize(slot + 1);
+    probe_live_.resize(slot + 1, 0);
+  }
+  probe_state_[slot] = {track.kinematics, track.t, track.plane.scale};
+  probe_live_[slot] = 1;
   probe(slot);
 }
 
@@ -182,7 +186,7 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       break;
     case probe::ProbeMode::Brute:
       for (track::TrackSlot other = 0; other < probe_state_.size(); ++other)
-        if (probe_state_[other].live && other != slot) candidates_.push_back(other);
+        if (probe_live_[other] && other != slot) candidates_.push_back(other);
       return;
   }
   // Each point once, never the track's own (within() marks what it visited).
@@ -222,7 +226,14 @@ void Pipeline::probe(track::TrackSlot slot) {
   // Sorting these few rather than every candidate found is the same order.
   evaluated_.clear();
   const ProbeState& self = probe_state_[slot];
-  for (const track::TrackSlot other : candidates_) {
+  constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (i + kPrefetchAhead < candidates_.size()) {
+      const track::TrackSlot ahead = candidates_[i + kPrefetchAhead];
+      __builtin_prefetch(&probe_state_[ahead]);
+      __builtin_prefetch(&partner_mark_[ahead]);
+    }
+    const track::TrackSlot other = candidates_[i];
     if (partner_mark_[other] == candidate_round_) {
       evaluated_.push_back(other);
       continue;

@@ -137,7 +137,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   }
   /// The triangulation vertex that stands for id (id itself unless it is a twin).
   PointId host_of(PointId id) const { return twin_host_[id] == kNoPoint ? id : twin_host_[id]; }
-  const std::vector<PointId>& twins_of(PointId vertex) const;
+  const std::vector<PointId>& twins_of(PointId vertex) const {
+    return vertex < twins_.size() ? twins_[vertex] : no_twins_;
+  }
 
   /// Checks the triangulation at now() with exact predicates (every face positively
   /// oriented, every edge locally Delaunay, hull convex) and repairs what it finds.
@@ -205,7 +207,11 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   bool is_live(const Entry& e) const;
   void compact_queue();
   void reschedule_star(PointId vertex);
-  void attach_point(PointId id);
+  /// Attaches id at its position now; `hint` is a face near it where the walk starts.
+  void attach_point(PointId id, triangulation::FaceIndex hint = triangulation::kNoFace);
+  /// An attached point next to id in the triangulation (its host for a twin), or
+  /// kNoPoint: a start for locating id again after it moves a little.
+  PointId attached_neighbour(PointId id) const;
   void detach_point(PointId id);
   void make_twin(PointId id, PointId host);
   /// Makes vertex (just detached) a twin of host, and its own twins follow it there.
@@ -233,6 +239,7 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::uint32_t dirty_round_ = 0;
   std::vector<PointId> twin_host_;
   std::vector<std::vector<PointId>> twins_;
+  std::vector<PointId> no_twins_;  // always empty: twins_of() for ids never twinned
   std::vector<std::uint64_t> release_seq_;
   std::vector<bool> live_;
   std::size_t live_points_ = 0;

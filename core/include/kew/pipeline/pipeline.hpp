@@ -128,11 +128,11 @@ class Pipeline {
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
   // What the probe reads of each live track, by slot, packed for the candidate loop
   // (the Track itself is large and cold).
-  struct ProbeState {
+  /// One cache line: the probe reads a hundred of these, scattered, per update.
+  struct alignas(64) ProbeState {
     probe::Kinematics kinematics;  // at time t
     double t = 0.0;
     double scale = 1.0;
-    bool live = false;  // in the kinetic engine
     probe::Kinematics at(double at_t) const {
       probe::Kinematics k = kinematics;
       const double dt = at_t - t;
@@ -142,6 +142,7 @@ class Pipeline {
     }
   };
   std::vector<ProbeState> probe_state_;
+  std::vector<std::uint8_t> probe_live_;  // by slot: in the kinetic engine
   std::vector<track::TrackSlot> slot_of_point_;
   std::vector<kinetic::PointId> points_scratch_;
   std::vector<track::TrackSlot> candidates_;     // every pair partner of one probe, once each

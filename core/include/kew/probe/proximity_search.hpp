@@ -39,9 +39,19 @@ class ProximitySearch {
   void neighbours(const kinetic::KineticDelaunay& kdt, PointId center, std::vector<PointId>& out);
 
  private:
-  /// Marks p visited in this round; false when it already was.
+  using FaceIndex = triangulation::FaceIndex;
+  /// The search over faces (a triangulation with a finite face) ...
+  void within_by_faces(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c, double reach2,
+                       std::vector<PointId>& out);
+  /// ... and over vertex rings (flat or tiny triangulations, which have no finite face).
+  void within_by_vertices(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c, double reach2,
+                          std::vector<PointId>& out);
+  /// Whether a triangulation vertex or one of its twins is within reach of c, each
+  /// decided once per search; the first time, appends those in reach (center excepted).
+  bool group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center, geometry::Point2 c,
+                      double reach2, std::vector<PointId>& out);
+  /// Marks p visited in this round (vertex search); false when it already was.
   bool first_visit(PointId p) {
-    if (p >= visited_round_.size()) visited_round_.resize(p + 1, 0);
     if (visited_round_[p] == round_) return false;
     visited_round_[p] = round_;
     return true;
@@ -51,9 +61,11 @@ class ProximitySearch {
   template <class F>
   static void for_each_neighbor(const kinetic::KineticDelaunay& kdt, PointId id, F&& f);
 
-  std::vector<std::uint32_t> visited_round_;
-  std::uint32_t round_ = 0;
+  std::vector<std::uint32_t> visited_round_;  // by point id
+  std::vector<std::uint32_t> face_round_;     // by face index
+  std::uint32_t round_ = 0;                   // even; see within()
   std::vector<PointId> frontier_;
+  std::vector<FaceIndex> face_frontier_;
 };
 
 }  // namespace kew::probe
