@@ -253,7 +253,7 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
     }
     const kew::track::Track& track = table[admitted.slot];
     in_engine[admitted.slot] = true;
-    w.steps.push_back({false, admitted.slot, index, clock, {track.kinematics, track.t, track.plane.scale}});
+    w.steps.push_back({false, admitted.slot, index, clock, {track.kinematics, track.t, track.plane_scale}});
     w.v_max = std::max(w.v_max, kew::geometry::norm(track.kinematics.velocity));
   }
   while (w.period_first_record.size() <= prm.warmup + prm.periods) {

@@ -10,7 +10,7 @@
 // Memory is counted by this program's operator new (bytes in use, as malloc sizes them)
 // before and after loading a fleet, divided by the live tracks; RSS is printed too.
 //
-// Usage: kew_pipeline_bench [--quick] [--json FILE] [--seconds S]
+// Usage: kew_pipeline_bench [--quick] [--memory-only] [--json FILE] [--seconds S]
 
 #include <malloc.h>
 
@@ -70,12 +70,13 @@ using kew::bench::Stopwatch;
 
 struct Params {
   bool quick = false;
+  bool memory_only = false;  // skip the throughput runs
   double ndjson_seconds = 300.0;  // duration of the generated NDJSON traffic
   std::string json_path;
 };
 
 [[noreturn]] void usage(const std::string& why) {
-  std::cerr << "kew_pipeline_bench: " << why << "\nusage: kew_pipeline_bench [--quick] [--seconds S] [--json FILE]\n";
+  std::cerr << "kew_pipeline_bench: " << why << "\nusage: kew_pipeline_bench [--quick] [--memory-only] [--seconds S] [--json FILE]\n";
   std::exit(2);
 }
 
@@ -86,6 +87,8 @@ Params parse(int argc, char** argv) {
     if (flag == "--quick") {
       p.quick = true;
       p.ndjson_seconds = 60.0;
+    } else if (flag == "--memory-only") {
+      p.memory_only = true;
     } else if (flag == "--json" && i + 1 < argc) {
       p.json_path = argv[++i];
     } else if (flag == "--seconds" && i + 1 < argc) {
@@ -289,9 +292,10 @@ MemoryPerTrack measure_memory(std::size_t aircraft, kew::replay::Scenario scenar
 // ---------------------------------------------------------------------------------
 
 void print(const std::vector<EndToEnd>& runs, const std::vector<MemoryPerTrack>& memory) {
-  std::printf("\n| input | records | records/s end to end | decode share | alert events | alert latency p50 / p99 / max "
-              "(µs, wall) | same, CPU | per-record p50 / p99 / max (µs, wall) | same, CPU |\n"
-              "|---|---|---|---|---|---|---|---|---|\n");
+  if (!runs.empty())
+    std::printf("\n| input | records | records/s end to end | decode share | alert events | alert latency p50 / p99 / max "
+                "(µs, wall) | same, CPU | per-record p50 / p99 / max (µs, wall) | same, CPU |\n"
+                "|---|---|---|---|---|---|---|---|---|\n");
   const auto triple = [](const Latency& l) {
     char text[64];
     std::snprintf(text, sizeof text, "%.1f / %.1f / %.1f", l.p50_us, l.p99_us, l.max_us);
@@ -361,12 +365,7 @@ void write_json(const std::string& path, const std::vector<EndToEnd>& runs, cons
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const Params prm = parse(argc, argv);
-  std::cout << "machine: " << kew::bench::cpu_model_name() << ", " << kew::bench::hardware_threads()
-            << " hardware threads, build " << KEW_BUILD_TYPE << "\n";
+std::vector<EndToEnd> run_throughput(const Params& prm) {
   std::vector<EndToEnd> runs;
   const std::vector<std::size_t> fleets = prm.quick ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{2000, 10000};
   for (const std::size_t n : fleets) {
@@ -384,6 +383,16 @@ int main(int argc, char** argv) {
   } else if (!prm.quick) {
     std::cerr << "(" << shared << " absent: the 30-minute CAT062 run is skipped)\n";
   }
+  return runs;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Params prm = parse(argc, argv);
+  std::cout << "machine: " << kew::bench::cpu_model_name() << ", " << kew::bench::hardware_threads()
+            << " hardware threads, build " << KEW_BUILD_TYPE << "\n";
+  const std::vector<EndToEnd> runs = prm.memory_only ? std::vector<EndToEnd>{} : run_throughput(prm);
   std::vector<MemoryPerTrack> memory;
   // Mixed traffic at this density keeps about one alert per aircraft open (holding
   // stacks, converging arrivals), and alert state costs memory too; random traffic has

@@ -170,7 +170,7 @@ bool KineticDelaunay::is_live(const Entry& e) const {
 
 void KineticDelaunay::compact_queue() {
   const std::size_t live = stats_.queue_now + stats_.renewals_queued;
-  if (heap_.size() < 1024 || heap_.size() < 4 * live) return;
+  if (heap_.size() < 1024 || heap_.size() < 2 * live) return;
   std::erase_if(heap_, [this](const Entry& e) { return !is_live(e); });
   std::make_heap(heap_.begin(), heap_.end(), EntryLater{});
 }

@@ -150,7 +150,7 @@ void Pipeline::apply(track::TrackSlot slot) {
     probe_state_.resize(slot + 1);
     probe_live_.resize(slot + 1, 0);
   }
-  probe_state_[slot] = {track.kinematics, track.t, track.plane.scale};
+  probe_state_[slot] = {track.kinematics, track.t, track.plane_scale};
   probe_live_[slot] = 1;
   probe(slot);
 }

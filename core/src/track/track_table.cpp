@@ -81,7 +81,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     velocity = projection.velocity_to_plane(plane, *r.gs_kt * kKnotToMps, *r.trk_deg);
     has_velocity = true;
   } else if (can_derive) {
-    velocity = (1.0 / gap) * (plane.p - previous->plane.p);
+    velocity = (1.0 / gap) * (plane.p - previous->kinematics.position);
     has_velocity = true;
     derived = true;
     if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * kKnotToMps) {
@@ -118,7 +118,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.alt_ft = r.alt_ft;
   if (!r.callsign.empty()) track.callsign = r.callsign;
   if (r.mode3a) track.mode3a = r.mode3a;
-  track.plane = plane;
+  track.plane_scale = plane.scale;
   track.kinematics.position = plane.p;
   track.kinematics.velocity = velocity;
   track.kinematics.altitude_m = r.alt_ft * kFootToMetre;
@@ -143,10 +143,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
 }
 
 TrackSlot TrackTable::find(std::string_view source, std::string_view id) const {
-  const auto by_source = index_.find(source);
-  if (by_source == index_.end()) return kNoTrack;
-  const auto by_id = by_source->second.find(id);
-  return by_id == by_source->second.end() ? kNoTrack : by_id->second;
+  return index_.find(TrackIndex::hash(source, id),
+                     [&](TrackSlot slot) { return tracks_[slot].id == id && tracks_[slot].source == source; });
 }
 
 TrackSlot TrackTable::allocate(const TrackReport& r) {
@@ -164,9 +162,7 @@ TrackSlot TrackTable::allocate(const TrackReport& r) {
   track.id = r.id;
   track.number = track_number_of(slot);
   track.in_use = true;
-  auto source_index = index_.find(r.source);
-  if (source_index == index_.end()) source_index = index_.emplace(r.source, IdIndex{}).first;
-  source_index->second.emplace(r.id, slot);
+  index_.insert(TrackIndex::hash(r.source, r.id), slot);
   ++in_use_;
   if (in_use_ > max_in_use_) max_in_use_ = in_use_;
   return slot;
@@ -175,11 +171,7 @@ TrackSlot TrackTable::allocate(const TrackReport& r) {
 void TrackTable::drop(TrackSlot slot) {
   Track& track = tracks_[slot];
   if (!track.in_use) return;
-  const auto source_index = index_.find(track.source);
-  if (source_index != index_.end()) {
-    source_index->second.erase(track.id);
-    if (source_index->second.empty()) index_.erase(source_index);
-  }
+  index_.erase(TrackIndex::hash(track.source, track.id), slot);
   deadlines_.erase(slot);
   track = Track{};
   free_slots_.push_back(slot);

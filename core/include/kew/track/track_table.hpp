@@ -6,17 +6,17 @@
 // to the kinetic engine (the Pipeline does).
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include "kew/geo/projection.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/probe/cpa.hpp"
+#include "kew/track/track_index.hpp"
 #include "kew/track/track_report.hpp"
+#include "kew/util/chunked_vector.hpp"
 #include "kew/util/indexed_heap.hpp"
 #include "kew/util/rejections.hpp"
 
@@ -49,16 +49,18 @@ struct Track {
   std::string callsign;
   std::optional<std::uint16_t> mode3a;
   std::uint16_t number = 0;  ///< 16-bit system track number for CAT004 and Modbus, ≠ 0
+  bool has_velocity = false;  ///< false until a velocity was reported or derived
+  bool in_use = false;
 
   double t = 0.0;            ///< data time of the last accepted record (UTC s)
   double lat_deg = 0.0, lon_deg = 0.0, alt_ft = 0.0;
   double gs_kt = 0.0, trk_deg = 0.0, vr_fpm = 0.0;  ///< as reported, or derived
-  bool has_velocity = false;  ///< false until a velocity was reported or derived
 
-  geo::PlanePosition plane;                 ///< plane position at t
+  /// Point scale k of the projection at the position (plane length / ellipsoid
+  /// length, ≥ 1): separations measured in the plane are divided by it.
+  double plane_scale = 1.0;
   probe::Kinematics kinematics;             ///< plane kinematics at t
   kinetic::PointId point = kinetic::kNoPoint;  ///< vertex in the kinetic engine, if any
-  bool in_use = false;
 
   /// Plane kinematics extrapolated linearly to time `at` (UTC s).
   probe::Kinematics at(double at_t) const {
@@ -127,18 +129,12 @@ class TrackTable {
   std::uint64_t velocities_derived() const { return velocities_derived_; }
 
  private:
-  struct StringHash {
-    using is_transparent = void;
-    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
-  };
-  using IdIndex = std::unordered_map<std::string, TrackSlot, StringHash, std::equal_to<>>;
-
   TrackSlot allocate(const TrackReport& r);
 
   TrackTableConfig config_;
-  std::vector<Track> tracks_;
+  util::ChunkedVector<Track> tracks_;  // chunked: no doubling slack on ~200-byte records
   std::vector<TrackSlot> free_slots_;
-  std::unordered_map<std::string, IdIndex, StringHash, std::equal_to<>> index_;
+  TrackIndex index_;  // (source, id) → slot, for slots in use
   util::IndexedHeap<std::less<double>> deadlines_;  // one per track in use: last t + timeout
   std::size_t in_use_ = 0;
   std::size_t max_in_use_ = 0;
