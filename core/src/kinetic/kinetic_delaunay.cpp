@@ -1,4 +1,5 @@
 #include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -96,7 +97,7 @@ bool KineticDelaunay::contains(PointId id) const { return id < live_.size() && l
 // Face bookkeeping
 
 void KineticDelaunay::face_created(FaceIndex f) {
-  if (f >= schedule_.size()) schedule_.resize(f + 1);
+  util::grow_to(schedule_, f + 1);
   schedule_[f] = FaceSchedule{};
   const std::uint32_t generation = dt_.tds().face(f).generation;
   dirty_faces_.emplace_back(f, generation);
@@ -140,7 +141,7 @@ double KineticDelaunay::earliest_failure(FaceIndex f) const {
 
 void KineticDelaunay::push(double time, std::uint32_t subject, int edge, EntryKind kind, std::uint16_t retries) {
   const std::uint64_t seq = next_seq_++;
-  heap_.push_back({time, seq, subject, static_cast<std::uint8_t>(edge), kind, retries});
+  util::push_back_gently(heap_, Entry{time, seq, subject, static_cast<std::uint8_t>(edge), kind, retries});
   std::push_heap(heap_.begin(), heap_.end(), EntryLater{});
   if (kind == EntryKind::TwinRelease) {
     release_seq_[subject] = seq;
@@ -322,7 +323,7 @@ bool KineticDelaunay::flip_degenerate_edges() {
 void KineticDelaunay::schedule_dirty_faces() {
   if (dirty_faces_.empty()) return;
   ++dirty_round_;
-  if (dirty_mark_.size() < schedule_.size()) dirty_mark_.resize(schedule_.size(), 0);
+  util::grow_to(dirty_mark_, schedule_.size(), std::uint32_t{0});
   const auto& tds = dt_.tds();
   // Keep only faces still alive in the generation they were created in.
   std::size_t kept = 0;
@@ -494,9 +495,9 @@ PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
   const PointId id = dt_.create_vertex(Trajectory{p, v, t});
   if (id >= live_.size()) {
     live_.resize(id + 1, false);
-    twin_host_.resize(id + 1, kNoPoint);
-    twins_.resize(id + 1);
-    release_seq_.resize(id + 1, 0);
+    util::grow_to(twin_host_, id + 1, kNoPoint);
+    util::grow_to(twins_, id + 1);
+    util::grow_to(release_seq_, id + 1, std::uint64_t{0});
   }
   live_[id] = true;
   twin_host_[id] = kNoPoint;

@@ -1,4 +1,5 @@
 #include "kew/pipeline/pipeline.hpp"
+#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -140,15 +141,15 @@ void Pipeline::apply(track::TrackSlot slot) {
   const probe::Kinematics now = track.at(clock_);
   if (track.point == kinetic::kNoPoint) {
     track.point = kdt_.insert(engine_time(clock_), now.position, now.velocity);
-    if (track.point >= slot_of_point_.size()) slot_of_point_.resize(track.point + 1, track::kNoTrack);
+    util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
     slot_of_point_[track.point] = slot;
   } else {
     kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
   }
   speeds_.set(slot, geometry::norm(now.velocity));
   if (slot >= probe_state_.size()) {
-    probe_state_.resize(slot + 1);
-    probe_live_.resize(slot + 1, 0);
+    util::grow_to(probe_state_, slot + 1);
+    util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
   }
   probe_state_[slot] = {track.kinematics, track.t, track.plane_scale};
   probe_live_[slot] = 1;
@@ -165,7 +166,7 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
     std::fill(partner_mark_.begin(), partner_mark_.end(), 0);
     candidate_round_ = 1;
   }
-  if (partner_mark_.size() < probe_state_.size()) partner_mark_.resize(probe_state_.size(), 0);
+  util::grow_to(partner_mark_, probe_state_.size(), decltype(partner_mark_)::value_type{0});
   partners_scratch_.clear();
   alerts_.partners_of(slot, partners_scratch_);
   for (const track::TrackSlot other : partners_scratch_) {

@@ -1,4 +1,5 @@
 #include "kew/triangulation/delaunay.hpp"
+#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -35,9 +36,9 @@ void DelaunayTriangulation::set_time(double t) {
 VertexIndex DelaunayTriangulation::create_vertex(const Trajectory& trajectory) {
   const VertexIndex v = tds_.create_vertex();
   if (v >= trajectories_.size()) {
-    trajectories_.resize(v + 1);
-    cached_position_.resize(v + 1);
-    cached_epoch_.resize(v + 1, 0);
+    util::grow_to(trajectories_, v + 1);
+    util::grow_to(cached_position_, v + 1);
+    util::grow_to(cached_epoch_, v + 1, std::uint64_t{0});
   }
   trajectories_[v] = trajectory;
   cached_epoch_[v] = 0;
@@ -230,7 +231,7 @@ AttachResult DelaunayTriangulation::attach(VertexIndex v, VertexIndex* same, Fac
   }
   // Bowyer–Watson: the conflict region is a connected set of faces around p.
   ++mark_;
-  face_mark_.resize(tds_.face_capacity(), 0);
+  util::grow_to(face_mark_, tds_.face_capacity(), std::uint32_t{0});
   auto& region = scratch_faces_;
   auto& boundary = scratch_boundary_;
   region.clear();

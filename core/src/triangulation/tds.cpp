@@ -1,4 +1,5 @@
 #include "kew/triangulation/tds.hpp"
+#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -19,7 +20,7 @@ VertexIndex Tds::create_vertex() {
     vertex_face_[v] = kNoFace;
     return v;
   }
-  vertex_face_.push_back(kNoFace);
+  util::push_back_gently(vertex_face_, kNoFace);
   vertex_alive_.push_back(true);
   return static_cast<VertexIndex>(vertex_face_.size() - 1);
 }
@@ -41,7 +42,7 @@ FaceIndex Tds::create_face(VertexIndex a, VertexIndex b, VertexIndex c) {
     f = free_faces_.back();
     free_faces_.pop_back();
   } else {
-    faces_.emplace_back();
+    util::push_back_gently(faces_, Face{});
     f = static_cast<FaceIndex>(faces_.size() - 1);
   }
   Face& face = faces_[f];

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "kew/util/gentle_growth.hpp"
+
 namespace kew::util {
 
 /// `Before(a, b)` is true when key a must come out first (std::less: smallest first).
@@ -23,10 +25,10 @@ class IndexedHeap {
 
   /// Inserts h with `key`, or changes its key when present.
   void set(Handle h, double key) {
-    if (h >= position_.size()) position_.resize(h + 1, kAbsent);
+    grow_to(position_, h + 1, kAbsent);
     if (position_[h] == kAbsent) {
       position_[h] = static_cast<std::uint32_t>(entries_.size());
-      entries_.push_back({key, h});
+      push_back_gently(entries_, Entry{key, h});
       sift_up(entries_.size() - 1);
       return;
     }
