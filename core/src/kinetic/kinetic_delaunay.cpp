@@ -1,5 +1,4 @@
 #include "kew/kinetic/kinetic_delaunay.hpp"
-#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -9,6 +8,7 @@
 
 #include "kew/kinetic/certificate.hpp"
 #include "kew/kinetic/sturm.hpp"
+#include "kew/util/gentle_growth.hpp"
 
 namespace kew::kinetic {
 

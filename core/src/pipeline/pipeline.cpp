@@ -1,8 +1,9 @@
 #include "kew/pipeline/pipeline.hpp"
-#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cmath>
+
+#include "kew/util/gentle_growth.hpp"
 
 namespace kew {
 

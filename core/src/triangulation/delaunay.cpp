@@ -1,9 +1,10 @@
 #include "kew/triangulation/delaunay.hpp"
-#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include "kew/util/gentle_growth.hpp"
 
 namespace kew::triangulation {
 

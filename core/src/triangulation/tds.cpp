@@ -1,8 +1,9 @@
 #include "kew/triangulation/tds.hpp"
-#include "kew/util/gentle_growth.hpp"
 
 #include <algorithm>
 #include <cassert>
+
+#include "kew/util/gentle_growth.hpp"
 
 namespace kew::triangulation {
 
