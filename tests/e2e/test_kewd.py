@@ -94,6 +94,9 @@ class AlertStream(E2eCase):
         stats = kewd.stats()
         self.assertEqual(stats["subscribers"]["cut_off"], 1, "the stalled subscriber is disconnected\n" + kewd.log())
         self.assertEqual(stats["accepted"], records)
+        # The resident set in bytes (pages times the page size): a daemon with its
+        # libraries and thousands of tracks holds more than 4 MB.
+        self.assertGreater(stats["resident_bytes"], 4 << 20)
         wait_until(lambda: len(reader.alert_lines()) >= len(expected), 30, "the reader to receive every alert")
         self.assertEqual(reader.alert_lines(), expected, "the live stream equals kew-replay's offline output")
         for obj in reader.objects():

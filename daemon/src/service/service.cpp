@@ -2,8 +2,11 @@
 
 #include <systemd/sd-daemon.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -64,6 +67,15 @@ void append_rejections(fmt::memory_buffer& out, const Rejections& r) {
     first = false;
   }
   out.push_back('}');
+}
+
+/// Resident set size of this process (bytes) from /proc/self/statm, or -1 when it
+/// cannot be read (not Linux, /proc not mounted).
+long long resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  long long pages_total = 0, pages_resident = 0;
+  if (!(statm >> pages_total >> pages_resident)) return -1;
+  return pages_resident * static_cast<long long>(sysconf(_SC_PAGESIZE));
 }
 
 }  // namespace
@@ -414,6 +426,7 @@ std::string Service::stats_json() const {
     out.push_back('}');
   }
   if (alert_log_) fmt::format_to(std::back_inserter(out), ",\"alert_log_errors\":{}", alert_log_->write_errors());
+  if (const long long rss = resident_bytes(); rss >= 0) fmt::format_to(std::back_inserter(out), ",\"resident_bytes\":{}", rss);
   out.append(std::string_view("}\n"));
   return fmt::to_string(out);
 }
