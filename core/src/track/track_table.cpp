@@ -142,6 +142,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   return result;
 }
 
+static_assert(TrackIndex::kAbsent == kNoTrack, "find() hands the index's 'absent' on as kNoTrack");
+
 TrackSlot TrackTable::find(std::string_view source, std::string_view id) const {
   return index_.find(TrackIndex::hash(source, id),
                      [&](TrackSlot slot) { return tracks_[slot].id == id && tracks_[slot].source == source; });
