@@ -148,10 +148,8 @@ void Pipeline::apply(track::TrackSlot slot) {
     kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
   }
   speeds_.set(slot, geometry::norm(now.velocity));
-  if (slot >= probe_state_.size()) {
-    util::grow_to(probe_state_, slot + 1);
-    util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
-  }
+  util::grow_to(probe_state_, slot + 1);
+  util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
   probe_state_[slot] = {track.kinematics, track.t, track.plane_scale};
   probe_live_[slot] = 1;
   probe(slot);
@@ -167,7 +165,7 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
     std::fill(partner_mark_.begin(), partner_mark_.end(), 0);
     candidate_round_ = 1;
   }
-  util::grow_to(partner_mark_, probe_state_.size(), decltype(partner_mark_)::value_type{0});
+  util::grow_to(partner_mark_, probe_state_.size(), std::uint32_t{0});
   partners_scratch_.clear();
   alerts_.partners_of(slot, partners_scratch_);
   for (const track::TrackSlot other : partners_scratch_) {

@@ -41,8 +41,8 @@ void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center
   const geometry::Point2 c = kdt.position_now(center);
   // Sized once for every id, so the marks never grow inside the loops.
   const triangulation::Tds& tds = kdt.triangulation().tds();
-  util::grow_to(visited_round_, tds.vertex_capacity(), decltype(visited_round_)::value_type{0});
-  util::grow_to(face_round_, tds.face_capacity(), decltype(face_round_)::value_type{0});
+  util::grow_to(visited_round_, tds.vertex_capacity(), std::uint32_t{0});
+  util::grow_to(face_round_, tds.face_capacity(), std::uint32_t{0});
   const PointId start = kdt.host_of(center);
   if (!tds.is_attached(start) || kdt.triangulation().is_flat())
     within_by_vertices(kdt, center, c, reach * reach, out);

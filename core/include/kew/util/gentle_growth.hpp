@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 namespace kew::util {
 
@@ -28,7 +29,7 @@ void grow_to(Vector& v, std::size_t n, const Fill&... fill) {
 template <class Vector, class Value>
 void push_back_gently(Vector& v, Value&& value) {
   reserve_gently(v, v.size() + 1);
-  v.push_back(static_cast<Value&&>(value));
+  v.push_back(std::forward<Value>(value));
 }
 
 }  // namespace kew::util
