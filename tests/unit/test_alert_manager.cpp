@@ -13,6 +13,26 @@ struct Figures {
   Severity severity = Severity::Caution;
 };
 
+void expect_same_party(const AlertParty& x, const AlertParty& y) {
+  EXPECT_EQ(x.source, y.source);
+  EXPECT_EQ(x.id, y.id);
+  EXPECT_EQ(x.callsign, y.callsign);
+  EXPECT_EQ(x.track_number, y.track_number);
+  EXPECT_EQ(x.lat_deg, y.lat_deg);
+}
+
+// Same alert and figures; state, time, sequence and end reason may differ.
+void expect_same_alert(const AlertEvent& x, const AlertEvent& y) {
+  EXPECT_EQ(x.id, y.id);
+  EXPECT_EQ(x.number, y.number);
+  EXPECT_EQ(x.opened_t, y.opened_t);
+  EXPECT_EQ(x.severity, y.severity);
+  EXPECT_EQ(x.t_los_s, y.t_los_s);
+  EXPECT_EQ(x.cpa_h_m, y.cpa_h_m);
+  expect_same_party(x.a, y.a);
+  expect_same_party(x.b, y.b);
+}
+
 class Lifecycle : public ::testing::Test {
  protected:
   // Evaluates pair {p, q} at t with the given outcome.
@@ -22,10 +42,17 @@ class Lifecycle : public ::testing::Test {
         p, q, e, t,
         [&](AlertEvent& event) {
           event.severity = f.severity;
-          event.a.source = "s";
-          event.a.id = "A" + std::to_string(std::min(p, q));
-          event.b.source = "s";
-          event.b.id = "B" + std::to_string(std::max(p, q));
+          // Parties ordered by (source, id) as the contract says: by name, not by slot.
+          const Slot a = name_of(p) < name_of(q) ? p : q, b = a == p ? q : p;
+          event.a.source = event.b.source = "s";
+          event.a.id = name_of(a);
+          event.a.callsign = "CS" + name_of(a);
+          event.a.track_number = static_cast<std::uint16_t>(a);
+          event.a.lat_deg = 50.0 + a;
+          event.b.id = name_of(b);
+          event.b.callsign = "CS" + name_of(b);
+          event.b.track_number = static_cast<std::uint16_t>(b);
+          event.b.lat_deg = 50.0 + b;
           event.t_los_s = f.t_los;
           event.cpa_h_m = f.cpa_h;
           event.cpa_v_ft = f.cpa_v;
@@ -33,7 +60,14 @@ class Lifecycle : public ::testing::Test {
         events);
   }
 
-  AlertManager manager{AlertConfig{}};
+  // Names that do not sort like the slots, so the lower slot is sometimes party b.
+  static std::string name_of(Slot slot) { return "T" + std::to_string(slot * 7 % 10) + std::to_string(slot); }
+  std::vector<std::string> names_ = [] {
+    std::vector<std::string> v;
+    for (Slot s = 0; s < 16; ++s) v.push_back(name_of(s));
+    return v;
+  }();
+  AlertManager manager{AlertConfig{}, [this](Slot slot) { return PartyName{"s", names_.at(slot)}; }};
   std::vector<AlertEvent> events;
 };
 
@@ -117,10 +151,16 @@ TEST_F(Lifecycle, DroppingATrackEndsItsAlertsInPartnerOrder) {
     EXPECT_EQ(events[i].end_reason, AlertEndReason::TrackDropped);
     EXPECT_EQ(events[i].t, 110.0);
   }
-  EXPECT_EQ(events[3].b.id, "B7");
-  EXPECT_EQ(events[3].a.id, "A3");
-  EXPECT_EQ(events[4].a.id, "A5");
-  EXPECT_EQ(events[5].b.id, "B9");
+  // Partner order 3, 5, 9; each End event repeats its alert's last event (opened with
+  // partners 9, 3, 5), parties named through the manager's PartyNames.
+  const int opening_of_end[3] = {1, 2, 0};
+  for (int i = 3; i < 6; ++i) {
+    const AlertEvent& opened = events[static_cast<std::size_t>(opening_of_end[i - 3])];
+    expect_same_alert(events[static_cast<std::size_t>(i)], opened);
+  }
+  EXPECT_EQ(events[3].a.id, name_of(3));  // "T13" < "T97"
+  EXPECT_EQ(events[3].b.id, name_of(7));
+  EXPECT_EQ(events[5].a.id, name_of(9));  // "T39"
   EXPECT_EQ(manager.active_count(), 0u);
   partners.clear();
   manager.partners_of(7, partners);
@@ -133,7 +173,10 @@ TEST_F(Lifecycle, SnapshotAcknowledgeAndSeverity) {
   evaluate(3, 4, 100.0, true);
   evaluate(3, 4, 104.0, true);
   ASSERT_EQ(manager.snapshot().size(), 2u);
-  EXPECT_EQ(manager.snapshot()[0].a.id, "A1");  // opening order
+  EXPECT_EQ(manager.snapshot()[0].a.id, name_of(2));  // opening order; "T42" < "T71"
+  expect_same_alert(manager.snapshot()[0], events[0]);
+  EXPECT_EQ(manager.snapshot()[0].state, AlertState::New);  // its last event
+  expect_same_alert(manager.snapshot()[1], events[1]);
   EXPECT_EQ(manager.highest_severity(), Severity::Warning);
   EXPECT_EQ(manager.unacknowledged_count(), 2u);
   const std::vector<std::string> acknowledged = manager.acknowledge_all();
@@ -165,7 +208,7 @@ TEST(AlertIds, DependOnPairAndOpeningTimeOnly) {
 }
 
 TEST(Severities, ClassifiedByTimeToLoss) {
-  const AlertManager m;
+  const AlertManager m{AlertConfig{}, [](Slot) { return PartyName{}; }};
   EXPECT_EQ(m.classify(true, 0.0), Severity::Loss);
   EXPECT_EQ(m.classify(false, 60.0), Severity::Warning);
   EXPECT_EQ(m.classify(false, 60.5), Severity::Caution);

@@ -39,6 +39,12 @@ std::uint64_t fnv1a(std::uint64_t h, const std::string& s) {
 }  // namespace
 
 std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opened_t) {
+  return format_alert_id(alert_id_hash(a, b, opened_t));
+}
+
+std::string format_alert_id(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
+
+std::uint64_t alert_id_hash(const AlertParty& a, const AlertParty& b, double opened_t) {
   std::uint64_t h = kFnvOffset;
   h = fnv1a(h, a.source);
   h = fnv1a(h, a.id);
@@ -46,11 +52,10 @@ std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opene
   h = fnv1a(h, b.id);
   // Millisecond resolution: the ids do not depend on the last bits of a double.
   const auto ms = static_cast<std::int64_t>(std::llround(opened_t * 1000.0));
-  h = fnv1a(h, &ms, sizeof ms);
-  return fmt::format("{:016x}", h);
+  return fnv1a(h, &ms, sizeof ms);
 }
 
-AlertManager::AlertManager(const AlertConfig& config) : config_(config) {}
+AlertManager::AlertManager(const AlertConfig& config, PartyNames names) : config_(config), names_(std::move(names)) {}
 
 Severity AlertManager::classify(bool lost_now, double t_los_s) const {
   if (lost_now) return Severity::Loss;
@@ -96,7 +101,8 @@ void AlertManager::open(PairState& s, AlertEvent&& event, std::vector<AlertEvent
   ++counters_.opened;
   event.state = AlertState::New;
   event.opened_t = event.t;
-  event.id = make_alert_id(event.a, event.b, event.t);
+  s.last.id_hash = alert_id_hash(event.a, event.b, event.t);
+  event.id = format_alert_id(s.last.id_hash);
   event.number = next_number_;
   next_number_ = static_cast<std::uint16_t>(next_number_ == 0xffff ? 1 : next_number_ + 1);
   event.acknowledged = false;
@@ -105,18 +111,18 @@ void AlertManager::open(PairState& s, AlertEvent&& event, std::vector<AlertEvent
 }
 
 bool AlertManager::changed(const PairState& s, const Evaluation& e, double t) const {
-  const Evaluation& last = s.decided;
-  const double aged_t_los = std::max(0.0, last.t_los_s - (t - s.decided_t));
-  return e.severity != last.severity || std::abs(e.t_los_s - aged_t_los) >= config_.update_t_los_s ||
+  const DecidedFigures& last = s.decided;
+  const double aged_t_los = std::max(0.0, last.t_los_s - (t - s.last.t));
+  return e.severity != s.last.severity || std::abs(e.t_los_s - aged_t_los) >= config_.update_t_los_s ||
          std::abs(e.cpa_h_m - last.cpa_h_m) >= config_.update_cpa_h_m ||
          std::abs(e.cpa_v_ft - last.cpa_v_ft) >= config_.update_cpa_v_ft;
 }
 
 void AlertManager::update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out) {
-  const AlertEvent& last = s.last;
+  const LastEvent& last = s.last;
   ++counters_.updated;
   event.state = AlertState::Update;
-  event.id = last.id;
+  event.id = format_alert_id(last.id_hash);
   event.number = last.number;
   event.opened_t = last.opened_t;
   event.acknowledged = last.acknowledged && event.severity <= last.severity;
@@ -124,7 +130,7 @@ void AlertManager::update(PairState& s, AlertEvent&& event, std::vector<AlertEve
 }
 
 void AlertManager::end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out) {
-  AlertEvent event = s.last;
+  AlertEvent event = recall(s);
   event.state = AlertState::End;
   event.end_reason = reason;
   event.t = t;
@@ -136,8 +142,77 @@ void AlertManager::end(PairState& s, double t, AlertEndReason reason, std::vecto
 
 void AlertManager::emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out) {
   event.seq = ++seq_;
-  s.last = event;
+  remember(s, event);
   out.push_back(std::move(event));
+}
+
+namespace {
+
+// AlertParty and AlertManager::PartyFigures name their numbers and callsign alike.
+template <class From, class To>
+void copy_party_figures(const From& from, To& to) {
+  to.lat_deg = from.lat_deg;
+  to.lon_deg = from.lon_deg;
+  to.alt_ft = from.alt_ft;
+  to.gs_kt = from.gs_kt;
+  to.trk_deg = from.trk_deg;
+  to.vr_fpm = from.vr_fpm;
+  to.callsign = from.callsign;
+  to.track_number = from.track_number;
+}
+
+}  // namespace
+
+void AlertManager::remember(PairState& s, const AlertEvent& event) {
+  LastEvent& last = s.last;
+  if (event.state == AlertState::New) {
+    const PartyName lo = names_(s.lo);
+    last.lo_is_a = event.a.source == lo.source && event.a.id == lo.id;
+  }
+  last.seq = event.seq;
+  last.t = event.t;
+  last.opened_t = event.opened_t;
+  last.t_los_s = event.t_los_s;
+  last.t_cpa_s = event.t_cpa_s;
+  last.cpa_h_m = event.cpa_h_m;
+  last.cpa_v_ft = event.cpa_v_ft;
+  last.sep_h_m = event.sep_h_m;
+  last.sep_v_ft = event.sep_v_ft;
+  copy_party_figures(last.lo_is_a ? event.a : event.b, last.lo);
+  copy_party_figures(last.lo_is_a ? event.b : event.a, last.hi);
+  last.number = event.number;
+  last.state = event.state;
+  last.severity = event.severity;
+  last.acknowledged = event.acknowledged;
+}
+
+AlertEvent AlertManager::recall(const PairState& s) const {
+  const LastEvent& last = s.last;
+  AlertEvent event;
+  event.id = format_alert_id(last.id_hash);
+  event.number = last.number;
+  event.seq = last.seq;
+  event.state = last.state;
+  event.severity = last.severity;
+  event.t = last.t;
+  event.opened_t = last.opened_t;
+  AlertParty& lo = last.lo_is_a ? event.a : event.b;
+  AlertParty& hi = last.lo_is_a ? event.b : event.a;
+  copy_party_figures(last.lo, lo);
+  copy_party_figures(last.hi, hi);
+  const PartyName lo_name = names_(s.lo), hi_name = names_(s.hi);
+  lo.source = lo_name.source;
+  lo.id = lo_name.id;
+  hi.source = hi_name.source;
+  hi.id = hi_name.id;
+  event.t_los_s = last.t_los_s;
+  event.t_cpa_s = last.t_cpa_s;
+  event.cpa_h_m = last.cpa_h_m;
+  event.cpa_v_ft = last.cpa_v_ft;
+  event.sep_h_m = last.sep_h_m;
+  event.sep_v_ft = last.sep_v_ft;
+  event.acknowledged = last.acknowledged;
+  return event;
 }
 
 void AlertManager::drop_track(Slot slot, double t, std::vector<AlertEvent>& out) {
@@ -166,7 +241,7 @@ std::vector<AlertEvent> AlertManager::snapshot() const {
             [](const PairState* x, const PairState* y) { return x->opened_seq < y->opened_seq; });
   std::vector<AlertEvent> out;
   out.reserve(active.size());
-  for (const PairState* s : active) out.push_back(s->last);
+  for (const PairState* s : active) out.push_back(recall(*s));
   return out;
 }
 
@@ -178,16 +253,16 @@ Severity AlertManager::highest_severity() const {
 }
 
 std::vector<std::string> AlertManager::acknowledge_all() {
-  std::vector<const AlertEvent*> newly;
+  std::vector<const LastEvent*> newly;
   for (auto& [key, s] : pairs_) {
     if (!s.active || s.last.acknowledged) continue;
     s.last.acknowledged = true;
     newly.push_back(&s.last);
   }
-  std::sort(newly.begin(), newly.end(), [](const AlertEvent* a, const AlertEvent* b) { return a->number < b->number; });
+  std::sort(newly.begin(), newly.end(), [](const LastEvent* a, const LastEvent* b) { return a->number < b->number; });
   std::vector<std::string> ids;
   ids.reserve(newly.size());
-  for (const AlertEvent* e : newly) ids.push_back(e->id);
+  for (const LastEvent* e : newly) ids.push_back(format_alert_id(e->id_hash));
   return ids;
 }
 

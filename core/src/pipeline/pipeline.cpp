@@ -38,7 +38,13 @@ bool ordered_before(const track::Track& x, const track::Track& y) {
 }  // namespace
 
 Pipeline::Pipeline(const PipelineConfig& config)
-    : config_(config), tracks_(config.tracks), kdt_(config.kinetic, 0.0), alerts_(config.alerts) {
+    : config_(config),
+      tracks_(config.tracks),
+      kdt_(config.kinetic, 0.0),
+      alerts_(config.alerts, [this](track::TrackSlot slot) {
+        const track::Track& track = tracks_[slot];
+        return alert::PartyName{track.source, track.id};
+      }) {
   if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
 }
 

@@ -6,7 +6,9 @@
 // gets the next sequence number. Pairs are identified by the track table's slots.
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -40,9 +42,22 @@ struct Evaluation {
   double cpa_v_ft = 0.0;
 };
 
+/// How the track in a slot is named: the `source` and `id` of its AlertParty. Views stay
+/// valid while the slot has a pair in the manager.
+struct PartyName {
+  std::string_view source;
+  std::string_view id;
+};
+
 class AlertManager {
  public:
-  explicit AlertManager(const AlertConfig& config = {});
+  /// `names(slot)` must give the source and id that `build` (see evaluate) puts in the
+  /// party of that slot, as long as the slot has a pending or active pair: the manager
+  /// keeps only the numbers of each alert's last event and takes the names from there
+  /// for End events and snapshots (a stack alerts ten partners per aircraft; copying the
+  /// strings into every alert doubled its size).
+  using PartyNames = std::function<PartyName(Slot)>;
+  AlertManager(const AlertConfig& config, PartyNames names);
 
   /// Severity of a conflict from its geometry (loss now / t_los ≤ warning_s / later).
   Severity classify(bool lost_now, double t_los_s) const;
@@ -68,8 +83,7 @@ class AlertManager {
     build(event);
     event.severity = e.severity;
     event.t = t;
-    s.decided = e;
-    s.decided_t = t;
+    s.decided = {e.t_los_s, e.cpa_h_m, e.cpa_v_ft};
     if (!s.active) open(s, std::move(event), out);
     else update(s, std::move(event), out);
   }
@@ -102,15 +116,39 @@ class AlertManager {
   const AlertConfig& config() const { return config_; }
 
  private:
+  /// What an active alert keeps of one party of its last event: the numbers and the
+  /// callsign (it may change during a track's life), not the source and id.
+  struct PartyFigures {
+    double lat_deg = 0.0, lon_deg = 0.0, alt_ft = 0.0, gs_kt = 0.0, trk_deg = 0.0, vr_fpm = 0.0;
+    std::string callsign;
+    std::uint16_t track_number = 0;
+  };
+  /// An active alert's last emitted event without the parties' names.
+  struct LastEvent {
+    std::uint64_t id_hash = 0;  // AlertEvent::id in hex
+    std::uint64_t seq = 0;
+    double t = 0.0, opened_t = 0.0;
+    double t_los_s = 0.0, t_cpa_s = 0.0, cpa_h_m = 0.0, cpa_v_ft = 0.0, sep_h_m = 0.0, sep_v_ft = 0.0;
+    PartyFigures lo, hi;  // parties of the lower and the higher slot
+    std::uint16_t number = 0;
+    AlertState state = AlertState::New;
+    Severity severity = Severity::None;
+    bool acknowledged = false;
+    bool lo_is_a = true;  // the lower slot's track is AlertEvent::a
+  };
+  /// The figures of the evaluation behind the last event, which decide re-emission
+  /// (its severity and time are the last event's).
+  struct DecidedFigures {
+    double t_los_s = 0.0, cpa_h_m = 0.0, cpa_v_ft = 0.0;
+  };
   struct PairState {
     Slot lo = 0, hi = 0;
     int conflicts_in_row = 0;
     int clears_in_row = 0;
     bool active = false;
     std::uint64_t opened_seq = 0;
-    AlertEvent last;      // last emitted event while active
-    Evaluation decided;   // the evaluation behind `last`
-    double decided_t = 0.0;
+    LastEvent last;  // while active
+    DecidedFigures decided;
   };
   using Pairs = std::unordered_map<std::uint64_t, PairState>;
 
@@ -126,8 +164,11 @@ class AlertManager {
   void update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
   void end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out);
   void emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out);
+  void remember(PairState& s, const AlertEvent& event);
+  AlertEvent recall(const PairState& s) const;
 
   AlertConfig config_;
+  PartyNames names_;
   Pairs pairs_;
   std::unordered_map<Slot, std::vector<Slot>> partners_;
   std::uint64_t seq_ = 0;
@@ -139,5 +180,8 @@ class AlertManager {
 /// The deterministic alert id: 16 hex digits of a 64-bit FNV-1a hash of both parties'
 /// source and id and the opening data time.
 std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opened_t);
+/// The hash behind make_alert_id, and its text.
+std::uint64_t alert_id_hash(const AlertParty& a, const AlertParty& b, double opened_t);
+std::string format_alert_id(std::uint64_t hash);
 
 }  // namespace kew::alert

@@ -53,6 +53,9 @@ class Pipeline {
   using AlertSink = std::function<void(const AlertEvent&)>;
 
   explicit Pipeline(const PipelineConfig& config = {});
+  // The alert manager looks track names up in this object's track table.
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
 
   /// Receives every alert event, in sequence order, synchronously.
   void set_alert_sink(AlertSink sink) { sink_ = std::move(sink); }
