@@ -137,7 +137,9 @@ void AlertManager::end(PairState& s, double t, AlertEndReason reason, std::vecto
   s.active = false;
   --active_;
   ++counters_.ended;
-  emit(s, std::move(event), out);
+  // Not emit(): both callers forget the pair next, so there is nothing to remember.
+  event.seq = ++seq_;
+  out.push_back(std::move(event));
 }
 
 void AlertManager::emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out) {

@@ -162,6 +162,7 @@ class AlertManager {
   bool changed(const PairState& s, const Evaluation& e, double t) const;
   void open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
   void update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
+  /// Emits the End event; the caller forgets the pair right after.
   void end(PairState& s, double t, AlertEndReason reason, std::vector<AlertEvent>& out);
   void emit(PairState& s, AlertEvent event, std::vector<AlertEvent>& out);
   void remember(PairState& s, const AlertEvent& event);
