@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <optional>
 #include <string>
 
 #include <boost/asio/connect.hpp>
@@ -14,7 +15,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "kew/daemon/config.hpp"
+#include "kew/config/address.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
 
@@ -90,10 +91,10 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kUsageError;
   }
-  std::string host;
-  std::uint16_t port = 0;
-  if (!kew::daemon::split_host_port(flags.address, host, port)) {
-    std::fprintf(stderr, "kew-watch: %s: expected HOST:PORT\n", flags.address.c_str());
+  std::string error;
+  const std::optional<kew::config::HostPort> address = kew::config::parse_host_port(flags.address, &error);
+  if (!address) {
+    std::fprintf(stderr, "kew-watch: %s\n", error.c_str());
     return kUsageError;
   }
 
@@ -101,7 +102,7 @@ int main(int argc, char** argv) {
   tcp::socket socket(io);
   try {
     tcp::resolver resolver(io);
-    asio::connect(socket, resolver.resolve(host, std::to_string(port)));
+    asio::connect(socket, resolver.resolve(address->host, std::to_string(address->port)));
     const std::string watch = fmt::format("?WATCH={{\"enable\":true,\"min_severity\":\"{}\",\"tracks\":{}}}\n",
                                           flags.min_severity, flags.tracks ? "true" : "false");
     asio::write(socket, asio::buffer(watch));

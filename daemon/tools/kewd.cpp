@@ -88,8 +88,9 @@ int main(int argc, char** argv) {
   app.add_flag("--listen-any", flags.listen_any,
                "serve subscribers and loopback inputs on every interface, not only loopback");
   app.add_flag("--check-config", flags.check_config, "validate the configuration, then exit 0, or 64 on error");
-  app.add_option("-l,--log-level", flags.log_level, "trace, debug, info, warning, error or critical (overrides the file)")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warning", "error", "critical", "off"}));
+  app.add_option("-l,--log-level", flags.log_level,
+                 "one of " + kew::daemon::kLogLevelNames.list() + " (overrides the file)")
+      ->check(CLI::IsMember(kew::daemon::kLogLevelNames.names()));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,12 +103,12 @@ int main(int argc, char** argv) {
   if (!flags.config_path.empty()) {
     try {
       config = kew::daemon::load_config(flags.config_path);
-    } catch (const kew::daemon::ConfigError& e) {
+    } catch (const kew::config::ConfigError& e) {
       std::fprintf(stderr, "kewd: %s\n", e.what());
       return kUsageError;
     }
   }
-  if (!flags.log_level.empty()) config.service.log_level = flags.log_level;
+  if (!flags.log_level.empty()) config.service.log_level = *kew::daemon::kLogLevelNames.parse(flags.log_level);
   if (flags.check_config) {
     std::printf("kewd: %s is valid: %zu inputs, alerts on %s%s%s\n",
                 flags.config_path.empty() ? "the built-in configuration" : flags.config_path.c_str(),

@@ -20,19 +20,6 @@
 namespace kew::protocol {
 namespace {
 
-constexpr std::array<std::pair<Format, std::string_view>, 10> kNames = {{
-    {Format::Auto, "auto"},
-    {Format::Ndjson, "ndjson"},
-    {Format::Sbs, "sbs"},
-    {Format::OpenskyCsv, "opensky-csv"},
-    {Format::OpenskyJson, "opensky-json"},
-    {Format::ReadsbJson, "readsb"},
-    {Format::AsterixRaw, "asterix-raw"},
-    {Format::AsterixFinalFormat, "asterix-ff"},
-    {Format::AsterixPcap, "asterix-pcap"},
-    {Format::AsterixDatagram, "asterix-datagram"},
-}};
-
 // Detection reads at most this much inflated text, and the auto decoder buffers this much
 // at most before deciding.
 constexpr std::size_t kDetectMaxBytes = 64 * 1024;
@@ -230,22 +217,6 @@ std::unique_ptr<Decoder> make_plain_decoder(Format format, const DecoderOptions&
 }
 
 }  // namespace
-
-std::string_view to_string(Format format) {
-  for (const auto& [f, name] : kNames)
-    if (f == format) return name;
-  return "auto";
-}
-
-bool parse_format(std::string_view name, Format& out) {
-  for (const auto& [f, known] : kNames) {
-    if (known == name) {
-      out = f;
-      return true;
-    }
-  }
-  return false;
-}
 
 Format detect_format(std::span<const std::byte> head) {
   if (has_gzip_magic(head)) {

@@ -9,6 +9,7 @@
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/write.hpp>
 
+#include "kew/config/address.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/replay/pacer.hpp"
 
@@ -16,28 +17,19 @@ namespace kew::replay {
 
 namespace asio = boost::asio;
 
-bool parse_stream_target(const std::string& text, StreamTarget& out) {
-  std::string rest = text;
-  out.protocol = StreamTarget::Protocol::Tcp;
-  if (rest.rfind("tcp://", 0) == 0) {
-    rest = rest.substr(6);
-  } else if (rest.rfind("udp://", 0) == 0) {
-    out.protocol = StreamTarget::Protocol::Udp;
-    rest = rest.substr(6);
+std::optional<StreamTarget> parse_stream_target(std::string_view text, std::string* error) {
+  StreamTarget target;
+  if (text.starts_with("tcp://")) {
+    text.remove_prefix(6);
+  } else if (text.starts_with("udp://")) {
+    target.protocol = StreamTarget::Protocol::Udp;
+    text.remove_prefix(6);
   }
-  const auto colon = rest.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == rest.size()) return false;
-  std::string host = rest.substr(0, colon);
-  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-  unsigned port = 0;
-  for (char c : rest.substr(colon + 1)) {
-    if (c < '0' || c > '9' || port > 65535) return false;
-    port = port * 10 + static_cast<unsigned>(c - '0');
-  }
-  if (port == 0 || port > 65535) return false;
-  out.host = host;
-  out.port = static_cast<std::uint16_t>(port);
-  return true;
+  std::optional<config::HostPort> address = config::parse_host_port(text, error);
+  if (!address) return std::nullopt;
+  target.host = std::move(address->host);
+  target.port = address->port;
+  return target;
 }
 
 namespace {

@@ -8,18 +8,19 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "kew/daemon/config.hpp"
+#include "kew/config/shared_config.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/protocol/encoders/alert_json.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/version.hpp"
 #include "kew/replay/recording_reader.hpp"
-#include "kew/replay/run_statistics.hpp"
 #include "kew/replay/stream_sender.hpp"
 
 namespace {
@@ -92,13 +93,14 @@ void report_rejection(const std::string& origin, std::string_view reason, std::s
 }
 
 int stream_to(const Options& options, kew::replay::MergedRecordings& recordings) {
-  kew::replay::StreamTarget target;
-  if (!kew::replay::parse_stream_target(options.to, target)) {
-    std::fprintf(stderr, "kew-replay: --to %s: expected [tcp://|udp://]HOST:PORT\n", options.to.c_str());
+  std::string error;
+  const std::optional<kew::replay::StreamTarget> target = kew::replay::parse_stream_target(options.to, &error);
+  if (!target) {
+    std::fprintf(stderr, "kew-replay: --to %s (expected [tcp://|udp://]HOST:PORT)\n", error.c_str());
     return kUsageError;
   }
   try {
-    const auto figures = kew::replay::stream_records(recordings, target, options.max_speed ? 0.0 : options.speed);
+    const auto figures = kew::replay::stream_records(recordings, *target, options.max_speed ? 0.0 : options.speed);
     std::fprintf(stderr, "kew-replay: sent %llu records (%llu bytes) to %s\n",
                  static_cast<unsigned long long>(figures.records), static_cast<unsigned long long>(figures.bytes),
                  options.to.c_str());
@@ -109,7 +111,8 @@ int stream_to(const Options& options, kew::replay::MergedRecordings& recordings)
   return 0;
 }
 
-int run_offline(const Options& options, const kew::daemon::Config& config, kew::replay::MergedRecordings& recordings) {
+int run_offline(const Options& options, const kew::config::SharedConfig& config,
+                kew::replay::MergedRecordings& recordings) {
   std::FILE* out = stdout;
   if (!options.alerts_path.empty()) {
     out = std::fopen(options.alerts_path.c_str(), "wb");
@@ -122,7 +125,8 @@ int run_offline(const Options& options, const kew::daemon::Config& config, kew::
   kew::Pipeline pipeline(config.pipeline);
   pipeline.rejections().set_reporter(
       [](std::string_view reason, std::string_view message) { report_rejection("pipeline", reason, message); });
-  kew::replay::RunFigures figures;
+  kew::protocol::ReplayStatistics figures;
+  std::uint64_t records = 0;
   {
     AlertWriter writer(out);
     pipeline.set_alert_sink([&](const kew::AlertEvent& e) { writer.write(e); });
@@ -150,13 +154,13 @@ int run_offline(const Options& options, const kew::daemon::Config& config, kew::
       return true;
     };
     while (next(report)) {
-      ++figures.records_decoded;
+      ++records;
       pipeline.process(report);
       if (options.audit && pipeline.now() >= next_audit) {
         if (next_audit > 0.0) audit();
         next_audit = pipeline.now() + kAuditEvery_s;
       }
-      progress.update(figures.records_decoded, pipeline);
+      progress.update(records, pipeline);
     }
     if (options.audit) audit();
     progress.done();
@@ -165,7 +169,10 @@ int run_offline(const Options& options, const kew::daemon::Config& config, kew::
   figures.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const kew::Rejections decoding = recordings.rejections();
-  const std::string stats = kew::replay::run_statistics_json(pipeline, decoding, figures);
+  kew::Rejections rejected;
+  rejected.merge(decoding);
+  rejected.merge(pipeline.rejections());
+  const std::string stats = kew::protocol::run_statistics_json(pipeline, rejected, figures);
   if (!options.stats_path.empty()) {
     std::FILE* f = std::fopen(options.stats_path.c_str(), "wb");
     if (!f || std::fwrite(stats.data(), 1, stats.size(), f) != stats.size()) {
@@ -179,9 +186,9 @@ int run_offline(const Options& options, const kew::daemon::Config& config, kew::
   std::fprintf(stderr,
                "kew-replay: %llu records, %llu accepted, %llu rejected, %zu tracks at most, %llu alerts "
                "(%llu updates, %llu ended), %.2f s\n",
-               static_cast<unsigned long long>(figures.records_decoded),
+               static_cast<unsigned long long>(records),
                static_cast<unsigned long long>(pipeline.statistics().accepted),
-               static_cast<unsigned long long>(decoding.total() + pipeline.rejections().total()),
+               static_cast<unsigned long long>(rejected.total()),
                pipeline.tracks().max_size(), static_cast<unsigned long long>(counters.opened),
                static_cast<unsigned long long>(counters.updated), static_cast<unsigned long long>(counters.ended),
                figures.wall_s);
@@ -201,10 +208,11 @@ int main(int argc, char** argv) {
   Options options;
   CLI::App app{"kew-replay: run kew's conflict detection over recordings, or stream them to kewd"};
   app.set_version_flag("--version", std::string("kew-replay ") + std::string(kew::protocol::release()));
-  app.add_option("--format", options.format,
-                 "input format: auto, ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, "
-                 "asterix-pcap")
-      ->default_val("auto");
+  // Every format but the live-only asterix-datagram (one UDP datagram per read).
+  const auto file_formats = {kew::protocol::Format::AsterixDatagram};
+  app.add_option("--format", options.format, "input format: " + kew::protocol::kFormatNames.list(file_formats))
+      ->default_val("auto")
+      ->check(CLI::IsMember(kew::protocol::kFormatNames.names(file_formats)));
   app.add_option("-c,--config", options.config_path, "kew TOML configuration (as kewd's)");
   auto* speed = app.add_option("--speed", options.speed, "with --to: multiple of recorded speed")->check(
       CLI::PositiveNumber);
@@ -215,8 +223,8 @@ int main(int argc, char** argv) {
   app.add_flag("--sort", options.sort,
                "read everything first and replay in time order (recordings grouped by flight, not by time)");
   app.add_flag("--audit", options.audit, "audit the triangulation every 60 s of data and at the end");
-  app.add_option("--probe", options.probe, "candidate search: exact, edges or brute")
-      ->check(CLI::IsMember({"exact", "edges", "brute"}));
+  app.add_option("--probe", options.probe, "candidate search: " + kew::probe::kProbeModeNames.list())
+      ->check(CLI::IsMember(kew::probe::kProbeModeNames.names()));
   app.add_option("files", options.files, "recordings (merged in time order)")->required()->check(
       CLI::ExistingFile);
   try {
@@ -226,21 +234,18 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kUsageError;
   }
 
-  kew::protocol::Format format;
-  if (!kew::protocol::parse_format(options.format, format) || format == kew::protocol::Format::AsterixDatagram) {
-    std::fprintf(stderr, "kew-replay: --format %s: not a file format\n", options.format.c_str());
-    return kUsageError;
-  }
-  kew::daemon::Config config;
+  const kew::protocol::Format format = *kew::protocol::kFormatNames.parse(options.format);
+  kew::config::SharedConfig config;
   if (!options.config_path.empty()) {
     try {
-      config = kew::daemon::load_config(options.config_path);
-    } catch (const kew::daemon::ConfigError& e) {
+      // A kewd file is accepted: its [service], [cat004], [modbus] and [[input]] tables are not used here.
+      config = kew::config::load_shared_config(options.config_path);
+    } catch (const kew::config::ConfigError& e) {
       std::fprintf(stderr, "kew-replay: %s\n", e.what());
       return kUsageError;
     }
   }
-  if (!options.probe.empty()) kew::probe::parse_probe_mode(options.probe.c_str(), config.pipeline.probe_mode);
+  if (!options.probe.empty()) config.pipeline.probe_mode = *kew::probe::kProbeModeNames.parse(options.probe);
 
   kew::replay::MergedRecordings recordings;
   for (const std::string& file : options.files) {

@@ -33,6 +33,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "free_port.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 
 namespace {
@@ -80,10 +81,11 @@ class Daemon {
  public:
   Daemon(const std::string& binary, const std::string& transport, const std::string& config_path) {
     std::ofstream(config_path) << fmt::format(
-        "[service]\nalert_listen = \"127.0.0.1:0\"\ntick_interval_s = 60\nsubscriber_queue = 1000000\n"
+        "[service]\nalert_listen = \"{}\"\ntick_interval_s = 60\nsubscriber_queue = 1000000\n"
         "log_level = \"info\"\n[[input]]\nname = \"bench\"\nformat = \"ndjson\"\ntransport = \"{}\"\n"
-        "address = \"127.0.0.1:0\"\n",
-        transport == "udp" ? "udp" : "tcp-server");
+        "address = \"{}\"\n",
+        kew::testing::free_loopback_address(), transport == "udp" ? "udp" : "tcp-server",
+        kew::testing::free_loopback_address());
     int err[2];
     if (::pipe(err) != 0) throw std::runtime_error("pipe");
     pid_ = ::fork();

@@ -1,12 +1,15 @@
 """Test harness for end-to-end tests of the real kewd binary (issue 6, SPEC §6).
 
-Starts kewd in the foreground on loopback with ephemeral ports, learns the ports from its
-log, and talks to it as subscribers, feeds and operators do. Binaries come from the
+Starts kewd in the foreground on loopback on free ports, learns the ports from its log,
+and talks to it as subscribers, feeds and operators do. kewd refuses port 0 (a listener
+on it would be unreachable at an unknown port), so the harness replaces every
+"127.0.0.1:0" of a configuration with a port that is free at that moment. Binaries come from the
 environment (set by ctest): KEWD, KEW_REPLAY, KEW_GEN, KEW_WATCH.
 """
 
 import json
 import os
+import re
 import signal
 import socket
 import struct
@@ -35,6 +38,26 @@ def wait_until(predicate, timeout_s, what):
         time.sleep(0.05)
 
 
+def free_port():
+    """A loopback port free for both TCP and UDP a moment ago."""
+    for _ in range(100):
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as t:
+            t.bind(("127.0.0.1", 0))
+            port = t.getsockname()[1]
+            with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as u:
+                try:
+                    u.bind(("127.0.0.1", port))
+                except OSError:
+                    continue
+            return port
+    raise AssertionError("no free loopback port")
+
+
+def with_free_ports(config_text):
+    """The configuration with each "127.0.0.1:0" replaced by its own free port."""
+    return re.sub(r'"127\.0\.0\.1:0"', lambda _: f'"127.0.0.1:{free_port()}"', config_text)
+
+
 class Kewd:
     """One kewd process with its configuration in a temporary directory."""
 
@@ -42,7 +65,7 @@ class Kewd:
         self.workdir = workdir
         self.config_path = os.path.join(workdir, "kew.toml")
         with open(self.config_path, "w") as f:
-            f.write(config_text)
+            f.write(with_free_ports(config_text))
         self.log_lines = []
         self._log_lock = threading.Lock()
         self.process = subprocess.Popen(
@@ -75,7 +98,7 @@ class Kewd:
         return wait_until(lambda: self._find_log(text), timeout_s, f"'{text}' in kewd's log")
 
     def input_port(self, name):
-        """The port an input actually bound (configured with port 0)."""
+        """The port an input bound, from its start-up line in the log."""
         line = self.wait_log(f"input {name}: ")
         return int(line.split("(port ")[1].rstrip(")"))
 

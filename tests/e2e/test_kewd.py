@@ -16,8 +16,8 @@ import threading
 import time
 import unittest
 
-from kewd_harness import (KEWD, KEW_WATCH, Kewd, Subscriber, active_at_end, count_lines, generate, offline_alerts, replay_to,
-                          temporary_directory, wait_until, write_pcap)
+from kewd_harness import (KEWD, KEW_REPLAY, KEW_WATCH, Kewd, Subscriber, active_at_end, count_lines, generate, offline_alerts, replay_to,
+                          temporary_directory, wait_until, with_free_ports, write_pcap)
 
 # The live tick never fires during a test (a feed silent for a whole tick would move the
 # clock on and make the stream differ from the offline run, as it should live).
@@ -125,6 +125,45 @@ class AlertStream(E2eCase):
         with open(self.path("alerts.jsonl")) as f:
             self.assertEqual(f.readlines(), expected, "the alert log holds every alert")
         self.assertIn("SIGTERM received", kewd.log())
+
+    def test_file_input_reads_like_kew_replay_and_reports_the_same_statistics(self):
+        """kewd's file input goes through kew-replay's recording reader: the same alerts,
+        and ?STATS gives every figure of kew-replay's --stats-json under the same key."""
+        recording = self.path("mixed.ndjson")
+        generate(recording, "mixed", aircraft=300, duration=120, seed=3)
+        with open(recording, "a") as f:
+            f.write('{"t":"late","id":"X"}\n')  # one decoder rejection, counted by both
+        unreadable = self.path("a-directory")
+        os.mkdir(unreadable)
+        kewd = self.start(SERVICE.format(queue=100000, workdir=self.workdir)
+                          + f'[[input]]\nname = "file"\nformat = "ndjson"\ntransport = "file"\naddress = "{recording}"\n'
+                          + f'[[input]]\nname = "dir"\ntransport = "file"\naddress = "{unreadable}"\n')
+        kewd.wait_log("input file: " + recording + " read to the end", 60)
+        live = kewd.stats()
+        stats_path = self.path("replay-stats.json")
+        offline = subprocess.run([KEW_REPLAY, "--config", kewd.config_path, "--stats-json", stats_path, recording],
+                                 check=True, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout
+        with open(stats_path) as f:
+            replay = json.load(f)
+        kewd.terminate()
+        with open(self.path("alerts.jsonl")) as f:
+            self.assertEqual(f.read(), offline, "the file input gives kew-replay's alerts")
+        self.assertGreater(replay["alerts_new"], 0, "the scenario must have conflicts")
+        only_replay = {"audits", "audit_violations_found", "audit_violations_unrepaired", "wall_s"}
+        for key, value in replay.items():
+            if key in only_replay:
+                continue
+            self.assertIn(key, live, "kewd's STATS lacks kew-replay's key " + key)
+            if key not in ("rejected", "rejected_total"):
+                self.assertEqual(live[key], value, key)
+        # kewd's total adds the unreadable directory to the recording's one bad line.
+        self.assertEqual(replay["rejected"], {"wrong_type": 1})
+        self.assertEqual(live["rejected"], {"file_unreadable": 1, "wrong_type": 1})
+        self.assertEqual((replay["rejected_total"], live["rejected_total"]), (1, 2))
+        by_name = {i["name"]: i for i in live["inputs"]}
+        self.assertEqual(by_name["dir"]["rejected"], {"file_unreadable": 1}, "a read error is counted")
+        self.assertEqual(by_name["file"]["rejected"], {"wrong_type": 1})
+        self.assertEqual(by_name["file"]["reports"], live["records"])
 
     def test_udp_feed_equals_offline(self):
         recording = self.path("tma.ndjson")
@@ -285,8 +324,20 @@ class Operations(E2eCase):
     def test_check_config_and_version(self):
         good = self.path("good.toml")
         with open(good, "w") as f:
-            f.write(SERVICE.format(queue=100, workdir=self.workdir))
+            f.write(with_free_ports(SERVICE.format(queue=100, workdir=self.workdir)))
         self.assertEqual(subprocess.run([KEWD, "--check-config", "-c", good], stdout=subprocess.DEVNULL).returncode, 0)
+        # One HOST:PORT rule for every tool: port 0 and bare IPv6 are refused, naming the text.
+        zero = self.path("zero.toml")
+        with open(zero, "w") as f:
+            f.write(SERVICE.format(queue=100, workdir=self.workdir))
+        result = subprocess.run([KEWD, "--check-config", "-c", zero], stderr=subprocess.PIPE, text=True)
+        self.assertEqual(result.returncode, 64)
+        self.assertIn('alert_listen = "127.0.0.1:0" is not HOST:PORT: port 0', result.stderr)
+        for tool in ([KEW_REPLAY, "--to", "::1:4747"], [KEW_WATCH, "::1:4747"]):
+            result = subprocess.run(tool + ([self.path("zero.toml")] if tool[0] == KEW_REPLAY else []),
+                                    stderr=subprocess.PIPE, text=True, timeout=20)
+            self.assertEqual(result.returncode, 64, tool)
+            self.assertIn('"::1:4747" is not HOST:PORT: an IPv6 address goes in brackets', result.stderr)
         bad = self.path("bad.toml")
         with open(bad, "w") as f:
             f.write("[service]\nalert_listen = \"127.0.0.1:4747\"\nalert_lisen = 3\n")
@@ -325,7 +376,7 @@ class Operations(E2eCase):
         busy.close()
         pidfile_config = self.path("ok.toml")
         with open(pidfile_config, "w") as f:
-            f.write('[service]\nalert_listen = "127.0.0.1:0"\n')
+            f.write(with_free_ports('[service]\nalert_listen = "127.0.0.1:0"\n'))
         self.assertEqual(subprocess.run([KEWD, "-c", pidfile_config], timeout=20).returncode, 0)
         # The daemon is running in the background: find it by its command line and stop it.
         pids = subprocess.run(["pgrep", "-f", f"{KEWD} -c {pidfile_config}"], stdout=subprocess.PIPE,

@@ -8,8 +8,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Detection sees the stream the decoders see: without fuzz_decoder's 4 control bytes.
   if (size < 4) return 0;
   const Format detected = detect_format(std::as_bytes(std::span<const std::uint8_t>(data + 4, size - 4)));
-  Format parsed = Format::Auto;
-  if (!parse_format(to_string(detected), parsed) || parsed != detected) __builtin_trap();
+  if (kFormatNames.parse(to_string(detected)) != detected) __builtin_trap();
   DecoderOptions options;
   options.max_line_bytes = 512;
   if (detected != Format::AsterixDatagram) {

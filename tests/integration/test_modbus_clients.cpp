@@ -192,8 +192,8 @@ TEST_F(WithPymodbus, InvalidAddressesAreIllegalDataAddress) {
   }
   EXPECT_EQ(*s.acknowledgements, 0);
   EXPECT_EQ(s.server->stats().exceptions, 6u);
-  EXPECT_EQ(s.server->rejections().count("modbus_address_out_of_map"), 5u);
-  EXPECT_EQ(s.server->rejections().count("modbus_register_write"), 1u);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_address_out_of_map"), 5u);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_register_write"), 1u);
 }
 
 TEST_F(WithPymodbus, ReadOnlyRefusesWritesWithIllegalFunction) {
@@ -235,7 +235,7 @@ TEST_F(WithPymodbus, SilentAndGarbageClientsDoNotBlockOthers) {
   const CommandResult r = client(s, "read-input-registers 0 3");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(json_values(r.output), (std::vector<long>{1, 3, 3}));
-  EXPECT_EQ(s.server->rejections().count("modbus_bad_protocol_id"), 1u);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_bad_protocol_id"), 1u);
   EXPECT_GE(s.server->stats().connections_dropped, 1u);
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "free_port.hpp"
 #include "test_modbus_support.hpp"
 
 namespace kew::test {
@@ -62,7 +63,7 @@ TEST(ModbusSockets, ReservedFunctionCodeDropsTheConnection) {
   RawClient c(s.port());
   c.send(request(1, {0x83, 0x02}));
   EXPECT_TRUE(c.closed_by_peer());
-  EXPECT_EQ(s.server->rejections().count("modbus_reserved_function_code"), 1u);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_reserved_function_code"), 1u);
 }
 
 TEST(ModbusSockets, OversizedLengthDropsTheConnection) {
@@ -70,7 +71,7 @@ TEST(ModbusSockets, OversizedLengthDropsTheConnection) {
   RawClient c(s.port());
   c.send({0, 1, 0, 0, 0x10, 0x00, 1});  // MBAP length 4096
   EXPECT_TRUE(c.closed_by_peer());
-  EXPECT_EQ(s.server->rejections().count("modbus_bad_length"), 1u);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_bad_length"), 1u);
   RawClient next(s.port());
   next.send(request(2, {0x04, 0x00, 0x00, 0x00, 0x01}));
   EXPECT_EQ(next.receive(11), (std::vector<std::uint8_t>{0, 2, 0, 0, 0, 5, 1, 0x04, 2, 0, 1}));
@@ -78,14 +79,14 @@ TEST(ModbusSockets, OversizedLengthDropsTheConnection) {
 
 TEST(ModbusSockets, ThrowingCallbackDoesNotStopTheServer) {
   daemon::ModbusConfig config;
-  config.listen = "127.0.0.1:0";
+  config.listen = kew::testing::free_loopback_address();
   daemon::ModbusServer server(config, [] { throw std::runtime_error("daemon gone"); });
   server.start();
   RawClient c(server.bound_port());
   const auto write = request(3, {0x05, 0x00, 0x00, 0xFF, 0x00});
   c.send(write);
   EXPECT_EQ(c.receive(write.size()), write);
-  EXPECT_EQ(server.rejections().count("modbus_acknowledge_callback_failed"), 1u);
+  EXPECT_EQ(server.stats().rejected.count("modbus_acknowledge_callback_failed"), 1u);
 }
 
 TEST(ModbusSockets, StopClosesEveryConnection) {
@@ -104,7 +105,7 @@ TEST(ModbusSockets, BadConfigurationThrows) {
   daemon::ModbusConfig config;
   config.listen = "no port";
   EXPECT_THROW(daemon::ModbusServer(config, {}), std::runtime_error);
-  config.listen = "127.0.0.1:0";
+  config.listen = kew::testing::free_loopback_address();
   config.table_entries = 65;
   EXPECT_THROW(daemon::ModbusServer(config, {}), std::runtime_error);
 

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <thread>
 
+#include "free_port.hpp"
+
 namespace kew::test {
 namespace {
 
@@ -69,7 +71,7 @@ std::vector<std::uint16_t> expected_registers() {
 RunningServer::RunningServer(bool read_only, int max_connections, int unit_id) {
   daemon::ModbusConfig config;
   config.enabled = true;
-  config.listen = "127.0.0.1:0";
+  config.listen = kew::testing::free_loopback_address();
   config.unit_id = unit_id;
   config.table_entries = kTableEntries;
   config.read_only = read_only;

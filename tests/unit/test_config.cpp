@@ -1,5 +1,6 @@
 // The configuration file (SPEC §5.7): deploy/kew.toml documents the defaults the code
-// uses, unknown keys are errors, and errors name the file and line.
+// uses, unknown keys are errors, and errors name the file and line; the shared tables
+// (kew_config) read the same file as kewd (kew_daemon_config); one HOST:PORT parser.
 #include "kew/daemon/config.hpp"
 
 #include <gtest/gtest.h>
@@ -7,8 +8,18 @@
 #include <cmath>
 #include <string>
 
+#include "kew/config/address.hpp"
+#include "kew/config/document.hpp"
+#include "kew/config/shared_config.hpp"
+#include "kew/config/utc_day.hpp"
+
 namespace kew::daemon {
 namespace {
+
+using config::ConfigError;
+using config::HostPort;
+using config::parse_host_port;
+using config::parse_utc_day;
 
 TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   const Config file = load_config(std::string(KEW_DEPLOY_DIR) + "/kew.toml");
@@ -111,9 +122,7 @@ asterix_day = "2023-05-02"
   ASSERT_EQ(c.inputs.size(), 1u);
   EXPECT_EQ(c.inputs[0].name, "input1");
   EXPECT_EQ(c.inputs[0].format, protocol::Format::AsterixRaw);
-  double day = 0;
-  ASSERT_TRUE(parse_utc_day(c.inputs[0].asterix_day, day));
-  EXPECT_EQ(day, 1682985600.0);  // 2023-05-02T00:00:00Z
+  EXPECT_EQ(parse_utc_day(c.inputs[0].asterix_day), 1682985600.0);  // 2023-05-02T00:00:00Z
 }
 
 void expect_error(const char* text, const char* needle) {
@@ -140,24 +149,94 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
   expect_error("input = 3\n", "input must be written as [[input]] tables");
 }
 
-TEST(Config, HostPortAndDays) {
-  std::string host;
-  std::uint16_t port = 0;
-  EXPECT_TRUE(split_host_port("127.0.0.1:4747", host, port));
-  EXPECT_EQ(host, "127.0.0.1");
-  EXPECT_EQ(port, 4747);
-  EXPECT_TRUE(split_host_port("[::1]:1502", host, port));
-  EXPECT_EQ(host, "::1");
-  EXPECT_FALSE(split_host_port("::1:1502", host, port));
-  EXPECT_FALSE(split_host_port("host:70000", host, port));
-  EXPECT_FALSE(split_host_port("host:", host, port));
-  double t = 0;
-  EXPECT_TRUE(parse_utc_day("1970-01-01", t));
-  EXPECT_EQ(t, 0.0);
-  EXPECT_TRUE(parse_utc_day("2024-02-29", t));
-  EXPECT_EQ(t, 1709164800.0);
-  EXPECT_FALSE(parse_utc_day("2024-13-01", t));
-  EXPECT_FALSE(parse_utc_day("24-01-01", t));
+TEST(Config, UtcDays) {
+  EXPECT_EQ(parse_utc_day("1970-01-01"), 0.0);
+  EXPECT_EQ(parse_utc_day("2024-02-29"), 1709164800.0);
+  EXPECT_FALSE(parse_utc_day("2024-13-01"));
+  EXPECT_FALSE(parse_utc_day("24-01-01"));
+  EXPECT_FALSE(parse_utc_day(""));
+}
+
+// One rule for every address of every tool: IPv6 only in brackets, port 1-65535, and a
+// message that quotes the text.
+TEST(Address, OneRuleForEveryTool) {
+  EXPECT_EQ(parse_host_port("127.0.0.1:4747"), (HostPort{"127.0.0.1", 4747}));
+  EXPECT_EQ(parse_host_port("[::1]:1502"), (HostPort{"::1", 1502}));
+  EXPECT_EQ(parse_host_port("radar.example:65535"), (HostPort{"radar.example", 65535}));
+  EXPECT_EQ(parse_host_port("[ff02::1]:30003"), (HostPort{"ff02::1", 30003}));
+  const std::pair<const char*, const char*> refused[] = {
+      {"::1:1502", "brackets"},         {"host:70000", "above 65535"},  {"host:", "empty port"},
+      {":4747", "empty host"},          {"localhost", "no ':PORT'"},    {"[::1]", "no ':PORT' after ']'"},
+      {"[::1:4747", "no ']'"},          {"host:47a", "not a decimal"},  {"host:0", "port 0"},
+      {"127.0.0.1:00000", "port 0"},    {"[]:4747", "empty host"},      {"host:99999999999", "above 65535"},
+  };
+  for (const auto& [text, why] : refused) {
+    std::string error;
+    EXPECT_FALSE(parse_host_port(text, &error)) << text;
+    EXPECT_NE(error.find(std::string("\"") + text + "\""), std::string::npos) << error;
+    EXPECT_NE(error.find(why), std::string::npos) << text << ": " << error;
+  }
+  EXPECT_EQ(config::to_string(HostPort{"::1", 4747}), "[::1]:4747");
+  EXPECT_EQ(config::to_string(HostPort{"10.0.0.1", 8601}), "10.0.0.1:8601");
+  for (const char* text : {"[::1]:4747", "10.0.0.1:8601", "radar:1"})
+    EXPECT_EQ(config::to_string(config::require_host_port(text)), text);
+  EXPECT_THROW(config::require_host_port("nowhere"), ConfigError);
+}
+
+TEST(Config, EveryAddressKeyUsesTheOneParser) {
+  expect_error("[service]\nalert_listen = \"127.0.0.1:0\"\n", "t.toml:2: [service] alert_listen = \"127.0.0.1:0\"");
+  expect_error("[modbus]\nlisten = \"::1:1502\"\n", "brackets");
+  expect_error("[cat004]\ndestination = \"10.0.0.1:65536\"\n", "above 65535");
+  expect_error("[[input]]\ntransport = \"tcp-client\"\naddress = \"feed\"\n", "t.toml:3: [input 1] address = \"feed\"");
+  // A file input's address is a path, colons and all.
+  EXPECT_EQ(parse_config("[[input]]\ntransport = \"file\"\naddress = \"C:/x.ast\"\n").inputs[0].address, "C:/x.ast");
+}
+
+// Choices are checked against the enum's name table, and the error lists that table.
+TEST(Config, ChoicesListTheirNameTable) {
+  expect_error("[kinetic]\ntolerance_mode = \"metres\"\n", "expected one of absolute, relative");
+  expect_error("[[input]]\ntransport = \"tcp\"\naddress = \"a:1\"\n",
+               "expected one of udp, tcp-client, tcp-server, file");
+  expect_error("[[input]]\nformat = \"json\"\naddress = \"a:1\"\n",
+               "expected one of auto, ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, "
+               "asterix-pcap, asterix-datagram");
+  expect_error("[service]\nlog_level = \"warning\"\n", "expected one of trace, debug, info, warn, error, critical, off");
+  EXPECT_EQ(parse_config("[service]\nlog_level = \"warn\"\n").service.log_level, LogLevel::Warn);
+  EXPECT_EQ(kTransportNames.parse(to_string(Transport::TcpServer)), Transport::TcpServer);
+}
+
+// kew-replay and the other tools read the shared tables of a kewd file, identically, and
+// accept kewd's own tables without reading them.
+TEST(SharedConfig, ReadsAKewdFileAsKewdDoes) {
+  const std::string path = std::string(KEW_DEPLOY_DIR) + "/kew.toml";
+  const config::SharedConfig shared = config::load_shared_config(path);
+  const Config daemon = load_config(path);
+  EXPECT_EQ(shared.pipeline.coverage_radius_m, daemon.pipeline.coverage_radius_m);
+  EXPECT_EQ(shared.pipeline.probe_mode, daemon.pipeline.probe_mode);
+  EXPECT_EQ(shared.decoding.max_line_bytes, daemon.decoding.max_line_bytes);
+  const char* text = R"(
+[service]
+whatever_kewd_reads = 1
+[[input]]
+not_checked_here = true
+[probe]
+mode = "brute"
+[[radar]]
+sac = 1
+sic = 2
+lat = 50
+lon = 8
+)";
+  const config::SharedConfig c = config::read_shared_config(config::Document::parse(text, "k.toml"));
+  EXPECT_EQ(c.pipeline.probe_mode, probe::ProbeMode::Brute);
+  ASSERT_EQ(c.decoding.asterix.radars.size(), 1u);
+  EXPECT_EQ(c.decoding.asterix.radars[0].sic, 2);
+  try {
+    config::read_shared_config(config::Document::parse("[probe]\nmode = \"exact\"\n[servcie]\n", "k.toml"));
+    ADD_FAILURE() << "an unknown table was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("k.toml:3: unknown section or key \"servcie\""), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

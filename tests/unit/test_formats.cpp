@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <set>
 
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/ndjson.hpp"
@@ -34,16 +36,17 @@ TEST(Formats, NamesRoundTrip) {
   EXPECT_EQ(to_string(Format::ReadsbJson), "readsb");
   std::set<std::string_view> names;
   for (const Format format : kAllFormats) {
-    Format parsed = Format::Ndjson;
-    ASSERT_TRUE(parse_format(to_string(format), parsed)) << to_string(format);
-    EXPECT_EQ(parsed, format);
+    const std::optional<Format> parsed = kFormatNames.parse(to_string(format));
+    ASSERT_TRUE(parsed) << to_string(format);
+    EXPECT_EQ(*parsed, format);
     names.insert(to_string(format));
   }
   EXPECT_EQ(names.size(), std::size(kAllFormats));
-  Format untouched = Format::Sbs;
-  EXPECT_FALSE(parse_format("NDJSON", untouched));
-  EXPECT_FALSE(parse_format("", untouched));
-  EXPECT_EQ(untouched, Format::Sbs);
+  EXPECT_EQ(kFormatNames.entries().size(), std::size(kAllFormats));
+  EXPECT_FALSE(kFormatNames.parse("NDJSON"));
+  EXPECT_FALSE(kFormatNames.parse(""));
+  EXPECT_EQ(kFormatNames.list({Format::Auto, Format::AsterixDatagram}),
+            "ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, asterix-pcap");
 }
 
 TEST(Formats, DetectsEveryBundledTextFile) {

@@ -1,31 +1,11 @@
 #include "kew/probe/proximity_search.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 
 #include "kew/util/gentle_growth.hpp"
 
 namespace kew::probe {
-
-const char* to_string(ProbeMode mode) {
-  switch (mode) {
-    case ProbeMode::Edges: return "edges";
-    case ProbeMode::Brute: return "brute";
-    case ProbeMode::Exact: break;
-  }
-  return "exact";
-}
-
-bool parse_probe_mode(const char* text, ProbeMode& out) {
-  for (ProbeMode m : {ProbeMode::Exact, ProbeMode::Edges, ProbeMode::Brute}) {
-    if (std::strcmp(text, to_string(m)) == 0) {
-      out = m;
-      return true;
-    }
-  }
-  return false;
-}
 
 void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m,
                              std::vector<PointId>& out) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "libmodbus_context.hpp"
+#include "kew/config/address.hpp"
 
 namespace kew::daemon {
 namespace {
@@ -92,12 +93,9 @@ struct Client {
 };
 
 LibmodbusContext open_context(const ModbusConfig& config) {
-  std::string host;
-  std::uint16_t port = 0;
-  if (!split_host_port(config.listen, host, port)) {
-    throw std::runtime_error("modbus: listen address \"" + config.listen +
-                             "\" is not HOST:PORT");
-  }
+  std::string error;
+  const std::optional<config::HostPort> listen = config::parse_host_port(config.listen, &error);
+  if (!listen) throw std::runtime_error("modbus: listen address " + error);
   if (config.unit_id < 0 || config.unit_id > 247) {
     throw std::runtime_error("modbus: unit_id must be in 0-247");
   }
@@ -107,7 +105,7 @@ LibmodbusContext open_context(const ModbusConfig& config) {
   if (config.max_connections < 1) {
     throw std::runtime_error("modbus: max_connections must be at least 1");
   }
-  return LibmodbusContext(host, port, config.max_connections,
+  return LibmodbusContext(listen->host, listen->port, config.max_connections,
                           protocol::modbus_register_count(config.table_entries));
 }
 
@@ -144,14 +142,9 @@ class ModbusServer::Impl {
 
   std::uint16_t bound_port() const { return modbus_.bound_port(); }
 
-  Stats stats() const {
+  protocol::ModbusStatistics stats() const {
     std::lock_guard lock(stats_mutex_);
     return stats_;
-  }
-
-  Rejections rejections() const {
-    std::lock_guard lock(stats_mutex_);
-    return rejections_;
   }
 
  private:
@@ -249,7 +242,7 @@ class ModbusServer::Impl {
         });
     if (!framed) {
       std::lock_guard lock(stats_mutex_);
-      rejections_.merge(framing);
+      stats_.rejected.merge(framing);
     }
     if (!framed) {
       drop(client, {});
@@ -292,7 +285,7 @@ class ModbusServer::Impl {
       if (on_acknowledge_) on_acknowledge_();
     } catch (...) {
       std::lock_guard lock(stats_mutex_);
-      rejections_.reject("modbus_acknowledge_callback_failed");
+      stats_.rejected.reject("modbus_acknowledge_callback_failed");
     }
   }
 
@@ -302,7 +295,7 @@ class ModbusServer::Impl {
     if (verdict.exception != protocol::ModbusException::None && !verdict.drop_connection) {
       ++stats_.exceptions;
     }
-    if (!verdict.reason.empty()) rejections_.reject(verdict.reason);
+    if (!verdict.reason.empty()) stats_.rejected.reject(verdict.reason);
   }
 
   /// Closes a client kew gives up on, counting `reason` unless it was counted already.
@@ -310,7 +303,7 @@ class ModbusServer::Impl {
     client.socket.reset();
     std::lock_guard lock(stats_mutex_);
     ++stats_.connections_dropped;
-    if (!reason.empty()) rejections_.reject(reason);
+    if (!reason.empty()) stats_.rejected.reject(reason);
   }
 
   void set_open_connections() {
@@ -339,8 +332,7 @@ class ModbusServer::Impl {
   std::vector<Client> clients_;
 
   mutable std::mutex stats_mutex_;
-  Stats stats_;
-  Rejections rejections_;
+  protocol::ModbusStatistics stats_;
 };
 
 ModbusServer::ModbusServer(const ModbusConfig& config, std::function<void()> on_acknowledge)
@@ -352,7 +344,6 @@ void ModbusServer::start() { impl_->start(); }
 void ModbusServer::stop() { impl_->stop(); }
 void ModbusServer::publish(const protocol::AlarmSnapshot& snapshot) { impl_->publish(snapshot); }
 std::uint16_t ModbusServer::bound_port() const { return impl_->bound_port(); }
-ModbusServer::Stats ModbusServer::stats() const { return impl_->stats(); }
-Rejections ModbusServer::rejections() const { return impl_->rejections(); }
+protocol::ModbusStatistics ModbusServer::stats() const { return impl_->stats(); }
 
 }  // namespace kew::daemon

@@ -3,6 +3,8 @@
 #include <boost/asio/ip/multicast.hpp>
 #include <spdlog/spdlog.h>
 
+#include "kew/config/address.hpp"
+
 namespace kew::daemon {
 
 namespace asio = boost::asio;
@@ -19,11 +21,9 @@ protocol::Cat004Options encoder_options(const Cat004Config& config) {
 
 Cat004Sender::Cat004Sender(asio::io_context& io, const Cat004Config& config)
     : socket_(io), encoder_(encoder_options(config)) {
-  std::string host;
-  std::uint16_t port = 0;
-  split_host_port(config.destination, host, port);
+  const config::HostPort address = config::require_host_port(config.destination);
   udp::resolver resolver(io);
-  destination_ = *resolver.resolve(host, std::to_string(port)).begin();
+  destination_ = *resolver.resolve(address.host, std::to_string(address.port)).begin();
   socket_.open(destination_.protocol());
   if (destination_.address().is_multicast()) {
     socket_.set_option(asio::ip::multicast::hops(config.ttl));

@@ -1,9 +1,8 @@
 #include "inputs.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <ctime>
-#include <deque>
+#include <optional>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/multicast.hpp>
@@ -13,7 +12,10 @@
 #include <boost/asio/steady_timer.hpp>
 #include <spdlog/spdlog.h>
 
+#include "kew/config/address.hpp"
+#include "kew/config/utc_day.hpp"
 #include "kew/replay/pacer.hpp"
+#include "kew/replay/recording_reader.hpp"
 
 namespace kew::daemon {
 
@@ -33,9 +35,9 @@ double today_utc_midnight() {
 }
 
 protocol::DecoderOptions options_for(const InputConfig& config, protocol::DecoderOptions options) {
-  double day = 0.0;
-  if (!config.asterix_day.empty() && parse_utc_day(config.asterix_day, day)) {
-    options.asterix.day_start_utc_s = day;
+  const std::optional<double> day = config::parse_utc_day(config.asterix_day);
+  if (day) {
+    options.asterix.day_start_utc_s = *day;
     options.asterix.day_from_pcap = false;
   } else if (config.transport != Transport::File) {
     options.asterix.day_start_utc_s = today_utc_midnight();
@@ -45,11 +47,9 @@ protocol::DecoderOptions options_for(const InputConfig& config, protocol::Decode
 
 template <class Endpoint>
 Endpoint resolve_endpoint(asio::io_context& io, const std::string& address) {
-  std::string host;
-  std::uint16_t port = 0;
-  split_host_port(address, host, port);
+  const config::HostPort endpoint = config::require_host_port(address);
   typename Endpoint::protocol_type::resolver resolver(io);
-  return *resolver.resolve(host, std::to_string(port)).begin();
+  return *resolver.resolve(endpoint.host, std::to_string(endpoint.port)).begin();
 }
 
 class UdpInput final : public Input {
@@ -226,12 +226,10 @@ class TcpClientInput final : public Input {
   }
   void connect() {
     if (stopped_) return;
-    std::string host;
-    std::uint16_t port = 0;
-    split_host_port(config_.address, host, port);
+    const config::HostPort remote = config::require_host_port(config_.address);
     socket_ = std::make_shared<tcp::socket>(io_);
     auto resolver = std::make_shared<tcp::resolver>(io_);
-    resolver->async_resolve(host, std::to_string(port), [this, resolver](const boost::system::error_code& ec,
+    resolver->async_resolve(remote.host, std::to_string(remote.port), [this, resolver](const boost::system::error_code& ec,
                                                                          tcp::resolver::results_type results) {
       if (stopped_) return;
       if (ec) return retry(ec.message());
@@ -272,24 +270,21 @@ class TcpClientInput final : public Input {
   bool stopped_ = false;
 };
 
-// Reads a file in chunks posted one at a time, so that other inputs and subscribers
-// are served between chunks; paced files release each report at its due time.
+// Reads a recording through replay's RecordingReader (the reader kew-replay uses, with
+// its read-error check) a batch of records per posted step, so that other inputs and
+// subscribers are served in between; paced files release each record at its due time.
 class FileInput final : public Input {
  public:
   FileInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
       : Input(std::move(config), std::move(options), std::move(handler)), io_(io), timer_(io),
-        pacer_(config_.pace ? config_.speed : 0.0), buffer_(kReadBytes) {}
-  ~FileInput() override {
-    if (file_) std::fclose(file_);
-  }
+        pacer_(config_.pace ? config_.speed : 0.0) {}
   void start() override {
-    file_ = std::fopen(config_.address.c_str(), "rb");
-    if (!file_) {
-      figures_.rejections.reject("file_unreadable", config_.address);
+    reader_ = std::make_unique<replay::RecordingReader>(config_.address, config_.format, stream_options());
+    log_rejections(reader_->rejections());
+    if (!reader_->is_open()) {
       spdlog::error("input {}: cannot open {}", config_.name, config_.address);
       return;
     }
-    decoder_ = make_stream_decoder();
     asio::post(io_, [this] { step(); });
   }
   void stop() override {
@@ -298,14 +293,28 @@ class FileInput final : public Input {
   }
 
  private:
+  // Records handed over per step: a few milliseconds of pipeline work.
+  static constexpr std::size_t kRecordsPerStep = 1024;
+
   void add_open_stream_rejections(Rejections& out) const override {
-    if (decoder_ && !eof_) out.merge(decoder_->rejections());
+    if (reader_) out.merge(reader_->rejections());
   }
   void step() {
     if (stopped_) return;
     const auto now = std::chrono::steady_clock::now();
-    while (!pending_.empty()) {
-      const auto due = pacer_.due(pending_.front().t);
+    for (std::size_t n = 0; n < kRecordsPerStep; ++n) {
+      if (!pending_) {
+        TrackReport report;
+        const bool more = reader_->next(report);
+        figures_.bytes = reader_->bytes_read();
+        if (!more) {
+          spdlog::info("input {}: {} read to the end ({} reports)", config_.name, config_.address, figures_.reports);
+          return;
+        }
+        ++figures_.reports;
+        pending_ = std::move(report);
+      }
+      const auto due = pacer_.due(pending_->t);
       if (due > now) {
         timer_.expires_at(due);
         timer_.async_wait([this](const boost::system::error_code& ec) {
@@ -313,24 +322,8 @@ class FileInput final : public Input {
         });
         return;
       }
-      handler_(pending_.front());
-      pending_.pop_front();
-    }
-    if (eof_) {
-      spdlog::info("input {}: {} read to the end ({} reports)", config_.name, config_.address, figures_.reports);
-      return;
-    }
-    const std::size_t n = std::fread(buffer_.data(), 1, buffer_.size(), file_);
-    figures_.bytes += n;
-    const auto sink = [this](const TrackReport& r) {
-      ++figures_.reports;
-      pending_.push_back(r);
-    };
-    if (n > 0) decoder_->feed(std::span<const std::byte>(reinterpret_cast<const std::byte*>(buffer_.data()), n), sink);
-    if (n < buffer_.size()) {
-      decoder_->finish(sink);
-      figures_.rejections.merge(decoder_->rejections());
-      eof_ = true;
+      handler_(*pending_);
+      pending_.reset();
     }
     asio::post(io_, [this] { step(); });
   }
@@ -338,22 +331,24 @@ class FileInput final : public Input {
   asio::io_context& io_;
   asio::steady_timer timer_;
   replay::Pacer pacer_;
-  std::vector<char> buffer_;
-  std::FILE* file_ = nullptr;
-  std::unique_ptr<protocol::Decoder> decoder_;
-  std::deque<TrackReport> pending_;
-  bool eof_ = false;
+  std::unique_ptr<replay::RecordingReader> reader_;
+  std::optional<TrackReport> pending_;  // read, not yet due
   bool stopped_ = false;
 };
 
 }  // namespace
 
-std::unique_ptr<protocol::Decoder> Input::make_stream_decoder() {
-  auto decoder = protocol::make_decoder(config_.format, options_for(config_, options_));
-  const std::string name = config_.name;
-  decoder->rejections().set_reporter([name](std::string_view reason, std::string_view message) {
+protocol::DecoderOptions Input::stream_options() const { return options_for(config_, options_); }
+
+void Input::log_rejections(Rejections& rejections) const {
+  rejections.set_reporter([name = config_.name](std::string_view reason, std::string_view message) {
     spdlog::warn("input {}: rejected ({}) {}", name, reason, message);
   });
+}
+
+std::unique_ptr<protocol::Decoder> Input::make_stream_decoder() {
+  auto decoder = protocol::make_decoder(config_.format, stream_options());
+  log_rejections(decoder->rejections());
   return decoder;
 }
 
@@ -370,7 +365,7 @@ void Input::retire(protocol::Decoder& decoder) {
     ++figures_.reports;
     handler_(r);
   });
-  figures_.rejections.merge(decoder.rejections());
+  figures_.rejected.merge(decoder.rejections());
   decoder.rejections() = Rejections();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // kewd's inputs, one class per transport (SPEC §5.7 [[input]]): UDP (unicast or
-// multicast), TCP client with reconnect and backoff, TCP server, file. Every byte
+// multicast), TCP client with reconnect and backoff, TCP server, file (through replay's
+// RecordingReader and Pacer, as kew-replay reads recordings). Every byte
 // stream gets its own decoder (one per TCP connection), so streams never mix; decoded
 // reports go to the service's handler on the I/O thread.
 
@@ -14,17 +15,9 @@
 
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/decoder.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 
 namespace kew::daemon {
-
-struct InputFigures {
-  std::uint64_t bytes = 0;
-  std::uint64_t reports = 0;
-  std::uint64_t connections = 0;        ///< accepted (server) or established (client)
-  std::uint64_t connections_refused = 0;///< over max_connections
-  std::uint64_t oversized_datagrams = 0;
-  Rejections rejections;                ///< decoder rejections of all this input's streams
-};
 
 class Input {
  public:
@@ -34,22 +27,26 @@ class Input {
   /// Closes sockets and files; pending handlers finish with operation_aborted.
   virtual void stop() = 0;
   const InputConfig& config() const { return config_; }
-  const InputFigures& figures() const { return figures_; }
   /// The port actually bound (servers and UDP; useful with port 0 in tests).
   virtual std::uint16_t bound_port() const { return 0; }
-  /// Every rejection so far: ended streams' and the open streams' decoders'.
-  Rejections rejections() const {
-    Rejections all;
-    all.merge(figures_.rejections);
-    add_open_stream_rejections(all);
-    return all;
+  /// Figures so far; `rejected` holds ended streams' and the open streams' rejections.
+  protocol::InputStatistics statistics() const {
+    protocol::InputStatistics s = figures_;
+    add_open_stream_rejections(s.rejected);
+    return s;
   }
 
  protected:
   Input(InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
-      : config_(std::move(config)), options_(std::move(options)), handler_(std::move(handler)) {}
-  /// A fresh decoder for one stream, its rejections reported to the log (rate-limited)
-  /// and merged into figures() when the stream ends (see retire()).
+      : config_(std::move(config)), options_(std::move(options)), handler_(std::move(handler)) {
+    figures_.name = config_.name;
+  }
+  /// The decoder options of this input (its ASTERIX data day).
+  protocol::DecoderOptions stream_options() const;
+  /// Sends the messages of `rejections` to the log, naming this input (rate-limited).
+  void log_rejections(Rejections& rejections) const;
+  /// A fresh decoder for one stream, its rejections logged and merged into
+  /// figures_.rejected when the stream ends (see retire()).
   std::unique_ptr<protocol::Decoder> make_stream_decoder();
   /// Feeds bytes to a stream's decoder and forwards its reports.
   void feed(protocol::Decoder& decoder, const void* data, std::size_t n);
@@ -60,7 +57,8 @@ class Input {
   InputConfig config_;
   protocol::DecoderOptions options_;
   ReportHandler handler_;
-  InputFigures figures_;
+  /// `rejected`: the rejections of streams that ended.
+  protocol::InputStatistics figures_;
 };
 
 /// Builds the input of `config` on `io`. `listen_any` widens loopback server binds.

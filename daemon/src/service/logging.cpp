@@ -23,9 +23,22 @@ class SyslogPriorityFlag final : public spdlog::custom_flag_formatter {
   std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<SyslogPriorityFlag>(); }
 };
 
+spdlog::level::level_enum spdlog_level(LogLevel level) {
+  switch (level) {
+    case LogLevel::Trace: return spdlog::level::trace;
+    case LogLevel::Debug: return spdlog::level::debug;
+    case LogLevel::Warn: return spdlog::level::warn;
+    case LogLevel::Error: return spdlog::level::err;
+    case LogLevel::Critical: return spdlog::level::critical;
+    case LogLevel::Off: return spdlog::level::off;
+    case LogLevel::Info: break;
+  }
+  return spdlog::level::info;
+}
+
 }  // namespace
 
-void setup_logging(LogTarget target, std::string_view level) {
+void setup_logging(LogTarget target, LogLevel level) {
   std::shared_ptr<spdlog::logger> logger;
   if (target == LogTarget::Syslog) {
     logger = std::make_shared<spdlog::logger>(
@@ -46,8 +59,8 @@ void setup_logging(LogTarget target, std::string_view level) {
   set_log_level(level);
 }
 
-void set_log_level(std::string_view level) {
-  spdlog::set_level(spdlog::level::from_str(std::string(level)));
+void set_log_level(LogLevel level) {
+  spdlog::set_level(spdlog_level(level));
   spdlog::flush_on(spdlog::level::warn);
 }
 

@@ -3,18 +3,17 @@
 // journal (systemd sets JOURNAL_STREAM), plain levels on a terminal, syslog when the
 // daemon forks into the background.
 
-#include <string>
-#include <string_view>
-
 #include <spdlog/spdlog.h>
+
+#include "kew/daemon/config.hpp"
 
 namespace kew::daemon {
 
 enum class LogTarget { Stderr, Syslog };
 
-/// Installs the default logger. `level` is a config level name ("info", ...).
-void setup_logging(LogTarget target, std::string_view level);
+/// Installs the default logger.
+void setup_logging(LogTarget target, LogLevel level);
 /// Changes the level of the installed logger (SIGHUP reload).
-void set_log_level(std::string_view level);
+void set_log_level(LogLevel level);
 
 }  // namespace kew::daemon

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -14,7 +15,9 @@
 #include <spdlog/spdlog.h>
 
 #include "logging.hpp"
+#include "kew/config/address.hpp"
 #include "kew/daemon/modbus_server.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
 
@@ -37,45 +40,26 @@ std::chrono::steady_clock::duration seconds(double s) {
 /// "127.0.0.1:4747" → "0.0.0.0:4747" (and "[::1]:P" → "[::]:P") when the operator asked
 /// for every interface; other addresses were chosen on purpose and are kept.
 std::string widen_if_loopback(const std::string& address) {
-  std::string host;
-  std::uint16_t port = 0;
-  if (!split_host_port(address, host, port)) return address;
-  if (host == "127.0.0.1" || host == "localhost") return fmt::format("0.0.0.0:{}", port);
-  if (host == "::1") return fmt::format("[::]:{}", port);
+  const std::optional<config::HostPort> parsed = config::parse_host_port(address);
+  if (!parsed) return address;
+  if (parsed->host == "127.0.0.1" || parsed->host == "localhost") return fmt::format("0.0.0.0:{}", parsed->port);
+  if (parsed->host == "::1") return fmt::format("[::]:{}", parsed->port);
   return address;
 }
 
 tcp::endpoint resolve_listen(asio::io_context& io, const std::string& address) {
-  std::string host;
-  std::uint16_t port = 0;
-  if (!split_host_port(address, host, port)) throw std::runtime_error("bad listen address " + address);
+  const config::HostPort listen = config::require_host_port(address);
   tcp::resolver resolver(io);
-  return *resolver.resolve(host, std::to_string(port), tcp::resolver::passive).begin();
+  return *resolver.resolve(listen.host, std::to_string(listen.port), tcp::resolver::passive).begin();
 }
 
-std::string json_string(std::string_view text) {
-  std::string quoted;
-  protocol::append_json_string(quoted, text);
-  return quoted;
-}
-
-void append_rejections(fmt::memory_buffer& out, const Rejections& r) {
-  out.push_back('{');
-  bool first = true;
-  for (const auto& [reason, count] : r.by_reason()) {
-    fmt::format_to(std::back_inserter(out), "{}{}:{}", first ? "" : ",", json_string(reason), count);
-    first = false;
-  }
-  out.push_back('}');
-}
-
-/// Resident set size of this process (bytes) from /proc/self/statm, or -1 when it
+/// Resident set size of this process (bytes) from /proc/self/statm, or nullopt when it
 /// cannot be read (not Linux, /proc not mounted).
-long long resident_bytes() {
+std::optional<std::uint64_t> resident_bytes() {
   std::ifstream statm("/proc/self/statm");
-  long long pages_total = 0, pages_resident = 0;
-  if (!(statm >> pages_total >> pages_resident)) return -1;
-  return pages_resident * static_cast<long long>(sysconf(_SC_PAGESIZE));
+  std::uint64_t pages_total = 0, pages_resident = 0;
+  if (!(statm >> pages_total >> pages_resident)) return std::nullopt;
+  return pages_resident * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
 }
 
 }  // namespace
@@ -346,7 +330,7 @@ void Service::reload() {
     config_.service.alive_interval_s = fresh.service.alive_interval_s;
     config_.service.tick_interval_s = fresh.service.tick_interval_s;
     spdlog::info("SIGHUP: reloaded {} (log level {}, {} subscribers of {} queued objects at most)",
-                 options_.config_path, fresh.service.log_level, fresh.service.max_subscribers,
+                 options_.config_path, to_string(fresh.service.log_level), fresh.service.max_subscribers,
                  fresh.service.subscriber_queue);
     spdlog::info("SIGHUP: inputs, outputs and pipeline settings apply at the next restart");
   } catch (const std::exception& e) {
@@ -379,56 +363,22 @@ void Service::shutdown() {
 }
 
 std::string Service::stats_json() const {
-  fmt::memory_buffer out;
-  const PipelineStatistics& s = pipeline_.statistics();
-  const kinetic::KineticStatistics& k = pipeline_.kinetic_statistics();
-  const auto& counters = pipeline_.alerts().counters();
-  const auto uptime = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-  fmt::format_to(std::back_inserter(out),
-                 "{{\"class\":\"STATS\",\"seq\":{},\"uptime_s\":{:.0f},\"records\":{},\"accepted\":{},"
-                 "\"rejected\":",
-                 last_alert_seq_, uptime, s.records, s.accepted);
-  append_rejections(out, pipeline_.rejections());
-  fmt::format_to(std::back_inserter(out),
-                 ",\"tracks\":{},\"tracks_max\":{},\"alerts_active\":{},\"alerts_new\":{},\"alerts_updated\":{},"
-                 "\"alerts_ended\":{},\"unacknowledged\":{},\"updates\":{},\"reinsertions\":{},"
-                 "\"events_executed\":{},\"queue\":{},\"queue_max\":{},\"repairs\":{}",
-                 pipeline_.live_tracks(), pipeline_.tracks().max_size(), pipeline_.alerts().active_count(),
-                 counters.opened, counters.updated, counters.ended, pipeline_.alerts().unacknowledged_count(),
-                 k.updates, k.reinsertions, k.events_executed, k.queue_now, k.queue_max, k.repairs);
-  const SubscriberFigures& sub = subscribers_->figures();
-  fmt::format_to(std::back_inserter(out),
-                 ",\"subscribers\":{{\"now\":{},\"accepted\":{},\"refused\":{},\"cut_off\":{},\"bad_requests\":{}}}",
-                 subscribers_->sessions(), sub.accepted, sub.refused, sub.cut_off, sub.bad_requests);
-  fmt::format_to(std::back_inserter(out), ",\"inputs\":[");
-  for (std::size_t i = 0; i < inputs_.size(); ++i) {
-    const InputFigures& f = inputs_[i]->figures();
-    fmt::format_to(std::back_inserter(out),
-                   "{}{{\"name\":{},\"bytes\":{},\"reports\":{},\"connections\":{},\"connections_refused\":{},"
-                   "\"oversized_datagrams\":{},\"rejected\":",
-                   i ? "," : "", json_string(inputs_[i]->config().name), f.bytes, f.reports, f.connections, f.connections_refused,
-                   f.oversized_datagrams);
-    append_rejections(out, inputs_[i]->rejections());
-    out.push_back('}');
+  protocol::ServiceStatistics service;
+  service.seq = last_alert_seq_;
+  service.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  service.subscribers_now = subscribers_->sessions();
+  service.subscribers = subscribers_->figures();
+  Rejections rejected;
+  rejected.merge(pipeline_.rejections());
+  for (const auto& input : inputs_) {
+    service.inputs.push_back(input->statistics());
+    rejected.merge(service.inputs.back().rejected);
   }
-  out.push_back(']');
-  if (cat004_)
-    fmt::format_to(std::back_inserter(out), ",\"cat004\":{{\"datagrams\":{},\"errors\":{}}}",
-                   cat004_->datagrams_sent(), cat004_->send_errors());
-  if (modbus_) {
-    const ModbusServer::Stats m = modbus_->stats();
-    fmt::format_to(std::back_inserter(out),
-                   ",\"modbus\":{{\"requests\":{},\"exceptions\":{},\"connections_open\":{},\"accepted\":{},"
-                   "\"refused\":{},\"dropped\":{},\"acknowledgements\":{},\"rejected\":",
-                   m.requests, m.exceptions, m.connections_open, m.connections_accepted, m.connections_refused,
-                   m.connections_dropped, m.acknowledgements);
-    append_rejections(out, modbus_->rejections());
-    out.push_back('}');
-  }
-  if (alert_log_) fmt::format_to(std::back_inserter(out), ",\"alert_log_errors\":{}", alert_log_->write_errors());
-  if (const long long rss = resident_bytes(); rss >= 0) fmt::format_to(std::back_inserter(out), ",\"resident_bytes\":{}", rss);
-  out.append(std::string_view("}\n"));
-  return fmt::to_string(out);
+  if (cat004_) service.cat004 = protocol::Cat004Statistics{cat004_->datagrams_sent(), cat004_->send_errors()};
+  if (modbus_) service.modbus = modbus_->stats();
+  if (alert_log_) service.alert_log_errors = alert_log_->write_errors();
+  service.resident_bytes = resident_bytes();
+  return protocol::stats_json(pipeline_, rejected, service);
 }
 
 }  // namespace kew::daemon

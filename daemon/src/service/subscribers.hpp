@@ -20,6 +20,7 @@
 #include "kew/alert/alert_event.hpp"
 #include "kew/protocol/encoders/alert_json.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 
 namespace kew::daemon {
 
@@ -67,13 +68,6 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   std::uint64_t id_;
 };
 
-struct SubscriberFigures {
-  std::uint64_t accepted = 0;
-  std::uint64_t refused = 0;          ///< over max_subscribers
-  std::uint64_t cut_off = 0;          ///< disconnected for falling behind
-  std::uint64_t bad_requests = 0;
-};
-
 class SubscriberServer {
  public:
   /// What the server asks of the service: the snapshot of active alerts and the stream's
@@ -103,8 +97,8 @@ class SubscriberServer {
   std::size_t queue_limit() const { return queue_limit_; }
   bool tracks_allowed() const { return tracks_allowed_; }
   std::size_t sessions() const { return sessions_.size(); }
-  const SubscriberFigures& figures() const { return figures_; }
-  SubscriberFigures& figures() { return figures_; }
+  const protocol::SubscriberStatistics& figures() const { return figures_; }
+  protocol::SubscriberStatistics& figures() { return figures_; }
   std::uint16_t port() const { return acceptor_.local_endpoint().port(); }
   const Source& source() const { return source_; }
 
@@ -121,7 +115,7 @@ class SubscriberServer {
   bool tracks_allowed_;
   Source source_;
   std::vector<std::shared_ptr<SubscriberSession>> sessions_;
-  SubscriberFigures figures_;
+  protocol::SubscriberStatistics figures_;
   std::uint64_t next_id_ = 1;
   bool stopped_ = false;
   std::function<void()> on_empty_;

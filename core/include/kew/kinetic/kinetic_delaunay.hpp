@@ -12,6 +12,7 @@
 #include "kew/geometry/vector2.hpp"
 #include "kew/kinetic/polynomial.hpp"
 #include "kew/triangulation/delaunay.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace kew::kinetic {
 
@@ -26,6 +27,11 @@ enum class ToleranceMode {
   Absolute,  ///< |measured − predicted| ≤ τ metres (SPEC §2.3, the default)
   Relative,  ///< |measured − predicted| / |measured| ≤ τ (the thesis' form, unitless)
 };
+/// The names of `tolerance_mode = ...`.
+inline constexpr util::NameTable<ToleranceMode, 2> kToleranceModeNames({{
+    {ToleranceMode::Absolute, "absolute"},
+    {ToleranceMode::Relative, "relative"},
+}});
 
 struct KineticConfig {
   /// Event-time threshold H (s, > 0): failures later than now + H are not computed;

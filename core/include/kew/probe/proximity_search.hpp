@@ -9,9 +9,11 @@
 // to p by a path that stays in the disk.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace kew::probe {
 
@@ -23,10 +25,13 @@ enum class ProbeMode : std::uint8_t {
   Brute,  ///< every live track (the oracle)
 };
 
-/// "exact", "edges", "brute".
-const char* to_string(ProbeMode mode);
-/// Inverse of to_string; false when `text` names no mode.
-bool parse_probe_mode(const char* text, ProbeMode& out);
+/// The names of `probe = ...` and `--probe`.
+inline constexpr util::NameTable<ProbeMode, 3> kProbeModeNames({{
+    {ProbeMode::Exact, "exact"},
+    {ProbeMode::Edges, "edges"},
+    {ProbeMode::Brute, "brute"},
+}});
+constexpr std::string_view to_string(ProbeMode mode) { return kProbeModeNames.name(mode); }
 
 class ProximitySearch {
  public:

@@ -1,28 +1,42 @@
 #pragma once
-// kew's configuration (SPEC §5.7): one TOML file shared by kewd and kew-replay. Every
-// key, its unit and its default is documented in deploy/kew.toml; unknown keys are
-// errors so that a typo never silently leaves a default in force.
+// kewd's configuration (design §5.7): the tables every tool shares (config::SharedConfig,
+// read by kew_config) and kewd's own [service], [cat004], [modbus] and [[input]] tables,
+// read here. Every key, its unit and its default is documented in deploy/kew.toml.
 
 #include <cstdint>
-#include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "kew/pipeline/pipeline.hpp"
+#include "kew/config/config_error.hpp"
+#include "kew/config/shared_config.hpp"
 #include "kew/protocol/formats.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace kew::daemon {
 
-/// A configuration problem, with the file and line when known ("kew.toml:12: ...").
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 enum class Transport { Udp, TcpClient, TcpServer, File };
-std::string_view to_string(Transport t);
+/// The names of `transport = ...`.
+inline constexpr util::NameTable<Transport, 4> kTransportNames({{
+    {Transport::Udp, "udp"},
+    {Transport::TcpClient, "tcp-client"},
+    {Transport::TcpServer, "tcp-server"},
+    {Transport::File, "file"},
+}});
+constexpr std::string_view to_string(Transport t) { return kTransportNames.name(t); }
+
+enum class LogLevel { Trace, Debug, Info, Warn, Error, Critical, Off };
+/// The names of `log_level = ...` and `kewd --log-level`.
+inline constexpr util::NameTable<LogLevel, 7> kLogLevelNames({{
+    {LogLevel::Trace, "trace"},
+    {LogLevel::Debug, "debug"},
+    {LogLevel::Info, "info"},
+    {LogLevel::Warn, "warn"},
+    {LogLevel::Error, "error"},
+    {LogLevel::Critical, "critical"},
+    {LogLevel::Off, "off"},
+}});
+constexpr std::string_view to_string(LogLevel level) { return kLogLevelNames.name(level); }
 
 /// One `[[input]]` table.
 struct InputConfig {
@@ -50,7 +64,7 @@ struct ServiceConfig {
   std::size_t subscriber_queue = 8192;  ///< objects queued per subscriber before it is cut off
   double alive_interval_s = 1.0;
   double tick_interval_s = 1.0;         ///< live clock tick (timeouts, kinetic events)
-  std::string log_level = "info";
+  LogLevel log_level = LogLevel::Info;
   std::string alert_log;                ///< JSON-lines file of every alert event; "" = none
   std::uint64_t alert_log_max_bytes = 64ull << 20;
   int alert_log_keep = 5;
@@ -76,24 +90,17 @@ struct ModbusConfig {
   int max_connections = 8;
 };
 
-struct Config {
-  PipelineConfig pipeline;
+/// A kewd file: the shared tables (pipeline, decoding) and kewd's own.
+struct Config : config::SharedConfig {
   ServiceConfig service;
   Cat004Config cat004;
   ModbusConfig modbus;
-  protocol::DecoderOptions decoding;  ///< radars of `[[radar]]`, SBS offset, line limit
   std::vector<InputConfig> inputs;
 };
 
-/// Parses TOML text; `origin` names it in error messages. Throws ConfigError.
+/// Parses TOML text; `origin` names it in error messages. Throws config::ConfigError.
 Config parse_config(std::string_view toml_text, std::string_view origin = "config");
-/// Reads and parses a file. Throws ConfigError.
+/// Reads and parses a file. Throws config::ConfigError.
 Config load_config(const std::string& path);
-
-/// "HOST:PORT" → host and port; false when malformed (IPv6 as "[::1]:4747").
-bool split_host_port(std::string_view address, std::string& host, std::uint16_t& port);
-
-/// "YYYY-MM-DD" → UTC seconds of that midnight; false when malformed.
-bool parse_utc_day(std::string_view text, double& out);
 
 }  // namespace kew::daemon

@@ -12,7 +12,7 @@
 
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/modbus_map.hpp"
-#include "kew/util/rejections.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 
 namespace kew::daemon {
 
@@ -47,20 +47,8 @@ class ModbusServer {
   /// The TCP port actually bound (the configured one, or the ephemeral one for port 0).
   std::uint16_t bound_port() const;
 
-  struct Stats {
-    std::uint64_t requests = 0;              ///< complete requests answered or refused
-    std::uint64_t exceptions = 0;            ///< exception responses sent
-    std::uint64_t connections_accepted = 0;
-    std::uint64_t connections_refused = 0;   ///< closed at once: max_connections reached
-    std::uint64_t acknowledgements = 0;      ///< coil 0 written 1
-    std::uint64_t connections_dropped = 0;   ///< closed by kew: bad framing, idle, send failure
-    std::uint64_t connections_open = 0;      ///< now
-  };
-  /// Counters since construction. Thread-safe.
-  Stats stats() const;
-  /// Refused requests and dropped connections by reason (keys "modbus_*", documented in
-  /// README.md, "Modbus TCP alarm map"). Thread-safe; a copy.
-  Rejections rejections() const;
+  /// Counters and rejections since construction. Thread-safe; a copy.
+  protocol::ModbusStatistics stats() const;
 
  private:
   class Impl;

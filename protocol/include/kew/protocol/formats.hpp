@@ -10,6 +10,7 @@
 
 #include "kew/protocol/asterix/asterix_decoder.hpp"
 #include "kew/protocol/decoder.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace kew::protocol {
 
@@ -26,11 +27,20 @@ enum class Format {
   AsterixDatagram,     ///< ASTERIX, one UDP datagram per feed() (live only)
 };
 
-/// "auto", "ndjson", "sbs", "opensky-csv", "opensky-json", "readsb", "asterix-raw",
-/// "asterix-ff", "asterix-pcap", "asterix-datagram".
-std::string_view to_string(Format format);
-/// Inverse of to_string (exact, lower case); false and `out` untouched for another name.
-bool parse_format(std::string_view name, Format& out);
+/// The names of `format = ...` and `--format` (exact, lower case).
+inline constexpr util::NameTable<Format, 10> kFormatNames({{
+    {Format::Auto, "auto"},
+    {Format::Ndjson, "ndjson"},
+    {Format::Sbs, "sbs"},
+    {Format::OpenskyCsv, "opensky-csv"},
+    {Format::OpenskyJson, "opensky-json"},
+    {Format::ReadsbJson, "readsb"},
+    {Format::AsterixRaw, "asterix-raw"},
+    {Format::AsterixFinalFormat, "asterix-ff"},
+    {Format::AsterixPcap, "asterix-pcap"},
+    {Format::AsterixDatagram, "asterix-datagram"},
+}});
+constexpr std::string_view to_string(Format format) { return kFormatNames.name(format); }
 
 struct DecoderOptions {
   AsterixOptions asterix;

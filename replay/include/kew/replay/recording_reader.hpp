@@ -26,8 +26,11 @@ class RecordingReader {
   bool next(TrackReport& out);
 
   const std::string& path() const { return path_; }
+  /// False when the file could not be opened (then counted "file_unreadable").
+  bool is_open() const { return decoder_ != nullptr; }
   /// The decoder's rejections, plus file-level problems.
   Rejections& rejections() { return decoder_ ? decoder_->rejections() : own_rejections_; }
+  const Rejections& rejections() const { return decoder_ ? decoder_->rejections() : own_rejections_; }
   std::uint64_t bytes_read() const { return bytes_read_; }
   std::uint64_t records() const { return records_; }
 

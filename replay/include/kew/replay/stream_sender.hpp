@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "kew/replay/recording_reader.hpp"
 
@@ -17,8 +19,10 @@ struct StreamTarget {
   std::uint16_t port = 0;
 };
 
-/// "tcp://HOST:PORT", "udp://HOST:PORT" or "HOST:PORT" (TCP); false when malformed.
-bool parse_stream_target(const std::string& text, StreamTarget& out);
+/// "tcp://HOST:PORT", "udp://HOST:PORT" or "HOST:PORT" (TCP), HOST:PORT as
+/// config::parse_host_port reads it (IPv6 in brackets, port 1–65535). Returns nullopt
+/// when malformed, with `*error` (when given) saying why.
+std::optional<StreamTarget> parse_stream_target(std::string_view text, std::string* error = nullptr);
 
 struct StreamFigures {
   std::uint64_t records = 0;

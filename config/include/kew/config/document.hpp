@@ -1,0 +1,123 @@
+#pragma once
+// Reading a kew TOML file (design §5.7): the parsed document, and TableReader, which
+// reads one table's keys with their types and ranges and then refuses every key it was
+// not asked for, so that a typo never silently leaves a default in force. Every error is
+// a ConfigError naming "file:line". Included by the code that parses sections (here and
+// in daemon/), not by the users of the resulting configuration types.
+
+#include <cstdint>
+#include <initializer_list>
+#include <set>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "kew/config/config_error.hpp"
+#include "kew/util/name_table.hpp"
+
+namespace kew::config {
+
+/// Reads the keys of one TOML table. Each reader leaves `out` untouched when the key is
+/// absent (the default stays) and throws ConfigError when it is present but wrong.
+class TableReader {
+ public:
+  /// `origin`: the file's name in messages; `name`: the table's ("tracks", "input 2").
+  TableReader(const toml::table& table, std::string_view origin, std::string name);
+
+  /// Throws "origin:line: [name] message"; the line is the node's, when known.
+  [[noreturn]] void fail(const toml::node* node, std::string_view message) const;
+
+  /// A number (integer or float) in [lo, hi].
+  void number(std::string_view key, double& out, double lo, double hi);
+  /// An integer in [lo, hi], stored as Int.
+  template <class Int>
+  void integer(std::string_view key, Int& out, std::int64_t lo, std::int64_t hi) {
+    const toml::node* node = take(key);
+    if (!node) return;
+    const auto* i = node->as_integer();
+    if (!i) fail(node, fmt::format("{} must be an integer", key));
+    if (i->get() < lo || i->get() > hi) fail(node, fmt::format("{} = {} is outside [{}, {}]", key, i->get(), lo, hi));
+    out = static_cast<Int>(i->get());
+  }
+  void boolean(std::string_view key, bool& out);
+  void string(std::string_view key, std::string& out);
+  /// A string that must be one of the names of `names` (but `except`); the error lists them.
+  template <class Enum, std::size_t N>
+  void choice(std::string_view key, Enum& out, const util::NameTable<Enum, N>& names,
+              std::initializer_list<Enum> except = {}) {
+    const toml::node* node = table_.get(key);
+    std::string text;
+    string(key, text);
+    if (!node) return;
+    const auto value = names.parse(text);
+    bool excluded = false;
+    for (const Enum x : except) excluded = excluded || (value && *value == x);
+    if (!value || excluded) fail(node, fmt::format("{} = \"{}\": expected one of {}", key, text, names.list(except)));
+    out = *value;
+  }
+  /// A "HOST:PORT" string, checked with parse_host_port (address.hpp) and kept as text.
+  void address(std::string_view key, std::string& out);
+  /// A "YYYY-MM-DD" string, checked with parse_utc_day (utc_day.hpp) and kept as text.
+  void utc_day(std::string_view key, std::string& out);
+
+  /// Refuses every key of the table that no reader above took.
+  void finish() const;
+
+ private:
+  const toml::node* take(std::string_view key);
+
+  const toml::table& table_;
+  std::string_view origin_;
+  std::string name_;
+  std::set<std::string, std::less<>> used_;
+};
+
+/// A parsed configuration file.
+class Document {
+ public:
+  /// Parses TOML text; `origin` names it in messages. Throws ConfigError
+  /// ("origin:line:column: ...") on a syntax error.
+  static Document parse(std::string_view text, std::string origin);
+  /// Reads and parses the file at `path`. Throws ConfigError when it cannot be read.
+  static Document load(const std::string& path);
+
+  const std::string& origin() const { return origin_; }
+  /// Throws ConfigError naming the first top-level key that is none of `known`.
+  void refuse_unknown_sections(std::span<const std::string_view> known) const;
+  /// Calls read(TableReader&) on table [name] when the file has one, then refuses the
+  /// keys `read` did not take.
+  template <class Read>
+  void section(std::string_view name, Read&& read) const {
+    if (const toml::table* t = table(name)) {
+      TableReader reader(*t, origin_, std::string(name));
+      read(reader);
+      reader.finish();
+    }
+  }
+  /// Calls read(TableReader&, index) on each table of the array [[name]], in file order
+  /// (index from 0; messages number them from 1: "[input 2]").
+  template <class Read>
+  void each_table(std::string_view name, Read&& read) const {
+    const toml::array* array = array_of_tables(name);
+    if (!array) return;
+    std::size_t index = 0;
+    for (const toml::node& element : *array) {
+      TableReader reader(*element.as_table(), origin_, fmt::format("{} {}", name, index + 1));
+      read(reader, index++);
+      reader.finish();
+    }
+  }
+
+ private:
+  Document(toml::table root, std::string origin) : root_(std::move(root)), origin_(std::move(origin)) {}
+  const toml::table* table(std::string_view name) const;
+  const toml::array* array_of_tables(std::string_view name) const;
+
+  toml::table root_;
+  std::string origin_;
+};
+
+}  // namespace kew::config

@@ -1,0 +1,39 @@
+#pragma once
+// The configuration every kew tool shares (design §5.7): one TOML file whose
+// [projection], [tracks], [kinetic], [probe], [alerts], [decoding] and [[radar]] tables
+// set up the pipeline and the decoders identically in kewd, kew-replay and the tools
+// that replay recordings, so that a recording replayed with a daemon's file gives the
+// daemon's alerts. Every key, its unit, range and default is documented in
+// deploy/kew.toml.
+
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "kew/config/config_error.hpp"
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/formats.hpp"
+
+namespace kew::config {
+
+class Document;
+
+struct SharedConfig {
+  PipelineConfig pipeline;
+  protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits
+};
+
+/// Top-level tables read into SharedConfig.
+inline constexpr std::array<std::string_view, 7> kSharedSections = {"projection", "tracks", "kinetic", "probe",
+                                                                    "alerts",     "decoding", "radar"};
+/// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
+/// kewd file and leaves them unread.
+inline constexpr std::array<std::string_view, 4> kDaemonSections = {"service", "cat004", "modbus", "input"};
+
+/// Reads the shared tables of `document`, after refusing any top-level key that is
+/// neither a shared nor a kewd table. Throws ConfigError naming file and line.
+SharedConfig read_shared_config(const Document& document);
+/// Loads the file at `path` and reads its shared tables. Throws ConfigError.
+SharedConfig load_shared_config(const std::string& path);
+
+}  // namespace kew::config

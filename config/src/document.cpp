@@ -1,0 +1,118 @@
+#include "kew/config/document.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "kew/config/address.hpp"
+#include "kew/config/utc_day.hpp"
+
+namespace kew::config {
+
+TableReader::TableReader(const toml::table& table, std::string_view origin, std::string name)
+    : table_(table), origin_(origin), name_(std::move(name)) {}
+
+void TableReader::fail(const toml::node* node, std::string_view message) const {
+  std::string where(origin_);
+  if (node && node->source().begin.line > 0) where += fmt::format(":{}", node->source().begin.line);
+  throw ConfigError(fmt::format("{}: [{}] {}", where, name_, message));
+}
+
+const toml::node* TableReader::take(std::string_view key) {
+  used_.insert(std::string(key));
+  return table_.get(key);
+}
+
+void TableReader::number(std::string_view key, double& out, double lo, double hi) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  double v;
+  if (const auto* i = node->as_integer()) v = static_cast<double>(i->get());
+  else if (const auto* f = node->as_floating_point()) v = f->get();
+  else fail(node, fmt::format("{} must be a number", key));
+  if (!(v >= lo && v <= hi)) fail(node, fmt::format("{} = {} is outside [{}, {}]", key, v, lo, hi));
+  out = v;
+}
+
+void TableReader::boolean(std::string_view key, bool& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto* b = node->as_boolean();
+  if (!b) fail(node, fmt::format("{} must be true or false", key));
+  out = b->get();
+}
+
+void TableReader::string(std::string_view key, std::string& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto* s = node->as_string();
+  if (!s) fail(node, fmt::format("{} must be a string", key));
+  out = s->get();
+}
+
+void TableReader::address(std::string_view key, std::string& out) {
+  const toml::node* node = table_.get(key);
+  string(key, out);
+  std::string error;
+  if (node && !parse_host_port(out, &error)) fail(node, fmt::format("{} = {}", key, error));
+}
+
+void TableReader::utc_day(std::string_view key, std::string& out) {
+  const toml::node* node = table_.get(key);
+  string(key, out);
+  if (node && !parse_utc_day(out)) fail(node, fmt::format("{} = \"{}\" is not YYYY-MM-DD", key, out));
+}
+
+void TableReader::finish() const {
+  for (const auto& [key, node] : table_)
+    if (!used_.count(key.str())) fail(&node, fmt::format("unknown key \"{}\"", key.str()));
+}
+
+Document Document::parse(std::string_view text, std::string origin) {
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(fmt::format("{}:{}:{}: {}", origin, e.source().begin.line, e.source().begin.column,
+                                  e.description()));
+  }
+  return Document(std::move(root), std::move(origin));
+}
+
+Document Document::load(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw ConfigError(fmt::format("{}: cannot open", path));
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw ConfigError(fmt::format("{}: read error", path));
+  return parse(text.str(), path);
+}
+
+void Document::refuse_unknown_sections(std::span<const std::string_view> known) const {
+  for (const auto& [key, node] : root_) {
+    bool found = false;
+    for (const std::string_view name : known) found = found || key.str() == name;
+    if (!found)
+      throw ConfigError(fmt::format("{}:{}: unknown section or key \"{}\"", origin_, node.source().begin.line,
+                                    key.str()));
+  }
+}
+
+const toml::table* Document::table(std::string_view name) const {
+  const toml::node* node = root_.get(name);
+  if (!node) return nullptr;
+  if (!node->is_table())
+    throw ConfigError(fmt::format("{}:{}: {} must be a table", origin_, node->source().begin.line, name));
+  return node->as_table();
+}
+
+const toml::array* Document::array_of_tables(std::string_view name) const {
+  const toml::node* node = root_.get(name);
+  if (!node) return nullptr;
+  const toml::array* array = node->as_array();
+  if (!array || !array->is_array_of_tables())
+    throw ConfigError(fmt::format("{}:{}: {} must be written as [[{}]] tables", origin_, node->source().begin.line,
+                                  name, name));
+  return array;
+}
+
+}  // namespace kew::config

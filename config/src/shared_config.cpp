@@ -1,0 +1,107 @@
+#include "kew/config/shared_config.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "kew/config/document.hpp"
+
+namespace kew::config {
+
+namespace {
+
+constexpr double kNauticalMile = 1852.0;
+constexpr double kFoot = 0.3048;
+
+void read_projection(TableReader& r, PipelineConfig& p) {
+  double lat = NAN, lon = NAN;
+  r.number("reference_lat", lat, -90.0, 90.0);
+  r.number("reference_lon", lon, -180.0, 180.0);
+  if (std::isnan(lat) != std::isnan(lon)) r.fail(nullptr, "reference_lat and reference_lon go together");
+  if (!std::isnan(lat)) p.reference = geo::GeodeticPosition{lat, lon};
+  double radius_km = p.coverage_radius_m / 1000.0;
+  r.number("coverage_radius_km", radius_km, 1.0, 3000.0);
+  p.coverage_radius_m = radius_km * 1000.0;
+}
+
+void read_tracks(TableReader& r, track::TrackTableConfig& t) {
+  r.number("timeout_s", t.track_timeout_s, 1.0, 3600.0);
+  r.number("max_ground_speed_kt", t.max_ground_speed_kt, 1.0, 5000.0);
+  r.number("max_vertical_rate_fpm", t.max_vertical_rate_fpm, 1.0, 100000.0);
+  r.number("min_altitude_ft", t.min_altitude_ft, -5000.0, 200000.0);
+  r.number("max_altitude_ft", t.max_altitude_ft, -5000.0, 200000.0);
+  if (t.min_altitude_ft >= t.max_altitude_ft) r.fail(nullptr, "min_altitude_ft must be below max_altitude_ft");
+  r.boolean("exclude_on_ground", t.exclude_on_ground);
+  r.integer("max_tracks", t.max_tracks, 1, 10'000'000);
+  r.number("max_lateness_s", t.max_lateness_s, 0.0, 3600.0);
+  r.number("max_derivation_gap_s", t.max_derivation_gap_s, 0.1, 3600.0);
+}
+
+void read_kinetic(TableReader& r, kinetic::KineticConfig& k) {
+  r.number("tolerance", k.tolerance, 0.0, 1e6);
+  r.choice("tolerance_mode", k.tolerance_mode, kinetic::kToleranceModeNames);
+  double horizon = std::isinf(k.horizon_s) ? 0.0 : k.horizon_s;
+  r.number("horizon_s", horizon, 0.0, 1e9);
+  k.horizon_s = horizon == 0.0 ? kinetic::kNever : horizon;
+  r.boolean("reduce_redundant_events", k.reduce_redundant_events);
+}
+
+void read_probe(TableReader& r, PipelineConfig& p) {
+  r.choice("mode", p.probe_mode, probe::kProbeModeNames);
+  double horizontal_nm = p.minima.horizontal_m / kNauticalMile;
+  double vertical_ft = p.minima.vertical_m / kFoot;
+  r.number("horizontal_nm", horizontal_nm, 0.1, 100.0);
+  r.number("vertical_ft", vertical_ft, 1.0, 100000.0);
+  r.number("lookahead_s", p.minima.lookahead_s, 0.0, 3600.0);
+  p.minima.horizontal_m = horizontal_nm * kNauticalMile;
+  p.minima.vertical_m = vertical_ft * kFoot;
+}
+
+void read_alerts(TableReader& r, alert::AlertConfig& a) {
+  r.integer("confirm", a.confirm, 1, 1000);
+  r.integer("clear", a.clear, 1, 1000);
+  r.number("warning_s", a.warning_s, 0.0, 3600.0);
+  r.number("update_t_los_s", a.update_t_los_s, 0.0, 3600.0);
+  r.number("update_cpa_h_m", a.update_cpa_h_m, 0.0, 1e6);
+  r.number("update_cpa_v_ft", a.update_cpa_v_ft, 0.0, 1e5);
+}
+
+void read_decoding(TableReader& r, protocol::DecoderOptions& d) {
+  r.number("sbs_utc_offset_s", d.sbs_utc_offset_s, -86400.0, 86400.0);
+  r.integer("max_line_bytes", d.max_line_bytes, 256, 1 << 20);
+}
+
+void read_radar(TableReader& r, protocol::RadarSite& site) {
+  site.lat_deg = NAN;
+  site.lon_deg = NAN;
+  r.integer("sac", site.sac, 0, 255);
+  r.integer("sic", site.sic, 0, 255);
+  r.number("lat", site.lat_deg, -90.0, 90.0);
+  r.number("lon", site.lon_deg, -180.0, 180.0);
+  r.number("height_m", site.height_m, -500.0, 10000.0);
+  if (std::isnan(site.lat_deg) || std::isnan(site.lon_deg)) r.fail(nullptr, "a radar needs lat and lon");
+}
+
+}  // namespace
+
+SharedConfig read_shared_config(const Document& document) {
+  std::vector<std::string_view> known(kSharedSections.begin(), kSharedSections.end());
+  known.insert(known.end(), kDaemonSections.begin(), kDaemonSections.end());
+  document.refuse_unknown_sections(known);
+  SharedConfig config;
+  document.section("projection", [&](TableReader& r) { read_projection(r, config.pipeline); });
+  document.section("tracks", [&](TableReader& r) { read_tracks(r, config.pipeline.tracks); });
+  document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline.kinetic); });
+  document.section("probe", [&](TableReader& r) { read_probe(r, config.pipeline); });
+  document.section("alerts", [&](TableReader& r) { read_alerts(r, config.pipeline.alerts); });
+  document.section("decoding", [&](TableReader& r) { read_decoding(r, config.decoding); });
+  document.each_table("radar", [&](TableReader& r, std::size_t) {
+    protocol::RadarSite site{};
+    read_radar(r, site);
+    config.decoding.asterix.radars.push_back(site);
+  });
+  return config;
+}
+
+SharedConfig load_shared_config(const std::string& path) { return read_shared_config(Document::load(path)); }
+
+}  // namespace kew::config

@@ -1,0 +1,84 @@
+#pragma once
+// The statistics object, one writer for both places it appears (design §5.6): kewd's
+// answer to ?STATS on the alert stream ({"class":"STATS",...}) and kew-replay's
+// --stats-json file. Both begin with the same figures of the pipeline, under the same
+// keys; each adds the figures only it has (kewd: its inputs and listeners; kew-replay:
+// audits and wall time). Every key is documented in protocol/docs/encoders.md
+// ("Statistics").
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/util/rejections.hpp"
+
+namespace kew::protocol {
+
+/// One kewd input.
+struct InputStatistics {
+  std::string name;
+  std::uint64_t bytes = 0;
+  std::uint64_t reports = 0;              ///< records its decoders produced
+  std::uint64_t connections = 0;          ///< accepted (server) or established (client)
+  std::uint64_t connections_refused = 0;  ///< over max_connections
+  std::uint64_t oversized_datagrams = 0;
+  Rejections rejected;                    ///< its decoders' rejections
+};
+
+struct SubscriberStatistics {
+  std::uint64_t accepted = 0;
+  std::uint64_t refused = 0;      ///< over max_subscribers
+  std::uint64_t cut_off = 0;      ///< disconnected for falling behind
+  std::uint64_t bad_requests = 0;
+};
+
+struct Cat004Statistics {
+  std::uint64_t datagrams = 0;
+  std::uint64_t errors = 0;  ///< sends that failed
+};
+
+struct ModbusStatistics {
+  std::uint64_t requests = 0;              ///< complete requests answered or refused
+  std::uint64_t exceptions = 0;            ///< exception responses sent
+  std::uint64_t connections_accepted = 0;
+  std::uint64_t connections_refused = 0;   ///< closed at once: max_connections reached
+  std::uint64_t acknowledgements = 0;      ///< coil 0 written 1
+  std::uint64_t connections_dropped = 0;   ///< closed by kew: bad framing, idle, send failure
+  std::uint64_t connections_open = 0;      ///< now
+  /// Refused requests and dropped connections by reason (keys "modbus_*", README.md,
+  /// "Modbus TCP alarm map").
+  Rejections rejected;
+};
+
+/// What kewd adds to the pipeline's figures.
+struct ServiceStatistics {
+  std::uint64_t seq = 0;  ///< the number of the last alert event sent (as every object carries)
+  double uptime_s = 0.0;
+  std::uint64_t subscribers_now = 0;  ///< connected at this moment
+  SubscriberStatistics subscribers;
+  std::vector<InputStatistics> inputs;
+  std::optional<Cat004Statistics> cat004;  ///< when CAT004 is enabled
+  std::optional<ModbusStatistics> modbus;  ///< when Modbus is enabled
+  std::optional<std::uint64_t> alert_log_errors;  ///< when an alert log is written
+  std::optional<std::uint64_t> resident_bytes;    ///< when /proc tells
+};
+
+/// What kew-replay adds to the pipeline's figures.
+struct ReplayStatistics {
+  std::uint64_t audits = 0;  ///< audits run (--audit)
+  std::uint64_t audit_violations_found = 0;
+  std::uint64_t audit_violations_unrepaired = 0;
+  double wall_s = 0.0;  ///< wall-clock duration of the run
+};
+
+/// kewd's STATS object, one line ending in '\n'. `rejected`: every rejection so far,
+/// the decoders' (of all inputs) and the pipeline's, merged by reason.
+std::string stats_json(const Pipeline& pipeline, const Rejections& rejected, const ServiceStatistics& service);
+
+/// kew-replay's statistics object, one line ending in '\n'. `rejected` as above.
+std::string run_statistics_json(const Pipeline& pipeline, const Rejections& rejected,
+                                const ReplayStatistics& replay);
+
+}  // namespace kew::protocol

@@ -1,0 +1,173 @@
+#include "kew/protocol/encoders/statistics_json.hpp"
+
+#include <fmt/format.h>
+
+#include "kew/protocol/ndjson_writer.hpp"
+
+namespace kew::protocol {
+
+namespace {
+
+// Members of one JSON object, written in call order with the commas between them.
+class Members {
+ public:
+  explicit Members(std::string& out) : out_(out) { out_ += '{'; }
+  void close() { out_ += '}'; }
+
+  template <class Integer>
+  void integer(std::string_view key, Integer value) {
+    this->key(key);
+    out_ += fmt::format("{}", value);
+  }
+  void fixed(std::string_view key, double value, int decimals) {
+    this->key(key);
+    out_ += fmt::format("{:.{}f}", value, decimals);
+  }
+  void string(std::string_view key, std::string_view value) {
+    this->key(key);
+    append_json_string(out_, value);
+  }
+  void rejections(std::string_view key, const Rejections& rejected) {
+    this->key(key);
+    Members reasons(out_);
+    for (const auto& [reason, count] : rejected.by_reason()) reasons.integer(reason, count);
+    reasons.close();
+  }
+  /// Opens a nested object under `key`; the caller closes it.
+  Members object(std::string_view key) {
+    this->key(key);
+    return Members(out_);
+  }
+  /// Opens an array under `key`; elements go through element(), then close_array().
+  void array(std::string_view key) {
+    this->key(key);
+    out_ += '[';
+    first_element_ = true;
+  }
+  Members element() {
+    if (!first_element_) out_ += ',';
+    first_element_ = false;
+    return Members(out_);
+  }
+  void close_array() { out_ += ']'; }
+
+ private:
+  void key(std::string_view key) {
+    if (!first_) out_ += ',';
+    first_ = false;
+    append_json_string(out_, key);
+    out_ += ':';
+  }
+
+  std::string& out_;
+  bool first_ = true;
+  bool first_element_ = true;
+};
+
+void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& rejected) {
+  const PipelineStatistics& p = pipeline.statistics();
+  const kinetic::KineticStatistics& k = pipeline.kinetic_statistics();
+  const alert::AlertManager& alerts = pipeline.alerts();
+  const alert::AlertManager::Counters& a = alerts.counters();
+  m.integer("records", p.records);
+  m.integer("accepted", p.accepted);
+  m.rejections("rejected", rejected);
+  m.integer("rejected_total", rejected.total());
+  m.integer("tracks", pipeline.live_tracks());
+  m.integer("tracks_max", pipeline.tracks().max_size());
+  m.integer("tracks_dropped", p.tracks_dropped);
+  m.integer("updates", k.updates);
+  m.integer("insertions", k.insertions);
+  m.integer("reinsertions", k.reinsertions);
+  m.integer("velocity_updates", k.velocity_updates);
+  m.integer("events_computed", k.events_computed);
+  m.integer("events_executed", k.events_executed);
+  m.integer("events_discarded", k.events_discarded);
+  m.integer("tangencies_ignored", k.tangencies_ignored);
+  m.integer("renewals", k.renewals);
+  m.integer("repairs", k.repairs);
+  m.integer("rebuilds", k.rebuilds);
+  m.integer("queue_now", k.queue_now);
+  m.integer("queue_max", k.queue_max);
+  m.fixed("queue_mean", k.queue_mean(), 1);
+  m.integer("probes", p.probes);
+  m.integer("pairs_evaluated", p.candidates);
+  m.string("probe", probe::to_string(pipeline.config().probe_mode));
+  m.integer("alerts_active", alerts.active_count());
+  m.integer("alerts_new", a.opened);
+  m.integer("alerts_updated", a.updated);
+  m.integer("alerts_ended", a.ended);
+  m.integer("unacknowledged", alerts.unacknowledged_count());
+  m.fixed("data_time_last", p.last_data_time, 3);
+}
+
+}  // namespace
+
+std::string stats_json(const Pipeline& pipeline, const Rejections& rejected, const ServiceStatistics& service) {
+  std::string out;
+  Members m(out);
+  m.string("class", "STATS");
+  m.integer("seq", service.seq);
+  m.fixed("uptime_s", service.uptime_s, 0);
+  pipeline_members(m, pipeline, rejected);
+  Members subscribers = m.object("subscribers");
+  subscribers.integer("now", service.subscribers_now);
+  subscribers.integer("accepted", service.subscribers.accepted);
+  subscribers.integer("refused", service.subscribers.refused);
+  subscribers.integer("cut_off", service.subscribers.cut_off);
+  subscribers.integer("bad_requests", service.subscribers.bad_requests);
+  subscribers.close();
+  m.array("inputs");
+  for (const InputStatistics& input : service.inputs) {
+    Members i = m.element();
+    i.string("name", input.name);
+    i.integer("bytes", input.bytes);
+    i.integer("reports", input.reports);
+    i.integer("connections", input.connections);
+    i.integer("connections_refused", input.connections_refused);
+    i.integer("oversized_datagrams", input.oversized_datagrams);
+    i.rejections("rejected", input.rejected);
+    i.close();
+  }
+  m.close_array();
+  if (service.cat004) {
+    Members c = m.object("cat004");
+    c.integer("datagrams", service.cat004->datagrams);
+    c.integer("errors", service.cat004->errors);
+    c.close();
+  }
+  if (service.modbus) {
+    const ModbusStatistics& s = *service.modbus;
+    Members c = m.object("modbus");
+    c.integer("requests", s.requests);
+    c.integer("exceptions", s.exceptions);
+    c.integer("connections_open", s.connections_open);
+    c.integer("accepted", s.connections_accepted);
+    c.integer("refused", s.connections_refused);
+    c.integer("dropped", s.connections_dropped);
+    c.integer("acknowledgements", s.acknowledgements);
+    c.rejections("rejected", s.rejected);
+    c.close();
+  }
+  if (service.alert_log_errors) m.integer("alert_log_errors", *service.alert_log_errors);
+  if (service.resident_bytes) m.integer("resident_bytes", *service.resident_bytes);
+  m.close();
+  out += '\n';
+  return out;
+}
+
+std::string run_statistics_json(const Pipeline& pipeline, const Rejections& rejected,
+                                const ReplayStatistics& replay) {
+  std::string out;
+  Members m(out);
+  pipeline_members(m, pipeline, rejected);
+  m.integer("audits", replay.audits);
+  m.integer("audit_violations_found", replay.audit_violations_found);
+  m.integer("audit_violations_unrepaired", replay.audit_violations_unrepaired);
+  m.fixed("wall_s", replay.wall_s, 3);
+  m.close();
+  out += '\n';
+  return out;
+}
+
+}  // namespace kew::protocol
