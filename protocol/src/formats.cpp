@@ -1,13 +1,11 @@
-// Format names, detection, the decoder factory and decode_file; described in formats.hpp.
+// Format names, detection and the decoder factory; described in formats.hpp.
 #include "kew/protocol/formats.hpp"
 
 #include <fmt/format.h>
 #include <simdjson.h>
 
 #include <array>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <vector>
 
 #include "kew/protocol/gzip.hpp"
@@ -32,7 +30,6 @@ constexpr int kDetectMaxLines = 16;
 constexpr double kAsterixMinConfidence = 0.4;
 // Bytes looked at to tell text from binary.
 constexpr std::size_t kTextSampleBytes = 1024;
-constexpr std::size_t kFileChunkBytes = 64 * 1024;
 
 std::string_view as_text(std::span<const std::byte> bytes) {
   return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
@@ -236,41 +233,6 @@ std::unique_ptr<Decoder> make_decoder(Format format, const DecoderOptions& optio
   // could split; live UDP is never compressed anyway. The auto decoder wraps what it makes.
   if (format == Format::AsterixDatagram || format == Format::Auto) return decoder;
   return make_gzip_decoder(std::move(decoder), GzipMode::WhenMagic);
-}
-
-std::size_t decode_file(const std::string& path, Format format, const DecoderOptions& options,
-                        const ReportSink& sink, Rejections& rejections) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr) {
-    rejections.reject("file_unreadable", fmt::format("{}: {}", path, std::strerror(errno)));
-    return 0;
-  }
-  std::vector<std::byte> chunk(kFileChunkBytes);
-  std::size_t got = std::fread(chunk.data(), 1, chunk.size(), file);
-  if (format == Format::Auto) {
-    format = detect_format(std::span<const std::byte>(chunk.data(), got));
-    if (format == Format::Auto) {
-      rejections.reject("unknown_format", fmt::format("{}: matches no known format", path));
-      std::fclose(file);
-      return 0;
-    }
-  }
-  const std::unique_ptr<Decoder> decoder = make_decoder(format, options);
-  text::forward_rejections(*decoder, rejections);
-  std::size_t reports = 0;
-  const ReportSink counting_sink = [&](const TrackReport& report) {
-    ++reports;
-    sink(report);
-  };
-  while (got > 0) {
-    decoder->feed(std::span<const std::byte>(chunk.data(), got), counting_sink);
-    got = std::fread(chunk.data(), 1, chunk.size(), file);
-  }
-  if (std::ferror(file) != 0)
-    rejections.reject("file_unreadable", fmt::format("{}: read error", path));
-  decoder->finish(counting_sink);
-  std::fclose(file);
-  return reports;
 }
 
 }  // namespace kew::protocol

@@ -1,5 +1,5 @@
 // Format names, auto-detection on every bundled and shared recording, the decoder factory,
-// the auto-detecting decoder and decode_file.
+// the auto-detecting decoder.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -194,52 +194,6 @@ TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   auto short_decoder = make_decoder(Format::Auto);
   EXPECT_TRUE(decode_all(*short_decoder, "hello\n").empty());
   EXPECT_EQ(short_decoder->rejections().count("unknown_format"), 1u);
-}
-
-TEST(DecodeFile, AutoDetectsDecodesAndCounts) {
-  Rejections rejections;
-  std::vector<std::string> messages;
-  rejections.set_reporter([&](std::string_view, std::string_view m) { messages.emplace_back(m); });
-  std::vector<TrackReport> reports;
-  const std::size_t n = decode_file(test::bundled_path("readsb_20minutes.json"), Format::Auto, {},
-                                    [&](const TrackReport& r) { reports.push_back(r); }, rejections);
-  EXPECT_EQ(n, 1194u);
-  EXPECT_EQ(reports.size(), 1194u);
-  EXPECT_EQ(rejections.count("no_position"), 418u);
-  EXPECT_EQ(messages.size(), 10u + 5u);  // a burst of 10, then the 20th, 40th, ..., 320th
-  EXPECT_NE(messages[0].find("readsb line 3"), std::string::npos) << messages[0];
-
-  Rejections none;
-  EXPECT_EQ(decode_file(test::bundled_path("opensky_switzerland_first2000.json.gz"), Format::OpenskyJson,
-                        {}, [](const TrackReport&) {}, none),
-            2000u);
-  EXPECT_EQ(none.total(), 0u);
-}
-
-TEST(DecodeFile, MissingAndUnknownFilesAreCounted) {
-  Rejections rejections;
-  EXPECT_EQ(decode_file("/nonexistent/kew/file.ndjson", Format::Auto, {}, [](const TrackReport&) {},
-                        rejections),
-            0u);
-  EXPECT_EQ(rejections.count("file_unreadable"), 1u);
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("kew_test_formats_" + std::to_string(::getpid()) + ".txt"))
-                               .string();
-  {
-    std::ofstream out(path);
-    out << "just some words\n";
-  }
-  EXPECT_EQ(decode_file(path, Format::Auto, {}, [](const TrackReport&) {}, rejections), 0u);
-  EXPECT_EQ(rejections.count("unknown_format"), 1u);
-  std::filesystem::remove(path);
-}
-
-TEST(DecodeFile, SharedSwitzerlandWhole) {
-  const std::string path = test::shared_path("traffic-opensky/switzerland.json.gz");
-  if (!test::exists(path)) GTEST_SKIP() << "shared recordings absent: " << path;
-  Rejections rejections;
-  EXPECT_EQ(decode_file(path, Format::Auto, {}, [](const TrackReport&) {}, rejections), 139098u);
-  EXPECT_EQ(rejections.total(), 0u);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
-// Every input format by name, auto-detection from a file's first bytes, one factory for
-// all decoders, and the one place protocol/ reads a file (decode_file).
+// Every input format by name, auto-detection from a stream's first bytes, and one factory
+// for all decoders. protocol/ reads no files: recordings are read by replay's
+// RecordingReader, for kew-replay and kewd's file inputs alike.
 
 #include <cstddef>
 #include <memory>
@@ -62,13 +63,5 @@ Format detect_format(std::span<const std::byte> head);
 /// enough), detects, then decodes; an unknown stream is counted "unknown_format" and
 /// ignored until finish().
 std::unique_ptr<Decoder> make_decoder(Format format, const DecoderOptions& options = {});
-
-/// Decodes the whole file at `path` in 64 KiB reads (auto-detecting when `format` is
-/// Auto) and calls `sink` per report; the decoder's rejections are forwarded into
-/// `rejections` (with their messages, through its reporter). A file that cannot be
-/// opened or read is counted "file_unreadable", an undetectable one "unknown_format".
-/// Returns the number of reports.
-std::size_t decode_file(const std::string& path, Format format, const DecoderOptions& options,
-                        const ReportSink& sink, Rejections& rejections);
 
 }  // namespace kew::protocol
