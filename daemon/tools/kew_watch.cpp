@@ -1,4 +1,4 @@
-// kew-watch (SPEC §5.6): a subscriber of kewd's alert stream. Prints one readable line per
+// kew-watch (design §5.6): a subscriber of kewd's alert stream. Prints one readable line per
 // alert event (or the raw JSON lines with --json), like gpsd's cgps/gpspipe.
 
 #include <cmath>

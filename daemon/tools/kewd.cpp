@@ -1,4 +1,4 @@
-// kewd (SPEC §5.6): the kew service. Without -N it forks into the background and logs
+// kewd (design §5.6): the kew service. Without -N it forks into the background and logs
 // to syslog; under systemd (Type=notify) it runs with -N and logs to the journal.
 
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-// kew-gen: synthetic radar traffic in the canonical NDJSON track format (SPEC §5.1, §5.6).
+// kew-gen: synthetic radar traffic in the canonical NDJSON track format (design §5.1, §5.6).
 // Exit status: 0 done, 64 bad usage, 73 cannot create the output file, 74 write error.
 #include <cerrno>
 #include <charconv>

@@ -1,4 +1,4 @@
-// kew-replay (SPEC §5.6): runs the whole pipeline over recordings as fast as possible
+// kew-replay (design §5.6): runs the whole pipeline over recordings as fast as possible
 // and writes the ALERT objects as JSON lines, or streams the records to a running kewd
 // paced like the recording.
 

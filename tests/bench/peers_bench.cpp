@@ -1,5 +1,5 @@
 // kew_peers_bench: kew's per-radar-period cost against what an engineer would otherwise
-// build (SPEC §6 Performance, issue 8), on the same generated traffic and in one run:
+// build (design §6.7, issue 8), on the same generated traffic and in one run:
 //   (a) kew         the Pipeline (track table, projection, kinetic Delaunay updates and
 //                   events, exact BFS probe, alert manager) — no alert output;
 //   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period

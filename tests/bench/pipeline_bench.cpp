@@ -1,4 +1,4 @@
-// kew_pipeline_bench: end-to-end throughput of kew on one core (SPEC §6 Performance):
+// kew_pipeline_bench: end-to-end throughput of kew on one core (design §6.7):
 // bytes → decoder → Pipeline → ALERT JSON lines, for canonical NDJSON (generated traffic)
 // and ASTERIX CAT062 (the bundled JADE final-format excerpt, and the 30-minute JADE
 // recording of ../shared/data/recordings when present); the in-process record-to-alert

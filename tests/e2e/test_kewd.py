@@ -1,4 +1,4 @@
-"""End-to-end tests of the real kewd binary on loopback (issue 6, SPEC §5.3–5.7, §6).
+"""End-to-end tests of the real kewd binary on loopback (issue 6, design §5.3–5.7, §6).
 
 Run by ctest (tests/CMakeLists.txt) with the binaries in the environment; by hand:
   KEWD=build/daemon/kewd KEW_REPLAY=build/replay/kew-replay KEW_GEN=build/replay/kew-gen \
@@ -401,7 +401,7 @@ def pymodbus_python():
 
 
 class ModbusMap(E2eCase):
-    """kewd's Modbus TCP alarm map read by real clients (issue 7, SPEC §5.5)."""
+    """kewd's Modbus TCP alarm map read by real clients (issue 7, design §5.5)."""
 
     def setUp(self):
         super().setUp()

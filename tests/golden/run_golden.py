@@ -3,7 +3,7 @@
 
 Every case in CASES is replayed offline with kew-replay; its ALERT lines and the stable
 part of its statistics must equal the files checked in under tests/golden/expected/
-byte for byte, and a second run must give the same bytes (determinism, SPEC §2.5).
+byte for byte, and a second run must give the same bytes (determinism, design §2.5).
 
 After an intended change of behaviour, rebuild the goldens with ONE flag and review the
 diff before committing:

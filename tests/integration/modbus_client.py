@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Modbus TCP client for kew's alarm register map (SPEC §5.5, README.md, "Modbus TCP alarm map").
+"""Modbus TCP client for kew's alarm register map (design §5.5, README.md, "Modbus TCP alarm map").
 
 A small command-line tool over pymodbus (written for Debian 12's python3-pymodbus
 3.0.0, whose API is ModbusTcpClient(host, port, timeout=whole seconds)), used by the

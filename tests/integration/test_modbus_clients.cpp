@@ -1,5 +1,5 @@
 // The Modbus server read and written by real clients run as subprocesses: mbpoll (a
-// libmodbus master) and pymodbus (an independent implementation), SPEC §5.5.
+// libmodbus master) and pymodbus (an independent implementation), design §5.5.
 
 #include <gtest/gtest.h>
 

@@ -184,7 +184,7 @@ TEST(KineticDelaunayProperty, RandomMotionMatchesStaticDelaunayAtRandomTimes) {
 
 TEST(KineticDelaunayProperty, FreeFlightWithoutUpdatesRenewsExpiredWindows) {
   // No measurement ever arrives: the model keeps moving and every event must still be
-  // found through renewals of the thresholded windows (SPEC §2.4).
+  // found through renewals of the thresholded windows (design §2.4).
   KineticConfig config;
   config.horizon_s = 2.0;
   Harness h(config, 7);

@@ -1,5 +1,5 @@
 // The exact probe (Delaunay BFS within R_i) produces exactly the alert events of brute
-// force, event for event, on generated traffic of every kind (SPEC §2.1, §4).
+// force, event for event, on generated traffic of every kind (design §2.1, §4).
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/replay/traffic_generator.hpp"
 

@@ -1,4 +1,4 @@
-// Alert stream JSON (SPEC §5.3): byte-exact objects (a formatting change must be
+// Alert stream JSON (design §5.3): byte-exact objects (a formatting change must be
 // deliberate and show up here), string escaping for any bytes, the ?WATCH request, and
 // encode → read round trips within the documented precision.
 

@@ -1,4 +1,4 @@
-// Alert lifecycle (SPEC §4 "Alerts"): confirm, update, clear, drop; ids and sequence.
+// Alert lifecycle (design §4.7): confirm, update, clear, drop; ids and sequence.
 #include "kew/alert/alert_manager.hpp"
 
 #include <gtest/gtest.h>

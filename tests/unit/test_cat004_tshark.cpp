@@ -1,4 +1,4 @@
-// CAT004 against Wireshark's ASTERIX dissector (tshark), SPEC §5.4:
+// CAT004 against Wireshark's ASTERIX dissector (tshark), design §5.4:
 //  - what kew's encoder writes is decoded by tshark to the values encoded, without
 //    malformed-packet or expert reports;
 //  - the jASTERIX CAT004 test vectors (bundled, GPL-3.0, see tests/data/cat004/SOURCE.md)

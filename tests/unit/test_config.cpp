@@ -1,4 +1,4 @@
-// The configuration file (SPEC §5.7): deploy/kew.toml documents the defaults the code
+// The configuration file (design §5.7): deploy/kew.toml documents the defaults the code
 // uses, unknown keys are errors, and errors name the file and line; the shared tables
 // (kew_config) read the same file as kewd (kew_daemon_config); one HOST:PORT parser.
 #include "kew/daemon/config.hpp"

@@ -1,4 +1,4 @@
-// Hand-computed CPA cases (SPEC §4 "Conflict"): S_h = 9260 m, S_v = 304.8 m, T = 120 s.
+// Hand-computed CPA cases (design §4.4): S_h = 9260 m, S_v = 304.8 m, T = 120 s.
 #include "kew/probe/cpa.hpp"
 
 #include <gtest/gtest.h>

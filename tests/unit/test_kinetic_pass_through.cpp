@@ -1,4 +1,4 @@
-// Aircraft at different levels passing exactly through each other in 2D (SPEC §2.2):
+// Aircraft at different levels passing exactly through each other in 2D (design §2.2):
 // the kinetic maintenance alone must keep the triangulation valid before, at and after
 // the meeting instant, by holding one of the pair as a twin of the other while they are
 // closer than twin_release_distance_m.

@@ -1,4 +1,4 @@
-// The Modbus alarm register map (SPEC §5.5) and the request rules of kew's server, as
+// The Modbus alarm register map (design §5.5) and the request rules of kew's server, as
 // pure functions: every register of hand-built snapshots, ordering, saturation, and the
 // exception chosen for each kind of bad request.
 

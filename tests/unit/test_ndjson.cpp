@@ -1,4 +1,4 @@
-// Canonical NDJSON: decoder (SPEC §5.1), writer, and the write → read round trip.
+// Canonical NDJSON: decoder (design §5.1), writer, and the write → read round trip.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // The thesis' edge-only probe misses conflicts hidden by a third aircraft at another
-// level (SPEC §2.1); the exact probe and brute force find them.
+// level (design §2.1); the exact probe and brute force find them.
 #include "kew/pipeline/pipeline.hpp"
 
 #include <gtest/gtest.h>

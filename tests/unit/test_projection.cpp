@@ -1,4 +1,4 @@
-// The projection against GeographicLib's own geodesics (SPEC §4 "Projection").
+// The projection against GeographicLib's own geodesics (design §4.2).
 #include "kew/geo/projection.hpp"
 
 #include <gtest/gtest.h>

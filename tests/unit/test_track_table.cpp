@@ -1,4 +1,4 @@
-// The track table and the pipeline's handling of bad records (SPEC §4 "Tracks", §6
+// The track table and the pipeline's handling of bad records (design §4.3, design §6.3
 // "Bad input"): every kind of bad record is refused with its own counted reason and
 // never reaches the triangulation.
 #include "kew/pipeline/pipeline.hpp"

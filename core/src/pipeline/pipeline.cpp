@@ -228,7 +228,7 @@ void Pipeline::probe(track::TrackSlot slot) {
   const probe::Kinematics k_self = probe_state_[slot].at(clock_);
   // Most candidates are clear and have no pair state, and for those the alert manager
   // does nothing: only pairs in conflict or with state (the partners, marked above) go
-  // on, in slot order, which fixes the order of the events of one probe (SPEC §2.5).
+  // on, in slot order, which fixes the order of the events of one probe (design §2.5).
   // Sorting these few rather than every candidate found is the same order.
   evaluated_.clear();
   const ProbeState& self = probe_state_[slot];

@@ -1,5 +1,5 @@
 #pragma once
-// ASTERIX CAT004 safety-net messages over UDP (SPEC §5.4): STCA on new and updated
+// ASTERIX CAT004 safety-net messages over UDP (design §5.4): STCA on new and updated
 // alerts, End of conflict on ends, Alive periodically. Unicast or multicast.
 
 #include <boost/asio/ip/udp.hpp>

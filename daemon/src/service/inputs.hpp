@@ -1,5 +1,5 @@
 #pragma once
-// kewd's inputs, one class per transport (SPEC §5.7 [[input]]): UDP (unicast or
+// kewd's inputs, one class per transport (design §5.7 [[input]]): UDP (unicast or
 // multicast), TCP client with reconnect and backoff, TCP server, file (through replay's
 // RecordingReader and Pacer, as kew-replay reads recordings). Every byte
 // stream gets its own decoder (one per TCP connection), so streams never mix; decoded

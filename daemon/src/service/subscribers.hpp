@@ -1,5 +1,5 @@
 #pragma once
-// The subscriber stream of SPEC §5.3 (gpsd-style JSON lines over TCP). Every session
+// The subscriber stream of design §5.3 (gpsd-style JSON lines over TCP). Every session
 // has a bounded queue of shared, already encoded lines; a session whose queue overflows
 // is sent a final ERROR object and closed, so a slow client never slows ingestion.
 // Everything runs on the service's single I/O thread.

@@ -36,7 +36,7 @@ double sortable_time_to_loss(const AlertEvent& e) {
   return std::isnan(e.t_los_s) ? std::numeric_limits<double>::infinity() : e.t_los_s;
 }
 
-/// Most urgent first (SPEC §5.5: "a table of the most severe alerts"); alert number, then
+/// Most urgent first (design §5.5: "a table of the most severe alerts"); alert number, then
 /// id, make the order total so equal alerts never swap rows between snapshots.
 bool more_urgent(const AlertEvent* x, const AlertEvent* y) {
   return std::make_tuple(-static_cast<int>(x->severity), sortable_time_to_loss(*x), x->number,

@@ -1,4 +1,4 @@
-// Canonical NDJSON track records (SPEC §5.1); the format is described in ndjson.hpp.
+// Canonical NDJSON track records (design §5.1); the format is described in ndjson.hpp.
 #include <fmt/format.h>
 
 #include "json_object.hpp"

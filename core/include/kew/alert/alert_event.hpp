@@ -1,5 +1,5 @@
 #pragma once
-// What the alert manager emits and every sink encodes (SPEC §4 "Alerts", §5.3–5.5).
+// What the alert manager emits and every sink encodes (design §4.7, §5.3–5.5).
 
 #include <cstdint>
 #include <string>
@@ -8,7 +8,7 @@
 namespace kew {
 
 /// Ordered: a higher value is more urgent. Numeric values are the Modbus "highest
-/// severity" register (SPEC §5.5).
+/// severity" register (design §5.5).
 enum class Severity : std::uint8_t {
   None = 0,     ///< no conflict within the look-ahead
   Caution = 1,  ///< loss of separation predicted within T

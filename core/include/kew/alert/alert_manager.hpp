@@ -1,5 +1,5 @@
 #pragma once
-// Alert lifecycle (SPEC §4 "Alerts"): a pair's alert opens after `confirm` consecutive
+// Alert lifecycle (design §4.7): a pair's alert opens after `confirm` consecutive
 // conflicting evaluations, is updated when its severity or figures change materially,
 // and ends after `clear` consecutive clear evaluations or when one of its tracks is
 // dropped. Ids are derived from the pair and the opening data time; every emitted event

@@ -1,5 +1,5 @@
 #pragma once
-// WGS84 → plane projection for the kinetic engine and the probe (SPEC §4 "Projection").
+// WGS84 → plane projection for the kinetic engine and the probe (design §4.2).
 //
 // kew uses GeographicLib's transverse Mercator (Krüger series, accurate to nanometres
 // within 3,900 km of the central meridian) with the central meridian through the

@@ -1,7 +1,7 @@
 #pragma once
 // Real polynomials of degree ≤ 4: the certificate functions of a kinetic Delaunay
 // triangulation of linearly moving points (thesis Eq. 7.1). The variable is time in
-// seconds local to the engine's current time (SPEC §4), never epoch seconds.
+// seconds local to the engine's current time (design §4.1), never epoch seconds.
 
 #include <array>
 #include <cassert>

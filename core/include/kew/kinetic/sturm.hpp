@@ -4,7 +4,7 @@
 // this certificate first become violated?", so the design answers it by counting roots
 // before computing any, and by computing at most the one root that is the answer.
 //
-// Time is the engine's local time in seconds (SPEC §4): t = 0 is "now".
+// Time is the engine's local time in seconds (design §4.1): t = 0 is "now".
 //
 // Tolerance model. Coefficients are doubles, so a polynomial that "should" have a double
 // root (a tangency, Lemma 6) usually has, as stored, two very close roots or a very narrow

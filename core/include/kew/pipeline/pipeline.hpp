@@ -1,5 +1,5 @@
 #pragma once
-// The single-threaded heart of kew (SPEC §3): TrackReports in, alert events out.
+// The single-threaded heart of kew (design §3): TrackReports in, alert events out.
 // record → track table (order, plausibility) → projection → kinetic engine advance(t)
 // then update(track) → probe → alert manager → sink. Deterministic: the same records
 // in the same order give the same events. Used by kew-replay and kewd alike.
@@ -96,7 +96,7 @@ class Pipeline {
   /// The projection in use (empty until the first plausible record fixes the reference).
   const std::optional<geo::Projection>& projection() const { return projection_; }
 
-  /// Search radius R_i of SPEC §2.1 for a track moving at plane speed `speed_mps`, in
+  /// Search radius R_i of design §2.1 for a track moving at plane speed `speed_mps`, in
   /// plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute bound).
   double search_radius(double speed_mps) const;
 
@@ -156,7 +156,7 @@ class Pipeline {
   ConflictTap conflict_tap_;
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
-  double epoch_ = 0.0;  // engine time = data time − epoch (SPEC §4: local time frames)
+  double epoch_ = 0.0;  // engine time = data time − epoch (design §4.1: local time frames)
   bool started_ = false;
   double clock_ = 0.0;
   PipelineStatistics stats_;

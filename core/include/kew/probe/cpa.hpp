@@ -1,5 +1,5 @@
 #pragma once
-// Exact linear closest-point-of-approach test of one pair (SPEC §4 "Conflict").
+// Exact linear closest-point-of-approach test of one pair (design §4.4).
 // Both aircraft move in straight lines at constant velocity (horizontal in the plane,
 // vertical by vertical rate). The pair is in conflict when, for some τ' in [0, T], the
 // horizontal distance is below S_h and the vertical distance below S_v at the same τ':

@@ -1,5 +1,5 @@
 #pragma once
-// Candidate search for the conflict probe (SPEC §2.1): the kinetic Delaunay
+// Candidate search for the conflict probe (design §2.1): the kinetic Delaunay
 // triangulation used as an exact proximity index.
 //
 // Every point within distance r of a triangulation vertex p is reached by a

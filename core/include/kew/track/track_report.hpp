@@ -1,6 +1,6 @@
 #pragma once
 // One surveillance record as every decoder produces it and the pipeline consumes it
-// (SPEC §3, §5.1). Units are those of the canonical record so that a recording
+// (design §3, §5.1). Units are those of the canonical record so that a recording
 // round-trips without conversion; the core converts to SI on entry.
 
 #include <cstdint>

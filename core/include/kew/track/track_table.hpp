@@ -1,5 +1,5 @@
 #pragma once
-// The table of live tracks (SPEC §4 "Tracks"): identity by source + id, per-track record
+// The table of live tracks (design §4.3): identity by source + id, per-track record
 // ordering, plausibility of every record with counted reasons, velocity derived from the
 // last two positions when a record has none, on-ground exclusion, and the timeout that
 // drops silent tracks. It turns accepted records into plane kinematics; it never talks
@@ -31,7 +31,7 @@ struct TrackTableConfig {
   double max_vertical_rate_fpm = 20000.0; ///< |vertical rate| above this is rejected (ft/min)
   double min_altitude_ft = -2000.0;       ///< altitude range accepted (ft)
   double max_altitude_ft = 100000.0;
-  bool exclude_on_ground = true;          ///< on-ground targets are not tracked (SPEC §4)
+  bool exclude_on_ground = true;          ///< on-ground targets are not tracked (design §4.3)
   std::size_t max_tracks = 200000;        ///< bound on live + pending tracks (security)
   std::size_t max_id_bytes = 64;          ///< longer ids or sources are rejected
   /// Records older than the pipeline clock by more than this are rejected as too late

@@ -1,5 +1,5 @@
 #pragma once
-// Counting and rate-limited reporting of rejected input (SPEC §6 "Bad input").
+// Counting and rate-limited reporting of rejected input (design §6.3).
 // Every stage that refuses data (decoders, the track table) owns one of these; the
 // program that runs the stage decides where the messages go.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The Modbus TCP server of the alarm register map (SPEC §5.5, README.md, "Modbus TCP alarm map").
+// The Modbus TCP server of the alarm register map (design §5.5, README.md, "Modbus TCP alarm map").
 // libmodbus contexts are not thread-safe, so one thread owns the one context: it accepts
 // clients, answers their requests from the latest published snapshot and increments the
 // heartbeat register once a second. The daemon's thread only publishes copies of its

@@ -1,5 +1,5 @@
 #pragma once
-// The contract every track decoder keeps (SPEC §5.1–5.2, issue "Protocol"):
+// The contract every track decoder keeps (design §5.1–5.2, issue "Protocol"):
 //  - incremental: bytes may be split anywhere between feed() calls, and the reports are
 //    the same as if the whole input had arrived at once;
 //  - bounded: no message larger than max_message_bytes() is buffered; a longer one is

@@ -1,5 +1,5 @@
 #pragma once
-// The Modbus TCP alarm register map (SPEC §5.5) and the Modbus rules kew's server applies
+// The Modbus TCP alarm register map (design §5.5) and the Modbus rules kew's server applies
 // to requests, as pure functions: no sockets here (the server is kew::daemon::ModbusServer).
 // README.md, "Modbus TCP alarm map" documents every address with its reference number, unit and
 // encoding; the constants below are the single source of those addresses.
@@ -96,7 +96,7 @@ inline constexpr std::size_t kModbusCoilCount = 1;
 /// table_entries to [0, kModbusMaxTableEntries].
 std::size_t modbus_register_count(int table_entries);
 
-/// Builds the map of `s` (SPEC §5.5).
+/// Builds the map of `s` (design §5.5).
 ///   table_entries: rows in the table, clamped to [0, kModbusMaxTableEntries];
 ///   heartbeat: register 5 as is (the server increments it once a second, wrapping).
 /// Counts saturate at 65535; uptime is 32-bit, high word first (register 6). Figures are

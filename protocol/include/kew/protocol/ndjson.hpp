@@ -1,5 +1,5 @@
 #pragma once
-// Decoder of the canonical track record, one JSON object per line (SPEC §5.1).
+// Decoder of the canonical track record, one JSON object per line (design §5.1).
 //
 //   {"t":1714400000.25,"id":"4CA123","lat":51.47,"lon":-0.45,"alt_ft":35000,
 //    "gs_kt":450,"trk_deg":270.0,"vr_fpm":0,"cs":"BAW123","src":"adsb","gnd":false,"sq":"7000"}

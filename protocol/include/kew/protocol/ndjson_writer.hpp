@@ -1,5 +1,5 @@
 #pragma once
-// Writes TrackReports as canonical NDJSON (SPEC §5.1), the exact inverse of the NDJSON
+// Writes TrackReports as canonical NDJSON (design §5.1), the exact inverse of the NDJSON
 // decoder: reading a written line gives back an equal report, doubles bit for bit.
 //
 //   {"t":1714400000.25,"id":"4CA123","lat":51.47,"lon":-0.45,"alt_ft":35000,"gs_kt":450,

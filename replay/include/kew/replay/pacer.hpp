@@ -1,5 +1,5 @@
 #pragma once
-// Pacing of a replay like the recording (gpsfake-style, SPEC §5.6): a record of data
+// Pacing of a replay like the recording (gpsfake-style, design §5.6): a record of data
 // time t is released at wall time w0 + (t − t0)/speed, where t0 and w0 are the first
 // record's data time and wall time.
 

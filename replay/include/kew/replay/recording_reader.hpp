@@ -1,5 +1,5 @@
 #pragma once
-// Reading recordings for replay (SPEC §5.6): one file through its decoder, read in
+// Reading recordings for replay (design §5.6): one file through its decoder, read in
 // chunks on demand, and several files merged into one stream in data-time order.
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Synthetic radar traffic for tests, benchmarks and `kew-gen` (SPEC §5.6).
+// Synthetic radar traffic for tests, benchmarks and `kew-gen` (design §5.6).
 //
 // A fixed number of aircraft "slots" fly scenario-specific paths (great circles on
 // WGS84, holding racetracks, converging arrivals) and are sampled like a radar: every

@@ -1,5 +1,5 @@
 #pragma once
-// ASTERIX track decoders (SPEC §5.2): CAT062 system tracks, CAT048 monoradar target
+// ASTERIX track decoders (design §5.2): CAT062 system tracks, CAT048 monoradar target
 // reports, CAT021 ADS-B reports, in four framings. protocol/docs/asterix.md describes
 // every item used, the units and scalings, time handling and the CAT048 polar conversion.
 

@@ -1,10 +1,10 @@
 #pragma once
-// JSON objects of the subscriber alert stream (SPEC §5.3): gpsd-style, one object per
+// JSON objects of the subscriber alert stream (design §5.3): gpsd-style, one object per
 // line. Every function appends exactly one line, terminated by '\n', to `out` and
 // allocates nothing beyond growing `out`.
 //
 // Numbers are printed in fixed notation with a fixed number of decimals per field, so
-// that the same event always gives the same bytes (SPEC §2.5) and lines stay short:
+// that the same event always gives the same bytes (design §2.5) and lines stay short:
 //   times (t, t_open)            3 decimals (1 ms)
 //   lat, lon                     6 decimals (about 0.11 m)
 //   metres, seconds, gs_kt, trk  1 decimal

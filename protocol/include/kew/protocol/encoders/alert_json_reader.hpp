@@ -1,5 +1,5 @@
 #pragma once
-// The client side of the alert stream (SPEC §5.3): the subscriber's ?WATCH request as the
+// The client side of the alert stream (design §5.3): the subscriber's ?WATCH request as the
 // server reads it, and the server's objects as a client (kew-watch, end-to-end tests)
 // reads them back. Nothing here throws; every refusal comes back as an error text.
 

@@ -1,6 +1,6 @@
 #pragma once
 // ASTERIX Category 004, Safety Net Messages (EUROCONTROL ASTERIX Part 17, edition 1.12,
-// the edition Wireshark 4.0 decodes), as kew sends it over UDP (SPEC §5.4):
+// the edition Wireshark 4.0 decodes), as kew sends it over UDP (design §5.4):
 //   Alive (I004/000 = 1), STCA (= 7) for new and updated alerts, End Of Conflict (= 17).
 // protocol/docs/encoders.md lists every item and subfield written, with its scaling and
 // the kew value it carries.
