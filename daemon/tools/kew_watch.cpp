@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
   CLI::App app{"kew-watch: follow kewd's conflict alerts"};
   app.set_version_flag("--version", std::string("kew-watch ") + std::string(kew::protocol::release()));
   app.add_option("address", flags.address, "kewd's alert stream, HOST:PORT")->default_val(flags.address);
-  app.add_option("-s,--min-severity", flags.min_severity, "caution, warning or loss")
-      ->check(CLI::IsMember({"caution", "warning", "loss"}))
+  app.add_option("-s,--min-severity", flags.min_severity, kew::kSeverityNames.list({kew::Severity::None}))
+      ->check(CLI::IsMember(kew::kSeverityNames.names({kew::Severity::None})))
       ->default_val(flags.min_severity);
   app.add_option("-n,--count", flags.count, "exit after this many ALERT objects")->check(CLI::PositiveNumber);
   app.add_flag("-j,--json", flags.json, "print the stream's JSON lines as received");

@@ -25,8 +25,6 @@ using detail::FlightKind;
 using detail::RandomStream;
 using detail::SlotPlan;
 
-constexpr std::array<std::string_view, 5> kScenarioNames = {"random", "airways", "stacks", "tma", "mixed"};
-
 // Mixed: shares of random, airways, stacks and TMA traffic.
 constexpr std::array<double, 4> kMixedShares = {0.25, 0.40, 0.15, 0.20};
 
@@ -97,23 +95,8 @@ std::uint64_t master_seed(std::uint64_t seed, Scenario scenario) {
 
 }  // namespace
 
-bool parse_scenario(std::string_view name, Scenario& out) {
-  for (std::size_t i = 0; i < kScenarioNames.size(); ++i) {
-    if (kScenarioNames[i] == name) {
-      out = static_cast<Scenario>(i);
-      return true;
-    }
-  }
-  return false;
-}
-
-std::string_view to_string(Scenario scenario) {
-  const auto i = static_cast<std::size_t>(scenario);
-  return i < kScenarioNames.size() ? kScenarioNames[i] : "unknown";
-}
-
 std::string validate(const GeneratorConfig& c) {
-  if (static_cast<std::size_t>(c.scenario) >= kScenarioNames.size()) return "unknown scenario";
+  if (!kScenarioNames.contains(c.scenario)) return "unknown scenario";
   if (c.aircraft < 1 || c.aircraft > 1'000'000) return fmt::format("aircraft must be 1 to 1,000,000 (got {})", c.aircraft);
   if (!in_range(c.duration_s, 0, 30 * 86400.0) || c.duration_s == 0)
     return fmt::format("duration must be > 0 and at most 30 days (got {} s)", c.duration_s);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -99,7 +100,7 @@ int main(int argc, char** argv) {
       "byte-identical output.",
       "kew-gen"};
   app.set_version_flag("--version", std::string("kew-gen ") + std::string(kew::protocol::release()));
-  app.add_option("--scenario", scenario, "random | airways | stacks | tma | mixed")->capture_default_str();
+  app.add_option("--scenario", scenario, kew::replay::kScenarioNames.list())->capture_default_str();
   app.add_option("--aircraft", config.aircraft, "aircraft airborne at every instant, 1 to 1000000")
       ->check(reject_negative)
       ->capture_default_str();
@@ -136,8 +137,10 @@ int main(int argc, char** argv) {
     return usage_error(e.what());
   }
 
-  if (!kew::replay::parse_scenario(scenario, config.scenario))
-    return usage_error(fmt::format("unknown scenario '{}' (random, airways, stacks, tma, mixed)", scenario));
+  const std::optional<kew::replay::Scenario> parsed = kew::replay::kScenarioNames.parse(scenario);
+  if (!parsed)
+    return usage_error(fmt::format("unknown scenario '{}' (one of {})", scenario, kew::replay::kScenarioNames.list()));
+  config.scenario = *parsed;
   if (!center.empty() && !parse_center(center, config.center_lat_deg, config.center_lon_deg))
     return usage_error(fmt::format("--center wants LAT,LON in degrees (got '{}')", center));
   config.report_velocity = !no_velocity;

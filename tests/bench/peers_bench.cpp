@@ -130,7 +130,9 @@ Params parse(int argc, char** argv) {
       } else if (flag == "--warmup") {
         p.warmup = std::stoul(value());
       } else if (flag == "--scenario") {
-        if (!kew::replay::parse_scenario(value(), p.scenario)) usage("unknown scenario");
+        const auto scenario = kew::replay::kScenarioNames.parse(value());
+        if (!scenario) usage("unknown scenario");
+        p.scenario = *scenario;
       } else if (flag == "--seed") {
         p.seed = std::stoull(value());
       } else if (flag == "--brute-budget") {

@@ -7,8 +7,7 @@
 //     -Icore/include -Iprotocol/include tests/fuzz/fuzz_cat004_reader.cpp \
 //     protocol/src/encoders/cat004.cpp protocol/src/encoders/cat004_reader.cpp \
 //     protocol/src/asterix/record_walker.cpp protocol/src/asterix/record_fields.cpp \
-//     protocol/src/asterix/day_clock.cpp core/src/util/rejections.cpp \
-//     core/src/alert/alert_event.cpp -o fuzz_cat004_reader
+//     protocol/src/asterix/day_clock.cpp core/src/util/rejections.cpp -o fuzz_cat004_reader
 // (or link kew_protocol and kew_core built with the same sanitizers).
 
 #include <cstddef>

@@ -212,10 +212,9 @@ TEST(Severities, ClassifiedByTimeToLoss) {
   EXPECT_EQ(m.classify(true, 0.0), Severity::Loss);
   EXPECT_EQ(m.classify(false, 60.0), Severity::Warning);
   EXPECT_EQ(m.classify(false, 60.5), Severity::Caution);
-  Severity s;
-  EXPECT_TRUE(parse_severity("warning", s));
-  EXPECT_EQ(s, Severity::Warning);
-  EXPECT_FALSE(parse_severity("urgent", s));
+  EXPECT_EQ(kSeverityNames.parse("warning"), Severity::Warning);
+  EXPECT_FALSE(kSeverityNames.parse("urgent"));
+  EXPECT_EQ(kSeverityNames.list({Severity::None}), "caution, warning, loss");
 }
 
 }  // namespace

@@ -144,25 +144,12 @@ class Members {
   std::string_view context_;
 };
 
-bool parse_state(std::string_view text, AlertState& out) {
-  for (AlertState s : {AlertState::New, AlertState::Update, AlertState::End}) {
-    if (text == to_string(s)) {
-      out = s;
-      return true;
-    }
-  }
-  return false;
-}
-
-bool parse_end_reason(std::string_view text, AlertEndReason& out) {
-  for (AlertEndReason r :
-       {AlertEndReason::None, AlertEndReason::Cleared, AlertEndReason::TrackDropped}) {
-    if (text == to_string(r)) {
-      out = r;
-      return true;
-    }
-  }
-  return false;
+// Reads `text` into `out` by the enum's name table; false when it names no value.
+template <class Enum, std::size_t N>
+bool parse_name(const util::NameTable<Enum, N>& names, std::string_view text, Enum& out) {
+  const std::optional<Enum> value = names.parse(text);
+  if (value) out = *value;
+  return value.has_value();
 }
 
 bool read_party(dom::object object, std::string_view name, AlertParty& party,
@@ -190,11 +177,11 @@ bool read_alert(dom::object object, AlertEvent& event, std::string& error) {
         m.required("sep_v_ft", event.sep_v_ft) && m.optional("ack", event.acknowledged))) {
     return false;
   }
-  if (!parse_state(state, event.state)) return m.fail("unknown state " + quoted(state));
-  if (!parse_severity(severity, event.severity)) {
+  if (!parse_name(kAlertStateNames, state, event.state)) return m.fail("unknown state " + quoted(state));
+  if (!parse_name(kSeverityNames, severity, event.severity)) {
     return m.fail("unknown severity " + quoted(severity));
   }
-  if (!parse_end_reason(reason, event.end_reason)) {
+  if (!parse_name(kAlertEndReasonNames, reason, event.end_reason)) {
     return m.fail("unknown reason " + quoted(reason));
   }
   return read_party(a, "a", event.a, error) && read_party(b, "b", event.b, error);
@@ -366,9 +353,9 @@ WatchParseResult parse_watch_request(std::string_view line) {
     return result;
   }
   if (object.at_key("min_severity").error() == simdjson::SUCCESS &&
-      !parse_severity(severity_text, result.request.min_severity)) {
-    result.error = "unknown severity " + quoted(severity_text) +
-                   " (expected caution, warning or loss)";
+      !parse_name(kSeverityNames, severity_text, result.request.min_severity)) {
+    result.error = "unknown severity " + quoted(severity_text) + " (expected one of " +
+                   kSeverityNames.list() + ")";
     return result;
   }
   result.ok = true;

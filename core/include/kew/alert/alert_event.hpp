@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "kew/util/name_table.hpp"
+
 namespace kew {
 
 /// Ordered: a higher value is more urgent. Numeric values are the Modbus "highest
@@ -25,14 +27,28 @@ enum class AlertEndReason : std::uint8_t {
   TrackDropped, ///< one of the two tracks was dropped (timeout, removal)
 };
 
-/// "loss", "warning", "caution", "none".
-std::string_view to_string(Severity s);
-/// "new", "update", "end".
-std::string_view to_string(AlertState s);
-/// "cleared", "track_dropped", "" for None.
-std::string_view to_string(AlertEndReason r);
-/// Inverse of to_string(Severity); false when `text` names no severity.
-bool parse_severity(std::string_view text, Severity& out);
+/// The names of severities in the alert stream, ?WATCH and kew-watch.
+inline constexpr util::NameTable<Severity, 4> kSeverityNames({{
+    {Severity::None, "none"},
+    {Severity::Caution, "caution"},
+    {Severity::Warning, "warning"},
+    {Severity::Loss, "loss"},
+}});
+constexpr std::string_view to_string(Severity s) { return kSeverityNames.name(s); }
+/// The names of an ALERT's `state`.
+inline constexpr util::NameTable<AlertState, 3> kAlertStateNames({{
+    {AlertState::New, "new"},
+    {AlertState::Update, "update"},
+    {AlertState::End, "end"},
+}});
+constexpr std::string_view to_string(AlertState s) { return kAlertStateNames.name(s); }
+/// The names of an End event's `reason` ("" for None: not an End event).
+inline constexpr util::NameTable<AlertEndReason, 3> kAlertEndReasonNames({{
+    {AlertEndReason::None, ""},
+    {AlertEndReason::Cleared, "cleared"},
+    {AlertEndReason::TrackDropped, "track_dropped"},
+}});
+constexpr std::string_view to_string(AlertEndReason r) { return kAlertEndReasonNames.name(r); }
 
 /// One aircraft of a pair as last reported (not predicted), in the canonical units.
 struct AlertParty {

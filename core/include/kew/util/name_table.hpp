@@ -33,6 +33,13 @@ class NameTable {
     return entries_[0].name;
   }
 
+  /// True when `value` is in the table (false only for an integer cast to Enum).
+  constexpr bool contains(Enum value) const {
+    for (const Entry& e : entries_)
+      if (e.value == value) return true;
+    return false;
+  }
+
   /// The value named exactly `text` (case-sensitive), or nullopt.
   constexpr std::optional<Enum> parse(std::string_view text) const {
     for (const Entry& e : entries_)

@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "kew/track/track_report.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace kew::replay {
 
@@ -39,11 +40,15 @@ enum class Scenario {
   Mixed,    ///< each aircraft drawn from the four above
 };
 
-/// Parses "random", "airways", "stacks", "tma" or "mixed" (exact, lower case).
-/// Returns false and leaves `out` unchanged for anything else.
-bool parse_scenario(std::string_view name, Scenario& out);
-/// The name parse_scenario() accepts for `scenario`.
-std::string_view to_string(Scenario scenario);
+/// The names of `kew-gen --scenario` (exact, lower case).
+inline constexpr util::NameTable<Scenario, 5> kScenarioNames({{
+    {Scenario::Random, "random"},
+    {Scenario::Airways, "airways"},
+    {Scenario::Stacks, "stacks"},
+    {Scenario::Tma, "tma"},
+    {Scenario::Mixed, "mixed"},
+}});
+constexpr std::string_view to_string(Scenario scenario) { return kScenarioNames.name(scenario); }
 
 struct GeneratorConfig {
   Scenario scenario = Scenario::Mixed;
