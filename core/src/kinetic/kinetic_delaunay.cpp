@@ -109,11 +109,11 @@ void KineticDelaunay::face_destroyed(FaceIndex f) {
 
 void KineticDelaunay::clear_edge(FaceIndex f, int i, bool count_discard) {
   FaceSchedule& s = schedule_[f];
-  const EntryKind kind = s.kind[static_cast<unsigned>(i)];
-  if (kind == EntryKind::None) return;
-  if (kind == EntryKind::Failure || kind == EntryKind::Approach) {
+  const EventKind kind = s.kind[static_cast<unsigned>(i)];
+  if (kind == EventKind::None) return;
+  if (kind == EventKind::Failure || kind == EventKind::Approach) {
     --stats_.queue_now;
-    if (count_discard && kind == EntryKind::Failure) ++stats_.events_discarded;
+    if (count_discard && kind == EventKind::Failure) ++stats_.events_discarded;
   } else {
     --stats_.renewals_queued;
   }
@@ -122,7 +122,7 @@ void KineticDelaunay::clear_edge(FaceIndex f, int i, bool count_discard) {
   const int j = dt_.tds().mirror_index(f, i);
   for (auto [face, edge] : {std::pair{f, i}, std::pair{g, j}}) {
     FaceSchedule& r = schedule_[face];
-    r.kind[static_cast<unsigned>(edge)] = EntryKind::None;
+    r.kind[static_cast<unsigned>(edge)] = EventKind::None;
     r.time[static_cast<unsigned>(edge)] = kNever;
     r.seq[static_cast<unsigned>(edge)] = 0;
   }
@@ -133,30 +133,23 @@ double KineticDelaunay::earliest_failure(FaceIndex f) const {
   double t = kNever;
   // An approach destroys faces like a failure does, so it bounds §8.3 windows too.
   for (int i = 0; i < 3; ++i) {
-    const EntryKind kind = s.kind[static_cast<unsigned>(i)];
-    if (kind == EntryKind::Failure || kind == EntryKind::Approach) t = std::min(t, s.time[static_cast<unsigned>(i)]);
+    const EventKind kind = s.kind[static_cast<unsigned>(i)];
+    if (kind == EventKind::Failure || kind == EventKind::Approach) t = std::min(t, s.time[static_cast<unsigned>(i)]);
   }
   return t;
 }
 
-void KineticDelaunay::push(double time, std::uint32_t subject, int edge, EntryKind kind, std::uint16_t retries) {
-  const std::uint64_t seq = next_seq_++;
-  util::push_back_gently(heap_, Entry{time, seq, subject, static_cast<std::uint8_t>(edge), kind, retries});
-  std::push_heap(heap_.begin(), heap_.end(), EntryLater{});
-  if (kind == EntryKind::TwinRelease) {
-    release_seq_[subject] = seq;
-    return;
-  }
-  const FaceIndex f = subject;
-  const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(edge)];
-  const int j = dt_.tds().mirror_index(f, edge);
-  for (auto [face, e] : {std::pair{f, edge}, std::pair{g, j}}) {
+void KineticDelaunay::schedule_edge(double time, FaceIndex f, int i, EventKind kind, std::uint16_t retries) {
+  const std::uint64_t seq = queue_.push(time, f, static_cast<std::uint8_t>(i), kind, retries);
+  const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(i)];
+  const int j = dt_.tds().mirror_index(f, i);
+  for (auto [face, edge] : {std::pair{f, i}, std::pair{g, j}}) {
     FaceSchedule& r = schedule_[face];
-    r.kind[static_cast<unsigned>(e)] = kind;
-    r.time[static_cast<unsigned>(e)] = time;
-    r.seq[static_cast<unsigned>(e)] = seq;
+    r.kind[static_cast<unsigned>(edge)] = kind;
+    r.time[static_cast<unsigned>(edge)] = time;
+    r.seq[static_cast<unsigned>(edge)] = seq;
   }
-  if (kind == EntryKind::Failure || kind == EntryKind::Approach) {
+  if (kind == EventKind::Failure || kind == EventKind::Approach) {
     ++stats_.queue_now;
     stats_.queue_max = std::max(stats_.queue_max, stats_.queue_now);
   } else {
@@ -165,15 +158,8 @@ void KineticDelaunay::push(double time, std::uint32_t subject, int edge, EntryKi
 }
 
 bool KineticDelaunay::is_live(const Entry& e) const {
-  if (e.kind == EntryKind::TwinRelease) return release_seq_[e.subject] == e.seq;
+  if (e.kind == EventKind::TwinRelease) return release_seq_[e.subject] == e.seq;
   return dt_.tds().face(e.subject).alive && schedule_[e.subject].seq[e.edge] == e.seq;
-}
-
-void KineticDelaunay::compact_queue() {
-  const std::size_t live = stats_.queue_now + stats_.renewals_queued;
-  if (heap_.size() < 1024 || heap_.size() < 2 * live) return;
-  std::erase_if(heap_, [this](const Entry& e) { return !is_live(e); });
-  std::make_heap(heap_.begin(), heap_.end(), EntryLater{});
 }
 
 // ---------------------------------------------------------------------------------
@@ -243,25 +229,26 @@ void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::ui
       if (crossing.violated_at_start || crossing.found) {
         const double at = crossing.violated_at_start ? now_ + from_offset : now_ + crossing.time;
         ++stats_.events_computed;
-        push(at, f, i, EntryKind::Failure, retries);
+        schedule_edge(at, f, i, EventKind::Failure, retries);
         return;
       }
     }
     ++stats_.approaches_scheduled;
-    push(now_ + approach, f, i, EntryKind::Approach, 0);
+    schedule_edge(now_ + approach, f, i, EventKind::Approach, 0);
     return;
   }
   if (certificate.is_zero()) {
     // No event can be computed (the edge is watched if it constrains anything), but an
     // approach beyond the window must still be looked for when the window closes.
-    if (std::isfinite(approach) && std::isfinite(end)) push(std::max(end, now_), f, i, EntryKind::Renewal, 0);
+    if (std::isfinite(approach) && std::isfinite(end))
+      schedule_edge(std::max(end, now_), f, i, EventKind::Renewal, 0);
     return;
   }
   ++stats_.certificates_solved;
   const double window = end - now_;
   if (!(window > from_offset)) {
     // Nothing to examine before the window closes: re-examine when it does.
-    if (std::isfinite(end)) push(std::max(end, now_), f, i, EntryKind::Renewal, 0);
+    if (std::isfinite(end)) schedule_edge(std::max(end, now_), f, i, EventKind::Renewal, 0);
     return;
   }
   const Crossing crossing = first_positive_crossing(certificate, from_offset, window);
@@ -269,10 +256,10 @@ void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::ui
   if (crossing.violated_at_start || crossing.found) {
     const double at = crossing.violated_at_start ? now_ + from_offset : now_ + crossing.time;
     ++stats_.events_computed;
-    push(at, f, i, EntryKind::Failure, retries);
+    schedule_edge(at, f, i, EventKind::Failure, retries);
     return;
   }
-  if (std::isfinite(end)) push(end, f, i, EntryKind::Renewal, 0);
+  if (std::isfinite(end)) schedule_edge(end, f, i, EventKind::Renewal, 0);
 }
 
 void KineticDelaunay::watch_degenerate(FaceIndex f, int i, bool zero_certificate) {
@@ -340,7 +327,7 @@ void KineticDelaunay::schedule_dirty_faces() {
       const FaceIndex g = tds.face(f).neighbor[static_cast<unsigned>(i)];
       // An edge between two dirty faces is solved once, from the smaller index.
       if (dirty_mark_[g] == dirty_round_ && g < f) continue;
-      if (schedule_[f].kind[static_cast<unsigned>(i)] != EntryKind::None) clear_edge(f, i, true);
+      if (schedule_[f].kind[static_cast<unsigned>(i)] != EventKind::None) clear_edge(f, i, true);
       solve_edge(f, i, 0.0, 0);
     }
   }
@@ -364,10 +351,8 @@ void KineticDelaunay::advance(double t) {
   assert(!(t < now_) && "the engine's clock only moves forward");
   if (t < now_) t = now_;
   do {
-    while (!heap_.empty() && heap_.front().time <= t) {
-      std::pop_heap(heap_.begin(), heap_.end(), EntryLater{});
-      const Entry e = heap_.back();
-      heap_.pop_back();
+    while (!queue_.empty() && queue_.top().time <= t) {
+      const Entry e = queue_.pop();
       if (!is_live(e)) continue;
       set_now(std::max(now_, e.time));
       execute(e);
@@ -378,23 +363,23 @@ void KineticDelaunay::advance(double t) {
   } while (flip_degenerate_edges());
   stats_.queue_sum += static_cast<double>(stats_.queue_now);
   ++stats_.queue_samples;
-  compact_queue();
+  queue_.compact(stats_.queue_now + stats_.renewals_queued, [this](const Entry& e) { return is_live(e); });
 }
 
 void KineticDelaunay::execute(const Entry& e) {
   switch (e.kind) {
-    case EntryKind::Failure:
+    case EventKind::Failure:
       execute_failure(e);
       return;
-    case EntryKind::Renewal:
+    case EventKind::Renewal:
       ++stats_.renewals;
       clear_edge(e.subject, e.edge, false);
       solve_edge(e.subject, e.edge, 0.0, 0);
       return;
-    case EntryKind::Approach:
+    case EventKind::Approach:
       execute_approach(e);
       return;
-    case EntryKind::TwinRelease: {
+    case EventKind::TwinRelease: {
       release_seq_[e.subject] = 0;
       const PointId id = e.subject;
       const PointId host = twin_host_[id];
@@ -412,7 +397,7 @@ void KineticDelaunay::execute(const Entry& e) {
       attach_point(id);
       return;
     }
-    case EntryKind::None:
+    case EventKind::None:
       return;
   }
 }
@@ -649,7 +634,7 @@ void KineticDelaunay::schedule_twin_release(PointId id) {
   // On a far epoch now + tau can round back to now; a release looked at again at the
   // same instant would find the same gap forever.
   const double at = now_ + tau;
-  push(at > now_ ? at : std::nextafter(now_, kNever), id, 0, EntryKind::TwinRelease, 0);
+  release_seq_[id] = queue_.push(at > now_ ? at : std::nextafter(now_, kNever), id, 0, EventKind::TwinRelease, 0);
 }
 
 void KineticDelaunay::adopt_evicted_duplicates() {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kew/geometry/vector2.hpp"
+#include "kew/kinetic/event_queue.hpp"
 #include "kew/kinetic/polynomial.hpp"
 #include "kew/triangulation/delaunay.hpp"
 #include "kew/util/name_table.hpp"
@@ -160,28 +161,13 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::vector<std::pair<PointId, PointId>> edges() const { return dt_.finite_edges(); }
 
  private:
-  /// Approach: the two ends of an edge come within twin_release_distance_m (they are
-  /// about to pass through each other); one is merged into the other as a twin.
-  enum class EntryKind : std::uint8_t { None, Failure, Renewal, TwinRelease, Approach };
-  struct Entry {
-    double time;
-    std::uint64_t seq;
-    std::uint32_t subject;  // face, or point for TwinRelease
-    std::uint8_t edge;
-    EntryKind kind;
-    std::uint16_t retries;
-  };
-  struct EntryLater {
-    bool operator()(const Entry& a, const Entry& b) const {
-      return a.time > b.time || (a.time == b.time && a.seq > b.seq);
-    }
-  };
+  using Entry = EventQueue::Entry;
   /// Per-face record of what is scheduled for each of its edges (both faces of an
   /// edge hold the same record).
   struct FaceSchedule {
     std::array<double, 3> time{kNever, kNever, kNever};
     std::array<std::uint64_t, 3> seq{0, 0, 0};
-    std::array<EntryKind, 3> kind{EntryKind::None, EntryKind::None, EntryKind::None};
+    std::array<EventKind, 3> kind{EventKind::None, EventKind::None, EventKind::None};
     /// Bit i: the certificate of edge i is identically zero (see degenerate_faces_).
     std::uint8_t zero_certificate = 0;
   };
@@ -209,9 +195,10 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   Polynomial edge_certificate(triangulation::FaceIndex f, int i) const;
   double earliest_failure(triangulation::FaceIndex f) const;
   void clear_edge(triangulation::FaceIndex f, int i, bool count_discard);
-  void push(double time, std::uint32_t subject, int edge, EntryKind kind, std::uint16_t retries);
+  /// Queues an event of edge i of f at `time` (s) and records it on both faces of the edge.
+  void schedule_edge(double time, triangulation::FaceIndex f, int i, EventKind kind, std::uint16_t retries);
+  /// False for an entry descheduled since it was queued (its record holds another seq).
   bool is_live(const Entry& e) const;
-  void compact_queue();
   void reschedule_star(PointId vertex);
   /// Attaches id at its position now; `hint` is a face near it where the walk starts.
   void attach_point(PointId id, triangulation::FaceIndex hint = triangulation::kNoFace);
@@ -234,8 +221,7 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   double now_;
   triangulation::DelaunayTriangulation dt_;
   std::vector<FaceSchedule> schedule_;
-  std::vector<Entry> heap_;
-  std::uint64_t next_seq_ = 1;
+  EventQueue queue_;
   std::vector<std::pair<triangulation::FaceIndex, std::uint32_t>> dirty_faces_;
   std::vector<std::uint32_t> dirty_mark_;
   /// Faces (with their generation) having an edge whose certificate is identically zero
