@@ -85,9 +85,6 @@ KineticDelaunay::KineticDelaunay(const KineticConfig& config, double start_time)
     : config_(config), now_(start_time) {
   dt_.set_time(start_time);
   dt_.tds().set_observer(this);
-  twin_host_.push_back(kNoPoint);
-  twins_.emplace_back();
-  release_seq_.push_back(0);
   live_.push_back(false);
 }
 
@@ -158,7 +155,7 @@ void KineticDelaunay::schedule_edge(double time, FaceIndex f, int i, EventKind k
 }
 
 bool KineticDelaunay::is_live(const Entry& e) const {
-  if (e.kind == EventKind::TwinRelease) return release_seq_[e.subject] == e.seq;
+  if (e.kind == EventKind::TwinRelease) return twins_.release_seq(e.subject) == e.seq;
   return dt_.tds().face(e.subject).alive && schedule_[e.subject].seq[e.edge] == e.seq;
 }
 
@@ -380,10 +377,10 @@ void KineticDelaunay::execute(const Entry& e) {
       execute_approach(e);
       return;
     case EventKind::TwinRelease: {
-      release_seq_[e.subject] = 0;
       const PointId id = e.subject;
-      const PointId host = twin_host_[id];
-      if (host == kNoPoint) return;
+      twins_.set_release_seq(id, 0);
+      if (!twins_.is_twin(id)) return;
+      const PointId host = twins_.host_of(id);
       const Vector2 gap = dt_.position(id) - dt_.position(host);
       const double r = config_.twin_release_distance_m;
       if (geometry::dot(gap, gap) < r * r) {
@@ -392,7 +389,7 @@ void KineticDelaunay::execute(const Entry& e) {
         schedule_twin_release(id);
         return;
       }
-      unlink_twin(id);
+      twins_.unlink(id);
       ++stats_.twins_released;
       attach_point(id);
       return;
@@ -453,8 +450,8 @@ void KineticDelaunay::execute_approach(const Entry& e) {
   }
   // Deterministic choice: the vertex hosting more twins stays (fewer moves), then the
   // lower index.
-  if (twins_[leave].size() > twins_[keep].size() || (twins_[leave].size() == twins_[keep].size() && leave < keep))
-    std::swap(keep, leave);
+  const std::size_t leave_twins = twins_.twins_of(leave).size(), keep_twins = twins_.twins_of(keep).size();
+  if (leave_twins > keep_twins || (leave_twins == keep_twins && leave < keep)) std::swap(keep, leave);
   if (!dt_.detach(leave)) {
     ++stats_.rebuilds;
     ++stats_.repairs;
@@ -478,16 +475,9 @@ void KineticDelaunay::repair_quadrilateral(FaceIndex f, int i) {
 PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
   advance(t);
   const PointId id = dt_.create_vertex(Trajectory{p, v, t});
-  if (id >= live_.size()) {
-    live_.resize(id + 1, false);
-    util::grow_to(twin_host_, id + 1, kNoPoint);
-    util::grow_to(twins_, id + 1);
-    util::grow_to(release_seq_, id + 1, std::uint64_t{0});
-  }
+  if (id >= live_.size()) live_.resize(id + 1, false);
   live_[id] = true;
-  twin_host_[id] = kNoPoint;
-  twins_[id].clear();
-  release_seq_[id] = 0;
+  twins_.add(id);
   ++live_points_;
   ++stats_.insertions;
   attach_point(id);
@@ -518,11 +508,11 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
     // Keep the predicted position exactly, so the triangulation stays valid at now.
     dt_.set_trajectory(id, Trajectory{predicted, v, now_});
     ++stats_.velocity_updates;
-    if (twin_host_[id] != kNoPoint) {
+    if (twins_.is_twin(id)) {
       schedule_twin_release(id);
     } else {
       reschedule_star(id);
-      for (const PointId w : twins_[id]) schedule_twin_release(w);
+      for (const PointId w : twins_.twins_of(id)) schedule_twin_release(w);
     }
     schedule_dirty_faces();
     advance(now_);
@@ -583,44 +573,30 @@ void KineticDelaunay::attach_point(PointId id, FaceIndex hint) {
 }
 
 void KineticDelaunay::detach_point(PointId id) {
-  if (twin_host_[id] != kNoPoint) {
-    unlink_twin(id);
+  if (twins_.is_twin(id)) {
+    twins_.unlink(id);
     return;
   }
-  std::vector<PointId> orphans = std::move(twins_[id]);
-  twins_[id].clear();
+  const std::vector<PointId> orphans = twins_.release_all(id);
   if (!dt_.detach(id)) {
     ++stats_.rebuilds;
     ++stats_.repairs;
   }
   adopt_evicted_duplicates();
   // Twins of a removed vertex take its place: the first is attached, the rest re-twin.
-  for (const PointId w : orphans) {
-    twin_host_[w] = kNoPoint;
-    release_seq_[w] = 0;
-    attach_point(w);
-  }
+  for (const PointId w : orphans) attach_point(w);
   schedule_dirty_faces();
 }
 
 void KineticDelaunay::make_twin(PointId id, PointId host) {
-  host = host_of(host);
-  twin_host_[id] = host;
-  twins_[host].push_back(id);
+  twins_.make_twin(id, host);
   ++stats_.twins_created;
   schedule_twin_release(id);
 }
 
-void KineticDelaunay::unlink_twin(PointId id) {
-  const PointId host = twin_host_[id];
-  std::erase(twins_[host], id);
-  twin_host_[id] = kNoPoint;
-  release_seq_[id] = 0;
-}
-
 void KineticDelaunay::schedule_twin_release(PointId id) {
-  const PointId host = twin_host_[id];
-  release_seq_[id] = 0;
+  const PointId host = twins_.host_of(id);
+  twins_.set_release_seq(id, 0);
   const Vector2 gap = dt_.position(id) - dt_.position(host);
   const Vector2 drift = dt_.trajectory(id).velocity - dt_.trajectory(host).velocity;
   const double speed2 = geometry::dot(drift, drift);
@@ -634,7 +610,8 @@ void KineticDelaunay::schedule_twin_release(PointId id) {
   // On a far epoch now + tau can round back to now; a release looked at again at the
   // same instant would find the same gap forever.
   const double at = now_ + tau;
-  release_seq_[id] = queue_.push(at > now_ ? at : std::nextafter(now_, kNever), id, 0, EventKind::TwinRelease, 0);
+  const std::uint64_t seq = queue_.push(at > now_ ? at : std::nextafter(now_, kNever), id, 0, EventKind::TwinRelease, 0);
+  twins_.set_release_seq(id, seq);
 }
 
 void KineticDelaunay::adopt_evicted_duplicates() {
@@ -647,14 +624,8 @@ void KineticDelaunay::adopt_evicted_duplicates() {
 }
 
 void KineticDelaunay::merge_into(PointId vertex, PointId host) {
-  std::vector<PointId> carried = std::move(twins_[vertex]);
-  twins_[vertex].clear();
-  make_twin(vertex, host);
-  for (const PointId w : carried) {
-    twin_host_[w] = kNoPoint;
-    make_twin(w, host);
-    --stats_.twins_created;  // not a new twin, only a new host
-  }
+  ++stats_.twins_created;  // vertex only: its twins are not new twins, they change host
+  for (const PointId w : twins_.merge_into(vertex, host)) schedule_twin_release(w);
 }
 
 // ---------------------------------------------------------------------------------
@@ -694,8 +665,7 @@ void KineticDelaunay::repair_around(const std::vector<PointId>& vertices) {
   for (const PointId v : reinsert) {
     if (!tds.is_attached(v) && !dt_.is_attached(v)) continue;
     ++stats_.repair_reinsertions;
-    std::vector<PointId> orphans = std::move(twins_[v]);
-    twins_[v].clear();
+    const std::vector<PointId> orphans = twins_.release_all(v);
     if (!dt_.detach(v)) ++stats_.rebuilds;
     adopt_evicted_duplicates();
     PointId same = kNoPoint;
@@ -707,10 +677,7 @@ void KineticDelaunay::repair_around(const std::vector<PointId>& vertices) {
       result = dt_.attach(v, &same);
     }
     if (result == AttachResult::Duplicate) make_twin(v, same);
-    for (const PointId w : orphans) {
-      twin_host_[w] = kNoPoint;
-      attach_point(w);
-    }
+    for (const PointId w : orphans) attach_point(w);
   }
   adopt_evicted_duplicates();
   if (dt_.audit().violations() != 0) {
@@ -752,12 +719,11 @@ KineticAudit KineticDelaunay::audit_and_repair() {
 }
 
 bool KineticDelaunay::is_valid() const {
-  if (!dt_.is_valid()) return false;
-  // Every live point is either a triangulation vertex or a twin of one.
+  if (!dt_.is_valid() || !twins_.is_valid()) return false;
+  // Every live point is either a triangulation vertex or a twin of a live one.
   for (PointId id = 1; id < live_.size(); ++id) {
     if (!live_[id]) continue;
-    const PointId host = twin_host_[id];
-    if (host == kNoPoint ? !dt_.is_attached(id) : (!live_[host] || twin_host_[host] != kNoPoint)) return false;
+    if (twins_.is_twin(id) ? !live_[twins_.host_of(id)] : !dt_.is_attached(id)) return false;
   }
   return true;
 }

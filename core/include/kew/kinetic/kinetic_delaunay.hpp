@@ -12,6 +12,7 @@
 #include "kew/geometry/vector2.hpp"
 #include "kew/kinetic/event_queue.hpp"
 #include "kew/kinetic/polynomial.hpp"
+#include "kew/kinetic/twin_registry.hpp"
 #include "kew/triangulation/delaunay.hpp"
 #include "kew/util/name_table.hpp"
 
@@ -19,8 +20,6 @@ namespace kew::kinetic {
 
 using geometry::Point2;
 using geometry::Vector2;
-using PointId = triangulation::VertexIndex;
-inline constexpr PointId kNoPoint = triangulation::kNoVertex;
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
 /// How the reinsertion tolerance τ is measured (thesis Eq. 10.1).
@@ -143,10 +142,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
       if (t != id) f(t);
   }
   /// The triangulation vertex that stands for id (id itself unless it is a twin).
-  PointId host_of(PointId id) const { return twin_host_[id] == kNoPoint ? id : twin_host_[id]; }
-  const std::vector<PointId>& twins_of(PointId vertex) const {
-    return vertex < twins_.size() ? twins_[vertex] : no_twins_;
-  }
+  PointId host_of(PointId id) const { return twins_.host_of(id); }
+  /// The twins that vertex stands for (empty unless it hosts some).
+  const std::vector<PointId>& twins_of(PointId vertex) const { return twins_.twins_of(vertex); }
 
   /// Checks the triangulation at now() with exact predicates (every face positively
   /// oriented, every edge locally Delaunay, hull convex) and repairs what it finds.
@@ -206,10 +204,11 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// kNoPoint: a start for locating id again after it moves a little.
   PointId attached_neighbour(PointId id) const;
   void detach_point(PointId id);
+  /// Makes id (detached) a twin of host and schedules its release.
   void make_twin(PointId id, PointId host);
   /// Makes vertex (just detached) a twin of host, and its own twins follow it there.
   void merge_into(PointId vertex, PointId host);
-  void unlink_twin(PointId id);
+  /// Queues the release of twin id for when it is twin_release_distance_m from its host.
   void schedule_twin_release(PointId id);
   void repair_around(const std::vector<PointId>& vertices);
   /// repair_around the four vertices of the quadrilateral of edge i of face f.
@@ -229,10 +228,7 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// change sign at any instant: such edges are checked at the end of every advance().
   std::vector<std::pair<triangulation::FaceIndex, std::uint32_t>> degenerate_faces_;
   std::uint32_t dirty_round_ = 0;
-  std::vector<PointId> twin_host_;
-  std::vector<std::vector<PointId>> twins_;
-  std::vector<PointId> no_twins_;  // always empty: twins_of() for ids never twinned
-  std::vector<std::uint64_t> release_seq_;
+  TwinRegistry twins_;
   std::vector<bool> live_;
   std::size_t live_points_ = 0;
   KineticStatistics stats_;
