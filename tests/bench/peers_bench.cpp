@@ -577,7 +577,15 @@ class FlipRepair {
     for (Slot s = 0; s < vertex_of_.size(); ++s) {
       const auto v = vertex_of_[s];
       if (v == kNoVertex || world.live[s]) continue;
-      if (dt_.is_attached(v) && !dt_.detach(v)) broken = true;
+      if (dt_.is_attached(v)) {
+        const kew::triangulation::DetachResult detached = dt_.detach(v);
+        broken = broken || !detached.hole_triangulated;
+        // Left out by the rebuild that took: they go back in below, with the new tracks.
+        for (const kew::triangulation::Eviction& e : detached.evicted) {
+          vertex_of_[slot_of_vertex_[e.vertex]] = kNoVertex;
+          dt_.destroy_vertex(e.vertex);
+        }
+      }
       dt_.destroy_vertex(v);
       vertex_of_[s] = kNoVertex;
     }
@@ -601,9 +609,7 @@ class FlipRepair {
     }
     if (broken) {
       ++out.fallbacks;
-      dt_.rebuild(&duplicates_);
-      for (const auto& [vertex, same] : duplicates_) forget_duplicate(vertex, same);
-      duplicates_.clear();
+      for (const auto& [vertex, same] : dt_.rebuild()) forget_duplicate(vertex, same);
     }
     // New tracks are inserted into the repaired triangulation.
     for (Slot s = 0; s < world.live.size(); ++s) {
@@ -691,7 +697,6 @@ class FlipRepair {
   std::vector<Slot> slot_of_vertex_;
   std::vector<std::vector<Slot>> same_point_;  // by vertex: tracks at exactly its point
   std::vector<std::pair<kew::triangulation::FaceIndex, int>> seeds_, stuck_;
-  std::vector<std::pair<kew::triangulation::VertexIndex, kew::triangulation::VertexIndex>> duplicates_;
   std::vector<kew::triangulation::VertexIndex> frontier_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t round_ = 0;

@@ -46,7 +46,7 @@ TEST(Delaunay, RemovalsKeepDelaunay) {
   for (int k = 0; k < 600; ++k) vs.push_back(add(dt, {c(rng), c(rng)}));
   std::shuffle(vs.begin(), vs.end(), rng);
   while (vs.size() > 3) {
-    EXPECT_TRUE(dt.detach(vs.back()));
+    EXPECT_TRUE(dt.detach(vs.back()).hole_triangulated);
     vs.pop_back();
     if (vs.size() % 50 == 0) {
       ASSERT_EQ(dt.audit().violations(), 0u);
@@ -76,7 +76,7 @@ TEST(Delaunay, CollinearPointsFormAFlatChainThenBecomeTwoDimensional) {
   EXPECT_EQ(dt.audit().violations(), 0u);
   vs.push_back(off);
   EXPECT_EQ(dt.finite_edges(), testing::cgal_delaunay_edges(positions(dt, vs)));
-  EXPECT_TRUE(dt.detach(off));
+  EXPECT_TRUE(dt.detach(off).hole_triangulated);
   EXPECT_TRUE(dt.is_flat());
   EXPECT_EQ(dt.audit().violations(), 0u);
 }

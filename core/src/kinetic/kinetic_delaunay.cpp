@@ -452,11 +452,7 @@ void KineticDelaunay::execute_approach(const Entry& e) {
   // lower index.
   const std::size_t leave_twins = twins_.twins_of(leave).size(), keep_twins = twins_.twins_of(keep).size();
   if (leave_twins > keep_twins || (leave_twins == keep_twins && leave < keep)) std::swap(keep, leave);
-  if (!dt_.detach(leave)) {
-    ++stats_.rebuilds;
-    ++stats_.repairs;
-  }
-  adopt_evicted_duplicates();
+  if (!detach_vertex(leave)) ++stats_.repairs;
   ++stats_.approaches_merged;
   merge_into(leave, keep);
 }
@@ -560,15 +556,12 @@ void KineticDelaunay::attach_point(PointId id, FaceIndex hint) {
     audit_and_repair();
     result = dt_.attach(id, &same);
     if (result == AttachResult::NotDelaunay) {
-      ++stats_.rebuilds;
       ++stats_.repairs;
-      dt_.rebuild();
-      adopt_evicted_duplicates();
+      rebuild_triangulation();
       result = dt_.attach(id, &same);
     }
   }
   if (result == AttachResult::Duplicate) make_twin(id, same);
-  adopt_evicted_duplicates();
   schedule_dirty_faces();
 }
 
@@ -578,11 +571,7 @@ void KineticDelaunay::detach_point(PointId id) {
     return;
   }
   const std::vector<PointId> orphans = twins_.release_all(id);
-  if (!dt_.detach(id)) {
-    ++stats_.rebuilds;
-    ++stats_.repairs;
-  }
-  adopt_evicted_duplicates();
+  if (!detach_vertex(id)) ++stats_.repairs;
   // Twins of a removed vertex take its place: the first is attached, the rest re-twin.
   for (const PointId w : orphans) attach_point(w);
   schedule_dirty_faces();
@@ -614,13 +603,21 @@ void KineticDelaunay::schedule_twin_release(PointId id) {
   twins_.set_release_seq(id, seq);
 }
 
-void KineticDelaunay::adopt_evicted_duplicates() {
-  auto& evicted = dt_.evicted_duplicates();
-  if (evicted.empty()) return;
-  const auto pairs = std::move(evicted);
-  evicted.clear();
-  // A rebuild found two vertices at one place: the evicted one becomes a twin.
-  for (const auto& [vertex, same] : pairs) merge_into(vertex, same);
+bool KineticDelaunay::detach_vertex(PointId vertex) {
+  const triangulation::DetachResult detached = dt_.detach(vertex);
+  adopt_evictions(detached.evicted);
+  if (!detached.hole_triangulated) ++stats_.rebuilds;
+  return detached.hole_triangulated;
+}
+
+void KineticDelaunay::rebuild_triangulation() {
+  ++stats_.rebuilds;
+  adopt_evictions(dt_.rebuild());
+}
+
+void KineticDelaunay::adopt_evictions(const std::vector<triangulation::Eviction>& evicted) {
+  // The evicted vertex may host twins of its own: merge_into takes them along.
+  for (const auto& [vertex, same] : evicted) merge_into(vertex, same);
 }
 
 void KineticDelaunay::merge_into(PointId vertex, PointId host) {
@@ -666,25 +663,17 @@ void KineticDelaunay::repair_around(const std::vector<PointId>& vertices) {
     if (!tds.is_attached(v) && !dt_.is_attached(v)) continue;
     ++stats_.repair_reinsertions;
     const std::vector<PointId> orphans = twins_.release_all(v);
-    if (!dt_.detach(v)) ++stats_.rebuilds;
-    adopt_evicted_duplicates();
+    detach_vertex(v);
     PointId same = kNoPoint;
     AttachResult result = dt_.attach(v, &same);
     if (result == AttachResult::NotDelaunay) {
-      ++stats_.rebuilds;
-      dt_.rebuild();
-      adopt_evicted_duplicates();
+      rebuild_triangulation();
       result = dt_.attach(v, &same);
     }
     if (result == AttachResult::Duplicate) make_twin(v, same);
     for (const PointId w : orphans) attach_point(w);
   }
-  adopt_evicted_duplicates();
-  if (dt_.audit().violations() != 0) {
-    ++stats_.rebuilds;
-    dt_.rebuild();
-    adopt_evicted_duplicates();
-  }
+  if (dt_.audit().violations() != 0) rebuild_triangulation();
 }
 
 KineticAudit KineticDelaunay::audit_and_repair() {
@@ -708,11 +697,7 @@ KineticAudit KineticDelaunay::audit_and_repair() {
     --stats_.repairs;  // repair_around counts itself
     repair_around(suspects);
   }
-  if (dt_.audit().violations() != 0) {
-    ++stats_.rebuilds;
-    dt_.rebuild();
-    adopt_evicted_duplicates();
-  }
+  if (dt_.audit().violations() != 0) rebuild_triangulation();
   result.violations_unrepaired = dt_.audit().violations();
   schedule_dirty_faces();
   return result;

@@ -341,11 +341,11 @@ bool DelaunayTriangulation::triangulate_hole(std::vector<VertexIndex>& polygon,
   return true;
 }
 
-bool DelaunayTriangulation::detach(VertexIndex v) {
+DetachResult DelaunayTriangulation::detach(VertexIndex v) {
   if (is_pending(v)) {
     pending_.erase(std::find(pending_.begin(), pending_.end(), v));
     --attached_;
-    return true;
+    return {};
   }
   assert(tds_.is_attached(v));
   --attached_;
@@ -353,14 +353,14 @@ bool DelaunayTriangulation::detach(VertexIndex v) {
     // One point left: no face can exist; keep it pending.
     pending_ = vertices_in_faces(v);
     tds_.clear_faces();
-    return true;
+    return {};
   }
   if (is_flat()) {
     // Remove v from the chain and rebuild it.
     pending_ = vertices_in_faces(v);
     tds_.clear_faces();
     rebuild_flat();
-    return true;
+    return {};
   }
   auto& star = scratch_faces_;
   tds_.incident_faces(v, star);
@@ -382,14 +382,11 @@ bool DelaunayTriangulation::detach(VertexIndex v) {
   std::vector<VertexIndex> sorted = polygon;
   std::sort(sorted.begin(), sorted.end());
   const bool simple_link = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
-  if (!simple_link || !triangulate_hole(polygon, triangles)) {
-    rebuild_without(v, nullptr);
-    return false;
-  }
+  if (!simple_link || !triangulate_hole(polygon, triangles)) return {false, rebuild_without(v)};
   const std::vector<FaceIndex> region = star;
   const std::vector<BoundaryEdge> edges = boundary;
   tds_.replace_faces(region, edges, triangles);
-  return true;
+  return {};
 }
 
 std::vector<VertexIndex> DelaunayTriangulation::vertices_in_faces(VertexIndex except) const {
@@ -405,8 +402,7 @@ std::vector<VertexIndex> DelaunayTriangulation::vertices_in_faces(VertexIndex ex
   return vertices;
 }
 
-void DelaunayTriangulation::rebuild_without(VertexIndex v,
-                                            std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates) {
+std::vector<Eviction> DelaunayTriangulation::rebuild_without(VertexIndex v) {
   std::vector<VertexIndex> rest = vertices_in_faces(v);
   for (VertexIndex w : pending_)
     if (w != v) rest.push_back(w);
@@ -414,15 +410,12 @@ void DelaunayTriangulation::rebuild_without(VertexIndex v,
   pending_.clear();
   attached_ = 0;
   ++rebuilds_;
-  insert_all(std::move(rest), duplicates);
+  return insert_all(std::move(rest));
 }
 
-void DelaunayTriangulation::rebuild(std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates) {
-  rebuild_without(kInfiniteVertex, duplicates);
-}
+std::vector<Eviction> DelaunayTriangulation::rebuild() { return rebuild_without(kInfiniteVertex); }
 
-void DelaunayTriangulation::insert_all(std::vector<VertexIndex> vertices,
-                                       std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates) {
+std::vector<Eviction> DelaunayTriangulation::insert_all(std::vector<VertexIndex> vertices) {
   // Insert in a spatially coherent order (Morton order of a grid over the bounding box)
   // so each walk starts next to its target.
   double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
@@ -447,19 +440,20 @@ void DelaunayTriangulation::insert_all(std::vector<VertexIndex> vertices,
   order.reserve(vertices.size());
   for (VertexIndex w : vertices) order.emplace_back(morton(w), w);
   std::sort(order.begin(), order.end());
+  std::vector<Eviction> evicted;
   FaceIndex hint = kNoFace;
   for (const auto& [code, w] : order) {
     VertexIndex same = kNoVertex;
     const AttachResult r = attach(w, &same, hint);
     if (r == AttachResult::Duplicate) {
-      if (duplicates) duplicates->emplace_back(w, same);
-      evicted_duplicates_.emplace_back(w, same);
+      evicted.push_back({w, same});
     } else if (r == AttachResult::Attached) {
       hint = tds_.vertex_face(w);
     } else {
       assert(false && "insertion into a fresh Delaunay triangulation cannot fail");
     }
   }
+  return evicted;
 }
 
 std::size_t DelaunayTriangulation::make_locally_delaunay(std::vector<std::pair<FaceIndex, int>>& seeds,

@@ -204,6 +204,14 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// kNoPoint: a start for locating id again after it moves a little.
   PointId attached_neighbour(PointId id) const;
   void detach_point(PointId id);
+  /// Detaches a triangulation vertex. Returns false when that took a full rebuild
+  /// (counted in stats_.rebuilds), whose evictions are adopted.
+  bool detach_vertex(PointId vertex);
+  /// Retriangulates from scratch (the last-resort repair, counted in stats_.rebuilds)
+  /// and adopts the evictions.
+  void rebuild_triangulation();
+  /// Makes each vertex a rebuild left detached a twin of the one at its position.
+  void adopt_evictions(const std::vector<triangulation::Eviction>& evicted);
   /// Makes id (detached) a twin of host and schedules its release.
   void make_twin(PointId id, PointId host);
   /// Makes vertex (just detached) a twin of host, and its own twins follow it there.
@@ -213,7 +221,6 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void repair_around(const std::vector<PointId>& vertices);
   /// repair_around the four vertices of the quadrilateral of edge i of face f.
   void repair_quadrilateral(triangulation::FaceIndex f, int i);
-  void adopt_evicted_duplicates();
   void mark_all_faces_dirty();
 
   KineticConfig config_;

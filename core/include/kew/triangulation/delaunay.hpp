@@ -44,6 +44,21 @@ struct AuditReport {
 /// Outcome of attaching a point.
 enum class AttachResult { Attached, Duplicate, NotDelaunay };
 
+/// A vertex that a rebuild found at exactly the position of another and left detached.
+struct Eviction {
+  VertexIndex vertex;  ///< left detached
+  VertexIndex same;    ///< the attached vertex at its position
+};
+
+/// What detach() did.
+struct DetachResult {
+  /// False when the hole could not be triangulated validly (a degenerate neighbourhood)
+  /// and every other vertex was inserted again from scratch, as by rebuild().
+  bool hole_triangulated = true;
+  /// What that rebuild evicted, in insertion order; empty when the hole was triangulated.
+  std::vector<Eviction> evicted;
+};
+
 class DelaunayTriangulation {
  public:
   DelaunayTriangulation();
@@ -74,17 +89,14 @@ class DelaunayTriangulation {
   /// attached vertex at exactly that position and v stays detached. NotDelaunay means
   /// the conflict region was not star-shaped (the triangulation needs repair first).
   AttachResult attach(VertexIndex v, VertexIndex* same = nullptr, FaceIndex hint = kNoFace);
-  /// Removes an attached vertex and retriangulates its hole. Returns false when the hole
-  /// could not be triangulated validly; the vertex is detached regardless and the caller
-  /// must rebuild.
-  bool detach(VertexIndex v);
-  /// Retriangulates every attached vertex from scratch at time(). Vertices found to be
-  /// exact duplicates are detached and returned in `duplicates` as (vertex, same) pairs.
-  void rebuild(std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates = nullptr);
-
-  /// Vertices that a rebuild found at exactly the position of another one and left
-  /// detached, as (vertex, same) pairs; the caller takes them over (and clears the list).
-  std::vector<std::pair<VertexIndex, VertexIndex>>& evicted_duplicates() { return evicted_duplicates_; }
+  /// Removes an attached vertex and retriangulates its hole, or, when the hole cannot
+  /// be triangulated validly, the whole triangulation. The vertex ends detached either
+  /// way; the vertices the rebuild evicts are the caller's to account for.
+  [[nodiscard]] DetachResult detach(VertexIndex v);
+  /// Retriangulates every attached vertex from scratch at time(). Returns the vertices
+  /// found at exactly the position of one inserted before them, in insertion order: they
+  /// are left detached, for the caller to account for.
+  [[nodiscard]] std::vector<Eviction> rebuild();
   /// Number of full rebuilds so far (the last-resort repair).
   std::size_t rebuilds() const { return rebuilds_; }
 
@@ -122,8 +134,10 @@ class DelaunayTriangulation {
   void rebuild_flat();
   /// Every finite vertex of a live face but `except`, sorted, once each.
   std::vector<VertexIndex> vertices_in_faces(VertexIndex except) const;
-  void rebuild_without(VertexIndex v, std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates);
-  void insert_all(std::vector<VertexIndex> vertices, std::vector<std::pair<VertexIndex, VertexIndex>>* duplicates);
+  /// Retriangulates every attached vertex but v from scratch; returns the evictions.
+  std::vector<Eviction> rebuild_without(VertexIndex v);
+  /// Attaches the (detached) vertices; returns those found at another one's position.
+  std::vector<Eviction> insert_all(std::vector<VertexIndex> vertices);
   bool triangulate_hole(std::vector<VertexIndex>& polygon, std::vector<std::array<VertexIndex, 3>>& out) const;
 
   Tds tds_;
@@ -136,7 +150,6 @@ class DelaunayTriangulation {
   std::vector<VertexIndex> pending_;
   std::size_t attached_ = 0;
   std::size_t rebuilds_ = 0;
-  std::vector<std::pair<VertexIndex, VertexIndex>> evicted_duplicates_;
   mutable std::uint64_t walk_state_ = 0x9E3779B97F4A7C15ull;
 
   // Scratch buffers reused across calls to keep the hot paths allocation-free.
