@@ -330,12 +330,6 @@ void KineticDelaunay::schedule_dirty_faces() {
   }
 }
 
-void KineticDelaunay::mark_all_faces_dirty() {
-  const auto& tds = dt_.tds();
-  for (FaceIndex f = 0; f < tds.face_capacity(); ++f)
-    if (tds.face(f).alive) dirty_faces_.emplace_back(f, tds.face(f).generation);
-}
-
 // ---------------------------------------------------------------------------------
 // Time
 
@@ -660,7 +654,7 @@ void KineticDelaunay::repair_around(const std::vector<PointId>& vertices) {
   // Take the suspects out one at a time, each time only while the rest of their
   // neighbourhood is valid, then put them back at their current positions.
   for (const PointId v : reinsert) {
-    if (!tds.is_attached(v) && !dt_.is_attached(v)) continue;
+    if (!dt_.is_attached(v)) continue;
     ++stats_.repair_reinsertions;
     const std::vector<PointId> orphans = twins_.release_all(v);
     detach_vertex(v);

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "kew/geometry/predicates.hpp"
 #include "kew/util/gentle_growth.hpp"
 
 namespace kew::triangulation {
@@ -409,7 +410,6 @@ std::vector<Eviction> DelaunayTriangulation::rebuild_without(VertexIndex v) {
   tds_.clear_faces();
   pending_.clear();
   attached_ = 0;
-  ++rebuilds_;
   return insert_all(std::move(rest));
 }
 

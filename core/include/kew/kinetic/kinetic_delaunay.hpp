@@ -4,9 +4,10 @@
 // triangulation is kept Delaunay for their positions as time advances by processing
 // certificate failures (edge flips) in time order.
 
-#include <cmath>
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "kew/geometry/vector2.hpp"
@@ -221,7 +222,6 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void repair_around(const std::vector<PointId>& vertices);
   /// repair_around the four vertices of the quadrilateral of edge i of face f.
   void repair_quadrilateral(triangulation::FaceIndex f, int i);
-  void mark_all_faces_dirty();
 
   KineticConfig config_;
   double now_;

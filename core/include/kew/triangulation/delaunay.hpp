@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "kew/geometry/predicates.hpp"
 #include "kew/geometry/vector2.hpp"
 #include "kew/triangulation/tds.hpp"
 
@@ -97,8 +96,6 @@ class DelaunayTriangulation {
   /// found at exactly the position of one inserted before them, in insertion order: they
   /// are left detached, for the caller to account for.
   [[nodiscard]] std::vector<Eviction> rebuild();
-  /// Number of full rebuilds so far (the last-resort repair).
-  std::size_t rebuilds() const { return rebuilds_; }
 
   /// State of the edge opposite vertex i of face f at time().
   EdgeState edge_state(FaceIndex f, int i) const;
@@ -149,7 +146,6 @@ class DelaunayTriangulation {
   /// Attached vertices while fewer than two exist (no faces can be formed yet).
   std::vector<VertexIndex> pending_;
   std::size_t attached_ = 0;
-  std::size_t rebuilds_ = 0;
   mutable std::uint64_t walk_state_ = 0x9E3779B97F4A7C15ull;
 
   // Scratch buffers reused across calls to keep the hot paths allocation-free.
