@@ -1,6 +1,6 @@
 #pragma once
 // Thresholded kinetic Delaunay triangulation with tolerance-based reinsertion
-// (thesis ch. 6–8, 10; SPEC §2). Points move linearly in the projected plane; the
+// (thesis ch. 6–8, 10; design §2, §7). Points move linearly in the projected plane; the
 // triangulation is kept Delaunay for their positions as time advances by processing
 // certificate failures (edge flips) in time order.
 
@@ -25,7 +25,7 @@ inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
 /// How the reinsertion tolerance τ is measured (thesis Eq. 10.1).
 enum class ToleranceMode {
-  Absolute,  ///< |measured − predicted| ≤ τ metres (SPEC §2.3, the default)
+  Absolute,  ///< |measured − predicted| ≤ τ metres (design §2.3, the default)
   Relative,  ///< |measured − predicted| / |measured| ≤ τ (the thesis' form, unitless)
 };
 /// The names of `tolerance_mode = ...`.
@@ -36,7 +36,7 @@ inline constexpr util::NameTable<ToleranceMode, 2> kToleranceModeNames({{
 
 struct KineticConfig {
   /// Event-time threshold H (s, > 0): failures later than now + H are not computed;
-  /// the certificate is re-examined at now + H instead (thesis §10.4, SPEC §2.4).
+  /// the certificate is re-examined at now + H instead (thesis §10.4, design §2.4).
   double horizon_s = kNever;
   /// Reinsertion tolerance τ (metres, or unitless in Relative mode), ≥ 0.
   double tolerance = 0.0;

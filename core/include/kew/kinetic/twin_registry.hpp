@@ -1,5 +1,5 @@
 #pragma once
-// Which points of the kinetic engine are twins of which (SPEC §2). A twin is a point
+// Which points of the kinetic engine are twins of which (design §7.3). A twin is a point
 // kept out of the triangulation because it is too close to a vertex, its host, which
 // stands for it there. This class is the combinatorial half only, as CGAL keeps
 // combinatorics apart from geometry: when points become twins and when they part is the
