@@ -67,14 +67,15 @@ class AlertWriter {
 class Progress {
  public:
   Progress() : enabled_(::isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
-  void update(std::uint64_t records, const kew::Pipeline& pipeline) {
+  void update(const kew::Pipeline& pipeline) {
+    const std::uint64_t records = pipeline.statistics().records;
     if (!enabled_ || (records & 0xfff) != 0) return;
     const auto now = std::chrono::steady_clock::now();
     if (now - last_ < std::chrono::milliseconds(500)) return;
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
     std::fprintf(stderr, "\r\033[Kkew-replay: %llu records, %zu tracks, %zu alerts active, %.0f records/s",
-                 static_cast<unsigned long long>(records), pipeline.live_tracks(), pipeline.alerts().active_count(),
+                 static_cast<unsigned long long>(pipeline.statistics().records), pipeline.live_tracks(), pipeline.alerts().active_count(),
                  wall > 0 ? static_cast<double>(records) / wall : 0.0);
   }
   void done() {
@@ -126,7 +127,6 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
   pipeline.rejections().set_reporter(
       [](std::string_view reason, std::string_view message) { report_rejection("pipeline", reason, message); });
   kew::protocol::ReplayStatistics figures;
-  std::uint64_t records = 0;
   {
     AlertWriter writer(out);
     pipeline.set_alert_sink([&](const kew::AlertEvent& e) { writer.write(e); });
@@ -154,13 +154,12 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
       return true;
     };
     while (next(report)) {
-      ++records;
       pipeline.process(report);
       if (options.audit && pipeline.now() >= next_audit) {
         if (next_audit > 0.0) audit();
         next_audit = pipeline.now() + kAuditEvery_s;
       }
-      progress.update(records, pipeline);
+      progress.update(pipeline);
     }
     if (options.audit) audit();
     progress.done();
@@ -169,10 +168,7 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
   figures.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const kew::Rejections decoding = recordings.rejections();
-  kew::Rejections rejected;
-  rejected.merge(decoding);
-  rejected.merge(pipeline.rejections());
-  const std::string stats = kew::protocol::run_statistics_json(pipeline, rejected, figures);
+  const std::string stats = kew::protocol::run_statistics_json(pipeline, decoding, figures);
   if (!options.stats_path.empty()) {
     std::FILE* f = std::fopen(options.stats_path.c_str(), "wb");
     if (!f || std::fwrite(stats.data(), 1, stats.size(), f) != stats.size()) {
@@ -186,9 +182,9 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
   std::fprintf(stderr,
                "kew-replay: %llu records, %llu accepted, %llu rejected, %zu tracks at most, %llu alerts "
                "(%llu updates, %llu ended), %.2f s\n",
-               static_cast<unsigned long long>(records),
+               static_cast<unsigned long long>(pipeline.statistics().records),
                static_cast<unsigned long long>(pipeline.statistics().accepted),
-               static_cast<unsigned long long>(rejected.total()),
+               static_cast<unsigned long long>(decoding.total() + pipeline.rejections().total()),
                pipeline.tracks().max_size(), static_cast<unsigned long long>(counters.opened),
                static_cast<unsigned long long>(counters.updated), static_cast<unsigned long long>(counters.ended),
                figures.wall_s);

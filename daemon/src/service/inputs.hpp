@@ -32,15 +32,14 @@ class Input {
   /// Figures so far; `rejected` holds ended streams' and the open streams' rejections.
   protocol::InputStatistics statistics() const {
     protocol::InputStatistics s = figures_;
+    s.name = config_.name;
     add_open_stream_rejections(s.rejected);
     return s;
   }
 
  protected:
   Input(InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
-      : config_(std::move(config)), options_(std::move(options)), handler_(std::move(handler)) {
-    figures_.name = config_.name;
-  }
+      : config_(std::move(config)), options_(std::move(options)), handler_(std::move(handler)) {}
   /// The decoder options of this input (its ASTERIX data day).
   protocol::DecoderOptions stream_options() const;
   /// Sends the messages of `rejections` to the log, naming this input (rate-limited).
@@ -57,7 +56,7 @@ class Input {
   InputConfig config_;
   protocol::DecoderOptions options_;
   ReportHandler handler_;
-  /// `rejected`: the rejections of streams that ended.
+  /// `rejected`: the rejections of streams that ended; `name` is filled by statistics().
   protocol::InputStatistics figures_;
 };
 

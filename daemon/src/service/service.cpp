@@ -42,8 +42,8 @@ std::chrono::steady_clock::duration seconds(double s) {
 std::string widen_if_loopback(const std::string& address) {
   const std::optional<config::HostPort> parsed = config::parse_host_port(address);
   if (!parsed) return address;
-  if (parsed->host == "127.0.0.1" || parsed->host == "localhost") return fmt::format("0.0.0.0:{}", parsed->port);
-  if (parsed->host == "::1") return fmt::format("[::]:{}", parsed->port);
+  if (parsed->host == "127.0.0.1" || parsed->host == "localhost") return config::to_string({"0.0.0.0", parsed->port});
+  if (parsed->host == "::1") return config::to_string({"::", parsed->port});
   return address;
 }
 
@@ -368,17 +368,12 @@ std::string Service::stats_json() const {
   service.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   service.subscribers_now = subscribers_->sessions();
   service.subscribers = subscribers_->figures();
-  Rejections rejected;
-  rejected.merge(pipeline_.rejections());
-  for (const auto& input : inputs_) {
-    service.inputs.push_back(input->statistics());
-    rejected.merge(service.inputs.back().rejected);
-  }
+  for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   if (cat004_) service.cat004 = protocol::Cat004Statistics{cat004_->datagrams_sent(), cat004_->send_errors()};
   if (modbus_) service.modbus = modbus_->stats();
   if (alert_log_) service.alert_log_errors = alert_log_->write_errors();
   service.resident_bytes = resident_bytes();
-  return protocol::stats_json(pipeline_, rejected, service);
+  return protocol::stats_json(pipeline_, service);
 }
 
 }  // namespace kew::daemon

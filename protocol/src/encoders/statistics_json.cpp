@@ -64,7 +64,11 @@ class Members {
   bool first_element_ = true;
 };
 
-void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& rejected) {
+// `decoding`: the decoders' rejections, added to the pipeline's in `rejected`.
+void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& decoding) {
+  Rejections rejected;
+  rejected.merge(decoding);
+  rejected.merge(pipeline.rejections());
   const PipelineStatistics& p = pipeline.statistics();
   const kinetic::KineticStatistics& k = pipeline.kinetic_statistics();
   const alert::AlertManager& alerts = pipeline.alerts();
@@ -103,13 +107,15 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& re
 
 }  // namespace
 
-std::string stats_json(const Pipeline& pipeline, const Rejections& rejected, const ServiceStatistics& service) {
+std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& service) {
+  Rejections decoding;
+  for (const InputStatistics& input : service.inputs) decoding.merge(input.rejected);
   std::string out;
   Members m(out);
   m.string("class", "STATS");
   m.integer("seq", service.seq);
   m.fixed("uptime_s", service.uptime_s, 0);
-  pipeline_members(m, pipeline, rejected);
+  pipeline_members(m, pipeline, decoding);
   Members subscribers = m.object("subscribers");
   subscribers.integer("now", service.subscribers_now);
   subscribers.integer("accepted", service.subscribers.accepted);
@@ -156,11 +162,11 @@ std::string stats_json(const Pipeline& pipeline, const Rejections& rejected, con
   return out;
 }
 
-std::string run_statistics_json(const Pipeline& pipeline, const Rejections& rejected,
+std::string run_statistics_json(const Pipeline& pipeline, const Rejections& decoding,
                                 const ReplayStatistics& replay) {
   std::string out;
   Members m(out);
-  pipeline_members(m, pipeline, rejected);
+  pipeline_members(m, pipeline, decoding);
   m.integer("audits", replay.audits);
   m.integer("audit_violations_found", replay.audit_violations_found);
   m.integer("audit_violations_unrepaired", replay.audit_violations_unrepaired);

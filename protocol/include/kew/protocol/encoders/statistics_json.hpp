@@ -73,12 +73,13 @@ struct ReplayStatistics {
   double wall_s = 0.0;  ///< wall-clock duration of the run
 };
 
-/// kewd's STATS object, one line ending in '\n'. `rejected`: every rejection so far,
-/// the decoders' (of all inputs) and the pipeline's, merged by reason.
-std::string stats_json(const Pipeline& pipeline, const Rejections& rejected, const ServiceStatistics& service);
+/// kewd's STATS object, one line ending in '\n'. Its `rejected` is every rejection so
+/// far: the pipeline's merged with the decoders' of every input (service.inputs).
+std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& service);
 
-/// kew-replay's statistics object, one line ending in '\n'. `rejected` as above.
-std::string run_statistics_json(const Pipeline& pipeline, const Rejections& rejected,
+/// kew-replay's statistics object, one line ending in '\n'. Its `rejected` is the
+/// pipeline's rejections merged with `decoding`, the decoders' of every recording.
+std::string run_statistics_json(const Pipeline& pipeline, const Rejections& decoding,
                                 const ReplayStatistics& replay);
 
 }  // namespace kew::protocol
