@@ -34,8 +34,18 @@ struct TrackReport {
   std::string callsign;
   /// 12-bit Mode 3/A code when the source gives one.
   std::optional<std::uint16_t> mode3a;
+  /// 24-bit ICAO aircraft address when the source gives one (an attribute: the identity
+  /// of the track is `id`). Two tracks with the same address are one aircraft; two
+  /// different addresses are never one aircraft (design §4.5).
+  std::optional<std::uint32_t> address;
   /// The source says the target is on the ground.
   bool on_ground = false;
+  /// The source extrapolated this position without a fresh measurement (CAT062 I062/080
+  /// CST). A coasting track opens no alert (design §4.5).
+  bool coasting = false;
+  /// The source says this is the track's last update (CAT062 I062/080 TSE): the track
+  /// ends after this record, and a later record with the same id starts a new track.
+  bool track_end = false;
 };
 
 }  // namespace kew
