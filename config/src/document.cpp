@@ -49,6 +49,22 @@ void TableReader::string(std::string_view key, std::string& out) {
   out = s->get();
 }
 
+void TableReader::mode3a_list(std::string_view key, std::vector<std::uint16_t>& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto* array = node->as_array();
+  if (!array) fail(node, fmt::format("{} must be an array of Mode 3/A codes (\"7777\")", key));
+  std::vector<std::uint16_t> codes;
+  for (const toml::node& element : *array) {
+    const auto* text = element.as_string();
+    const bool octal = text && text->get().size() == 4 &&
+                       text->get().find_first_not_of("01234567") == std::string::npos;
+    if (!octal) fail(&element, fmt::format("{}: each code is a string of four octal digits (\"7777\")", key));
+    codes.push_back(static_cast<std::uint16_t>(std::stoul(text->get(), nullptr, 8)));
+  }
+  out = std::move(codes);
+}
+
 void TableReader::address(std::string_view key, std::string& out) {
   const toml::node* node = table_.get(key);
   string(key, out);

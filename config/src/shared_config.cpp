@@ -3,6 +3,8 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "kew/config/document.hpp"
 
 namespace kew::config {
@@ -65,6 +67,24 @@ void read_alerts(TableReader& r, alert::AlertConfig& a) {
   r.number("update_cpa_v_ft", a.update_cpa_v_ft, 0.0, 1e5);
 }
 
+void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
+  r.number("min_ground_speed_kt", e.min_ground_speed_kt, 0.0, 1000.0);
+  r.number("min_altitude_ft", e.min_altitude_ft, -5000.0, 200000.0);
+  r.number("max_altitude_ft", e.max_altitude_ft, -5000.0, 200000.0);
+  if (e.min_altitude_ft >= e.max_altitude_ft) r.fail(nullptr, "min_altitude_ft must be below max_altitude_ft");
+  r.number("lower_limit_ft", e.lower_limit_ft, 0.0, 100000.0);
+  r.mode3a_list("excluded_mode3a", e.excluded_mode3a);
+  for (const std::uint16_t code : e.excluded_mode3a)
+    if (!eligibility::may_exclude_mode3a(code))
+      r.fail(nullptr, fmt::format("excluded_mode3a: {:04o} is an emergency code and always alerts", code));
+  r.boolean("exclude_coasting", e.exclude_coasting);
+  r.number("max_position_age_s", e.max_position_age_s, 0.1, 3600.0);
+  r.number("level_rate_fpm", e.level_rate_fpm, 0.0, 5000.0);
+  r.number("altimetry_tolerance_ft", e.altimetry_tolerance_ft, 0.0, 1000.0);
+  r.number("same_code_distance_nm", e.same_code_distance_nm, 0.0, 20.0);
+  r.number("same_code_altitude_ft", e.same_code_altitude_ft, 0.0, 5000.0);
+}
+
 void read_decoding(TableReader& r, protocol::DecoderOptions& d) {
   r.number("sbs_utc_offset_s", d.sbs_utc_offset_s, -86400.0, 86400.0);
   r.integer("max_line_bytes", d.max_line_bytes, 256, 1 << 20);
@@ -93,6 +113,7 @@ SharedConfig read_shared_config(const Document& document) {
   document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline.kinetic); });
   document.section("probe", [&](TableReader& r) { read_probe(r, config.pipeline); });
   document.section("alerts", [&](TableReader& r) { read_alerts(r, config.pipeline.alerts); });
+  document.section("eligibility", [&](TableReader& r) { read_eligibility(r, config.pipeline.eligibility); });
   document.section("decoding", [&](TableReader& r) { read_decoding(r, config.decoding); });
   document.each_table("radar", [&](TableReader& r, std::size_t) {
     protocol::RadarSite site{};

@@ -62,6 +62,17 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.alerts.update_t_los_s, d.alerts.update_t_los_s);
   EXPECT_EQ(p.alerts.update_cpa_h_m, d.alerts.update_cpa_h_m);
   EXPECT_EQ(p.alerts.update_cpa_v_ft, d.alerts.update_cpa_v_ft);
+  EXPECT_EQ(p.eligibility.min_ground_speed_kt, d.eligibility.min_ground_speed_kt);
+  EXPECT_EQ(p.eligibility.min_altitude_ft, d.eligibility.min_altitude_ft);
+  EXPECT_EQ(p.eligibility.max_altitude_ft, d.eligibility.max_altitude_ft);
+  EXPECT_EQ(p.eligibility.lower_limit_ft, d.eligibility.lower_limit_ft);
+  EXPECT_EQ(p.eligibility.excluded_mode3a, d.eligibility.excluded_mode3a);
+  EXPECT_EQ(p.eligibility.exclude_coasting, d.eligibility.exclude_coasting);
+  EXPECT_EQ(p.eligibility.max_position_age_s, d.eligibility.max_position_age_s);
+  EXPECT_EQ(p.eligibility.level_rate_fpm, d.eligibility.level_rate_fpm);
+  EXPECT_EQ(p.eligibility.altimetry_tolerance_ft, d.eligibility.altimetry_tolerance_ft);
+  EXPECT_EQ(p.eligibility.same_code_distance_nm, d.eligibility.same_code_distance_nm);
+  EXPECT_EQ(p.eligibility.same_code_altitude_ft, d.eligibility.same_code_altitude_ft);
   EXPECT_EQ(file.cat004.enabled, defaults.cat004.enabled);
   EXPECT_EQ(file.cat004.destination, defaults.cat004.destination);
   EXPECT_EQ(file.cat004.interface, defaults.cat004.interface);
@@ -147,6 +158,26 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
   expect_error("[projection]\nreference_lat = 10\n", "go together");
   expect_error("[service\n", "t.toml:1:");
   expect_error("input = 3\n", "input must be written as [[input]] tables");
+  expect_error("[eligibility]\nexcluded_mode3a = [\"7700\"]\n", "7700 is an emergency code and always alerts");
+  expect_error("[eligibility]\nexcluded_mode3a = [\"7778\"]\n", "four octal digits");
+  expect_error("[eligibility]\nexcluded_mode3a = 7777\n", "must be an array of Mode 3/A codes");
+}
+
+TEST(Config, ReadsTheEligibilityRules) {
+  const Config c = parse_config(R"(
+[eligibility]
+min_ground_speed_kt = 30
+lower_limit_ft = 0
+excluded_mode3a = ["7777", "0033"]
+exclude_coasting = false
+level_rate_fpm = 0
+)");
+  const eligibility::EligibilityConfig& e = c.pipeline.eligibility;
+  EXPECT_EQ(e.min_ground_speed_kt, 30.0);
+  EXPECT_EQ(e.lower_limit_ft, 0.0);
+  EXPECT_EQ(e.excluded_mode3a, (std::vector<std::uint16_t>{07777, 033}));
+  EXPECT_FALSE(e.exclude_coasting);
+  EXPECT_EQ(e.level_rate_fpm, 0.0);
 }
 
 TEST(Config, UtcDays) {

@@ -56,11 +56,6 @@ std::vector<BadRecord> bad_records() {
   bad.push_back({"altitude_missing", with([](TrackReport& r) { r.alt_ft = kNaN; })});
   bad.push_back({"altitude_not_finite", with([](TrackReport& r) { r.alt_ft = kInf; })});
   bad.push_back({"altitude_out_of_range", with([](TrackReport& r) { r.alt_ft = 250000.0; })});
-  bad.push_back({"velocity_not_finite", with([](TrackReport& r) { r.gs_kt = kNaN; })});
-  bad.push_back({"velocity_not_finite", with([](TrackReport& r) { r.vr_fpm = kInf; })});
-  bad.push_back({"speed_negative", with([](TrackReport& r) { r.gs_kt = -5.0; })});
-  bad.push_back({"speed_too_high", with([](TrackReport& r) { r.gs_kt = 5000.0; })});
-  bad.push_back({"vertical_rate_too_high", with([](TrackReport& r) { r.vr_fpm = -60000.0; })});
   bad.push_back({"on_ground", with([](TrackReport& r) { r.on_ground = true; })});
   bad.push_back({"outside_coverage", with([](TrackReport& r) { r.lat_deg = -40.0; })});
   bad.push_back({"too_late", with([](TrackReport& r) { r.t = kT0 - 60.0; r.id = "LATE01"; })});
@@ -96,6 +91,47 @@ TEST(BadRecords, AreRefusedWithTheirReasonAndNeverReachTheTriangulation) {
   EXPECT_EQ(kinetic_after.updates, kinetic_before.updates);
   EXPECT_EQ(pipeline.tracks()[good].lon_deg, good_lon);
   EXPECT_TRUE(pipeline.kinetic().is_valid());
+}
+
+// Issue 17: a feed whose I062/220 held −165,100 ft/min lost those records whole, its
+// tracks starved and real conflicts went unalerted. A bad optional field now costs only
+// that field; the track table derives what is missing.
+TEST(BadOptionalFields, CostOnlyTheFieldAndTheRecordIsAccepted) {
+  struct Case {
+    const char* reason;
+    void (*mutate)(TrackReport&);
+  };
+  const Case cases[] = {
+      {"speed_not_finite", [](TrackReport& r) { r.gs_kt = kNaN; }},
+      {"speed_negative", [](TrackReport& r) { r.gs_kt = -5.0; }},
+      {"speed_too_high", [](TrackReport& r) { r.gs_kt = 5000.0; }},
+      {"track_angle_out_of_range", [](TrackReport& r) { r.trk_deg = 400.0; }},
+      {"track_angle_not_finite", [](TrackReport& r) { r.trk_deg = kNaN; }},
+      {"vertical_rate_too_high", [](TrackReport& r) { r.vr_fpm = -165100.0; }},
+      {"vertical_rate_not_finite", [](TrackReport& r) { r.vr_fpm = kInf; }},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.reason);
+    Pipeline pipeline;
+    // 0.025° of longitude at 50° N in 4 s: about 780 kt east, climbing 1,500 ft/min.
+    pipeline.process(report("GOOD01", kT0, 50.0, 8.0, 35000.0));
+    TrackReport bad = report("GOOD01", kT0 + 4.0, 50.0, 8.025, 35100.0);
+    c.mutate(bad);
+    pipeline.process(bad);
+    EXPECT_EQ(pipeline.rejections().total(), 0u);
+    EXPECT_EQ(pipeline.statistics().accepted, 2u);
+    EXPECT_EQ(pipeline.dropped_fields().count(c.reason), 1u);
+    EXPECT_EQ(pipeline.dropped_fields().total(), 1u);
+    const track::Track& track = pipeline.tracks()[pipeline.tracks().find("test", "GOOD01")];
+    EXPECT_EQ(track.lon_deg, 8.025);
+    EXPECT_TRUE(std::isfinite(track.gs_kt) && std::isfinite(track.trk_deg) && std::isfinite(track.vr_fpm));
+    EXPECT_LE(track.gs_kt, 1200.0);
+    EXPECT_LT(std::abs(track.vr_fpm), 20000.0);
+    if (std::string(c.reason).rfind("vertical", 0) == 0) {
+      EXPECT_NEAR(track.vr_fpm, 1500.0, 1e-6);
+    }
+    EXPECT_EQ(pipeline.live_tracks(), 1u);
+  }
 }
 
 TEST(BadRecords, RejectionsAreReportedRateLimited) {

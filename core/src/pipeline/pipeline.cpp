@@ -44,7 +44,8 @@ Pipeline::Pipeline(const PipelineConfig& config)
       alerts_(config.alerts, [this](track::TrackSlot slot) {
         const track::Track& track = tracks_[slot];
         return alert::PartyName{track.source, track.id};
-      }) {
+      }),
+      rules_(config.eligibility, config.minima.vertical_m / kFootToMetre) {
   if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
 }
 
@@ -70,6 +71,17 @@ void Pipeline::process(const TrackReport& report) {
     tracks_.rejections().reject(problem, report.id);
     return;
   }
+  if (const unsigned bad_fields = tracks_.implausible_optional_fields(report); bad_fields != 0) {
+    // Rare: the copy is paid only by records with a field to drop.
+    TrackReport cleaned = report;
+    tracks_.drop_optional_fields(cleaned, bad_fields);
+    process_plausible(cleaned);
+    return;
+  }
+  process_plausible(report);
+}
+
+void Pipeline::process_plausible(const TrackReport& report) {
   if (!projection_) projection_.emplace(rounded_reference(report), config_.coverage_radius_m);
   if (!started_) {
     started_ = true;
@@ -79,6 +91,7 @@ void Pipeline::process(const TrackReport& report) {
   // A plausible record that is not too late moves the clock (and may time out other
   // tracks, or this record's own previous track) before it is applied.
   if (report.t >= clock_ - tracks_.config().max_lateness_s) move_clock(std::max(clock_, report.t));
+  restart_if_other_aircraft(report);
 
   const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
   if (admitted.admission == track::Admission::Rejected) return;
@@ -93,9 +106,29 @@ void Pipeline::process(const TrackReport& report) {
       alerts_.drop_track(admitted.slot, clock_, pending_events_);
       deliver();
     }
+    if (report.track_end) end_track(admitted.slot);
     return;
   }
   apply(admitted.slot);
+  if (report.track_end) end_track(admitted.slot);
+}
+
+void Pipeline::restart_if_other_aircraft(const TrackReport& report) {
+  if (!report.address || report.t < clock_ - tracks_.config().max_lateness_s) return;  // admit() refuses it
+  const track::TrackSlot slot = tracks_.find(report.source, report.id);
+  if (slot == track::kNoTrack) return;
+  const track::Track& track = tracks_[slot];
+  // Two 24-bit addresses are never one aircraft: the id was reused (design §4.5).
+  if (!track.address || *track.address == *report.address) return;
+  ++stats_.tracks_restarted;
+  drop_track(slot);
+  tracks_.drop(slot);
+}
+
+void Pipeline::end_track(track::TrackSlot slot) {
+  ++stats_.tracks_ended;
+  drop_track(slot);
+  tracks_.drop(slot);
 }
 
 void Pipeline::move_clock(double t) {
@@ -258,7 +291,8 @@ void Pipeline::probe(track::TrackSlot slot) {
     const PairKinematics pair = pair_kinematics(slot, k_self, other);
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
-    if (probe::in_conflict(pair.kp, pair.kq, pair.minima)) g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
+    if (probe::in_conflict(pair.kp, pair.kq, pair.minima) && !suppressed_by_rules(pair))
+      g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
     alert::Evaluation e;
     e.in_conflict = g.in_conflict;
     if (g.in_conflict) {
@@ -273,6 +307,26 @@ void Pipeline::probe(track::TrackSlot slot) {
         pending_events_);
   }
   deliver();
+}
+
+bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
+  const track::Track& tp = tracks_[pair.p];
+  const track::Track& tq = tracks_[pair.q];
+  const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
+  if (rules_.same_aircraft(tp, tq, distance_m)) {
+    suppressed_.reject("same_aircraft");
+    return true;
+  }
+  if (rules_.level_pair(tp, tq)) {
+    suppressed_.reject("level_pair");
+    return true;
+  }
+  if (alerts_.is_active(pair.p, pair.q)) return false;
+  eligibility::Exclusion why = rules_.exclusion(tp, clock_);
+  if (why == eligibility::Exclusion::None) why = rules_.exclusion(tq, clock_);
+  if (why == eligibility::Exclusion::None) return false;
+  suppressed_.reject(eligibility::kExclusionNames.name(why));
+  return true;
 }
 
 void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,

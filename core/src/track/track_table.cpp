@@ -3,14 +3,14 @@
 #include <cmath>
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace kew::track {
 
 namespace {
 constexpr double kKnotToMps = 1852.0 / 3600.0;
 constexpr double kFootToMetre = 0.3048;
 constexpr double kFpmToMps = kFootToMetre / 60.0;
-
-bool finite_if_present(const std::optional<double>& v) { return !v || std::isfinite(*v); }
 
 std::string_view projection_reason(geo::ProjectionError e) {
   switch (e) {
@@ -38,13 +38,36 @@ std::string_view TrackTable::plausibility_problem(const TrackReport& r) const {
   if (std::isnan(r.alt_ft)) return "altitude_missing";
   if (!std::isfinite(r.alt_ft)) return "altitude_not_finite";
   if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return "altitude_out_of_range";
-  if (!finite_if_present(r.gs_kt) || !finite_if_present(r.trk_deg) || !finite_if_present(r.vr_fpm))
-    return "velocity_not_finite";
-  if (r.gs_kt && *r.gs_kt < 0.0) return "speed_negative";
-  if (r.gs_kt && *r.gs_kt > config_.max_ground_speed_kt) return "speed_too_high";
-  if (r.vr_fpm && std::abs(*r.vr_fpm) > config_.max_vertical_rate_fpm) return "vertical_rate_too_high";
   if (r.on_ground && config_.exclude_on_ground) return "on_ground";
   return {};
+}
+
+unsigned TrackTable::implausible_optional_fields(const TrackReport& r) const {
+  unsigned bits = 0;
+  if (r.gs_kt && !(*r.gs_kt >= 0.0 && *r.gs_kt <= config_.max_ground_speed_kt)) bits |= kGroundSpeed;
+  if (r.trk_deg && !(*r.trk_deg >= 0.0 && *r.trk_deg < 360.0)) bits |= kTrackAngle;
+  if (r.vr_fpm && !(std::abs(*r.vr_fpm) <= config_.max_vertical_rate_fpm)) bits |= kVerticalRate;
+  return bits;
+}
+
+void TrackTable::drop_optional_fields(TrackReport& r, unsigned bits) {
+  // NaN fails every range test of implausible_optional_fields: it is told apart here.
+  if (bits & kGroundSpeed) {
+    const double v = *r.gs_kt;
+    dropped_fields_.reject(!std::isfinite(v) ? "speed_not_finite" : v < 0.0 ? "speed_negative" : "speed_too_high",
+                           fmt::format("{}: ground speed {} kt dropped", r.id, v));
+    r.gs_kt.reset();
+  }
+  if (bits & kTrackAngle) {
+    dropped_fields_.reject(std::isfinite(*r.trk_deg) ? "track_angle_out_of_range" : "track_angle_not_finite",
+                           fmt::format("{}: track angle {} deg dropped", r.id, *r.trk_deg));
+    r.trk_deg.reset();
+  }
+  if (bits & kVerticalRate) {
+    dropped_fields_.reject(std::isfinite(*r.vr_fpm) ? "vertical_rate_too_high" : "vertical_rate_not_finite",
+                           fmt::format("{}: vertical rate {} ft/min dropped", r.id, *r.vr_fpm));
+    r.vr_fpm.reset();
+  }
 }
 
 AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection) {
@@ -54,6 +77,13 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     return result;
   };
   if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);
+  if (implausible_optional_fields(r) != 0) {
+    // The pipeline drops bad fields before it calls admit(); a caller that does not
+    // gets the same treatment, on a copy.
+    TrackReport cleaned = r;
+    drop_optional_fields(cleaned, implausible_optional_fields(cleaned));
+    return admit(cleaned, now, projection);
+  }
   if (r.t < now - config_.max_lateness_s) return reject("too_late");
 
   const TrackSlot existing = find(r.source, r.id);
@@ -118,6 +148,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.alt_ft = r.alt_ft;
   if (!r.callsign.empty()) track.callsign = r.callsign;
   if (r.mode3a) track.mode3a = r.mode3a;
+  if (r.address) track.address = r.address;
+  track.coasting = r.coasting;
   track.plane_scale = plane.scale;
   track.kinematics.position = plane.p;
   track.kinematics.velocity = velocity;

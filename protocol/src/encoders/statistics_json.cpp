@@ -77,9 +77,12 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("accepted", p.accepted);
   m.rejections("rejected", rejected);
   m.integer("rejected_total", rejected.total());
+  m.rejections("fields_dropped", pipeline.dropped_fields());
   m.integer("tracks", pipeline.live_tracks());
   m.integer("tracks_max", pipeline.tracks().max_size());
   m.integer("tracks_dropped", p.tracks_dropped);
+  m.integer("tracks_ended", p.tracks_ended);
+  m.integer("tracks_restarted", p.tracks_restarted);
   m.integer("updates", k.updates);
   m.integer("insertions", k.insertions);
   m.integer("reinsertions", k.reinsertions);
@@ -97,6 +100,7 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("probes", p.probes);
   m.integer("pairs_evaluated", p.candidates);
   m.string("probe", probe::to_string(pipeline.config().probe_mode));
+  m.rejections("suppressed", pipeline.suppressed());
   m.integer("alerts_active", alerts.active_count());
   m.integer("alerts_new", a.opened);
   m.integer("alerts_updated", a.updated);

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -58,6 +59,8 @@ class TableReader {
     if (!value || excluded) fail(node, fmt::format("{} = \"{}\": expected one of {}", key, text, names.list(except)));
     out = *value;
   }
+  /// A list of 12-bit Mode 3/A codes, each a string of four octal digits ("7777").
+  void mode3a_list(std::string_view key, std::vector<std::uint16_t>& out);
   /// A "HOST:PORT" string, checked with parse_host_port (address.hpp) and kept as text.
   void address(std::string_view key, std::string& out);
   /// A "YYYY-MM-DD" string, checked with parse_utc_day (utc_day.hpp) and kept as text.

@@ -24,8 +24,8 @@ struct SharedConfig {
 };
 
 /// Top-level tables read into SharedConfig.
-inline constexpr std::array<std::string_view, 7> kSharedSections = {"projection", "tracks", "kinetic", "probe",
-                                                                    "alerts",     "decoding", "radar"};
+inline constexpr std::array<std::string_view, 8> kSharedSections = {
+    "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar"};
 /// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
 /// kewd file and leaves them unread.
 inline constexpr std::array<std::string_view, 4> kDaemonSections = {"service", "cat004", "modbus", "input"};

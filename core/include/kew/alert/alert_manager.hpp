@@ -96,6 +96,13 @@ class AlertManager {
   /// them, so pending and active pairs always see their clear evaluations.
   void partners_of(Slot slot, std::vector<Slot>& out) const;
 
+  /// Whether pair {p, q} has an open alert (rules that only stop alerts from opening
+  /// leave an open one to its own end).
+  bool is_active(Slot p, Slot q) const {
+    const auto it = pairs_.find(pair_key(p, q));
+    return it != pairs_.end() && it->second.active;
+  }
+
   /// Active alerts (their last emitted event), ordered by opening sequence.
   std::vector<AlertEvent> snapshot() const;
   std::size_t active_count() const { return active_; }

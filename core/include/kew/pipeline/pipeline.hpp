@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kew/alert/alert_manager.hpp"
+#include "kew/eligibility/eligibility.hpp"
 #include "kew/geo/projection.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/probe/cpa.hpp"
@@ -28,6 +29,7 @@ struct PipelineConfig {
   probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
   probe::SeparationMinima minima;
   alert::AlertConfig alerts;
+  eligibility::EligibilityConfig eligibility;
 
   /// kew's kinetic defaults: absolute τ = 50 m, H = 300 s, §8.3 on.
   static kinetic::KineticConfig default_kinetic() {
@@ -42,7 +44,11 @@ struct PipelineStatistics {
   std::uint64_t records = 0;            ///< records offered to process()
   std::uint64_t accepted = 0;           ///< records the track table accepted
   std::uint64_t awaiting_velocity = 0;  ///< accepted records of tracks without velocity yet
-  std::uint64_t tracks_dropped = 0;     ///< tracks dropped by the timeout
+  std::uint64_t tracks_dropped = 0;     ///< tracks dropped (timeout, end of track, restart)
+  std::uint64_t tracks_ended = 0;       ///< tracks the source ended (TrackReport::track_end)
+  /// Tracks restarted because a record of the same id carried another 24-bit address (a
+  /// reused track number: two addresses are never one aircraft).
+  std::uint64_t tracks_restarted = 0;
   std::uint64_t probes = 0;             ///< probe runs (one per applied update)
   std::uint64_t candidates = 0;         ///< pairs evaluated, Σ over probes
   double last_data_time = 0.0;          ///< the pipeline clock (UTC s); 0 before any record
@@ -86,6 +92,12 @@ class Pipeline {
   const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_.statistics(); }
   const Rejections& rejections() const { return tracks_.rejections(); }
   Rejections& rejections() { return tracks_.rejections(); }
+  /// Optional fields dropped from accepted records (design §4.3), by reason.
+  const Rejections& dropped_fields() const { return tracks_.dropped_fields(); }
+  Rejections& dropped_fields() { return tracks_.dropped_fields(); }
+  /// Conflicting evaluations the rules of design §4.5 turned clear, by rule:
+  /// "same_aircraft", "level_pair", or the exclusion of the first excluded party.
+  const Rejections& suppressed() const { return suppressed_; }
   const track::TrackTable& tracks() const { return tracks_; }
   /// Tracks in the kinetic engine (accepted with a velocity).
   std::size_t live_tracks() const { return kdt_.size(); }
@@ -101,8 +113,14 @@ class Pipeline {
   double search_radius(double speed_mps) const;
 
  private:
+  /// process() after the record-level checks, with its optional fields made plausible.
+  void process_plausible(const TrackReport& report);
   void move_clock(double t);
   void drop_track(track::TrackSlot slot);
+  /// Drops the track of `report`'s id when it carries another 24-bit address.
+  void restart_if_other_aircraft(const TrackReport& report);
+  /// Drops a track its source ended (TrackReport::track_end).
+  void end_track(track::TrackSlot slot);
   void leave_engine(track::TrackSlot slot);
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
@@ -116,6 +134,9 @@ class Pipeline {
   };
   PairKinematics pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
                                  track::TrackSlot other_slot) const;
+  /// The rules of design §4.5 for a pair the conflict test found in conflict: true when
+  /// the pair is to be treated as clear (counted in suppressed_).
+  bool suppressed_by_rules(const PairKinematics& pair);
   void fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
                   const probe::Kinematics& kp, const probe::Kinematics& kq) const;
   void deliver();
@@ -153,6 +174,8 @@ class Pipeline {
   std::vector<track::TrackSlot> partners_scratch_;
   std::vector<std::uint32_t> partner_mark_;      // by slot: == candidate_round_ for this probe's partners
   std::uint32_t candidate_round_ = 0;
+  eligibility::Rules rules_;
+  Rejections suppressed_;
   ConflictTap conflict_tap_;
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;

@@ -48,6 +48,8 @@ struct Track {
   std::string id;
   std::string callsign;
   std::optional<std::uint16_t> mode3a;
+  std::optional<std::uint32_t> address;  ///< 24-bit ICAO address, once a record gave one
+  bool coasting = false;     ///< the last record was extrapolated by its source
   std::uint16_t number = 0;  ///< 16-bit system track number for CAT004 and Modbus, ≠ 0
   bool has_velocity = false;  ///< false until a velocity was reported or derived
   bool in_use = false;
@@ -118,13 +120,24 @@ class TrackTable {
   TrackSlot slot_end() const { return static_cast<TrackSlot>(tracks_.size()); }
   TrackSlot find(std::string_view source, std::string_view id) const;
 
-  /// The reason a record is implausible on its own (ranges, NaN, on ground...), or an
-  /// empty view when it is plausible. No state is read or changed.
+  /// The reason a record is implausible on its own (time, position, altitude, on
+  /// ground...), or an empty view when it is plausible. Optional fields are not judged
+  /// here (see implausible_optional_fields). No state is read or changed.
   std::string_view plausibility_problem(const TrackReport& r) const;
+
+  /// Bits of the optional fields of `r` that are implausible: a bad speed, track angle or
+  /// vertical rate costs only that field (design §4.3), the record is still accepted.
+  enum OptionalField : unsigned { kGroundSpeed = 1, kTrackAngle = 2, kVerticalRate = 4 };
+  unsigned implausible_optional_fields(const TrackReport& r) const;
+  /// Clears the fields of `bits` in `r` and counts each in dropped_fields() with `r`'s id.
+  void drop_optional_fields(TrackReport& r, unsigned bits);
 
   const TrackTableConfig& config() const { return config_; }
   Rejections& rejections() { return rejections_; }
   const Rejections& rejections() const { return rejections_; }
+  /// Optional fields dropped from accepted records, by reason ("vertical_rate_too_high"...).
+  Rejections& dropped_fields() { return dropped_fields_; }
+  const Rejections& dropped_fields() const { return dropped_fields_; }
   std::uint64_t velocity_resets() const { return velocity_resets_; }
   std::uint64_t velocities_derived() const { return velocities_derived_; }
 
@@ -141,6 +154,7 @@ class TrackTable {
   std::uint64_t velocity_resets_ = 0;
   std::uint64_t velocities_derived_ = 0;
   Rejections rejections_;
+  Rejections dropped_fields_;
 };
 
 }  // namespace kew::track

@@ -1,0 +1,112 @@
+#pragma once
+// Who may alert (design §4.5): the rules that sit between the candidate list and the
+// alert manager. They never touch the candidate search, which stays complete, and the
+// brute-force probe goes through the same rules, so exact = brute still holds.
+//
+// Three kinds of rule, applied to a pair the conflict test found in conflict:
+//  - one aircraft: two tracks of the same aircraft are never in conflict;
+//  - level pairs: two level aircraft reported at adjacent levels are separated;
+//  - exclusions: a track that is not an airborne aircraft worth alerting on opens no
+//    alert (an alert already open stays open and ends by its own rules).
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "kew/track/track_table.hpp"
+#include "kew/util/name_table.hpp"
+
+namespace kew::eligibility {
+
+struct EligibilityConfig {
+  /// Tracks slower than this open no alert (kt, ≥ 0; 0 disables): stationary test
+  /// targets and ground clutter at altitude. Airborne aircraft fly well above 50 kt.
+  double min_ground_speed_kt = 50.0;
+  /// Altitude band of aircraft worth alerting on (ft): 71,900 ft or −1,400 ft is a
+  /// bad altitude, not an aircraft.
+  double min_altitude_ft = -1000.0;
+  double max_altitude_ft = 60000.0;
+  /// Below this altitude no alert opens (ft, ≥ 0; 0 disables): aerodrome traffic,
+  /// which STCA leaves to the aerodrome controller.
+  double lower_limit_ft = 1500.0;
+  /// Mode 3/A codes whose tracks open no alert (12-bit values; 7777 = a test
+  /// transponder). 7500, 7600 and 7700 are never excluded (see may_exclude_mode3a).
+  std::vector<std::uint16_t> excluded_mode3a = {07777};
+  /// A track the source says is coasting (extrapolated, CAT062 I062/080 CST) opens no alert.
+  bool exclude_coasting = true;
+  /// A track whose last record is older than this at the evaluation opens no alert (s, > 0):
+  /// the prediction is then an extrapolation of an extrapolation.
+  double max_position_age_s = 20.0;
+  /// Level pairs: |vertical rate| below this is level (ft/min, ≥ 0; 0 disables the rule).
+  double level_rate_fpm = 300.0;
+  /// Level pairs: aircraft at least S_v − this apart are at adjacent levels (ft, ≥ 0):
+  /// altimetry and Mode C rounding make FL370 and FL380 read 975 ft apart.
+  double altimetry_tolerance_ft = 200.0;
+  /// One aircraft without addresses: the same discrete Mode 3/A code on two tracks within
+  /// this distance (NM) and altitude difference (ft) of each other.
+  double same_code_distance_nm = 1.0;
+  double same_code_altitude_ft = 500.0;
+};
+
+/// Why a track may not open an alert. Names are the statistics' keys.
+enum class Exclusion : std::uint8_t {
+  None,
+  Slow,             ///< below min_ground_speed_kt
+  AltitudeBand,     ///< outside [min_altitude_ft, max_altitude_ft]
+  BelowLowerLimit,  ///< below lower_limit_ft
+  ExcludedCode,     ///< Mode 3/A in excluded_mode3a
+  Coasting,         ///< the source extrapolates the track
+  PositionStale,    ///< no record for max_position_age_s
+};
+inline constexpr util::NameTable<Exclusion, 7> kExclusionNames({{
+    {Exclusion::None, "none"},
+    {Exclusion::Slow, "slow"},
+    {Exclusion::AltitudeBand, "altitude_band"},
+    {Exclusion::BelowLowerLimit, "below_lower_limit"},
+    {Exclusion::ExcludedCode, "excluded_code"},
+    {Exclusion::Coasting, "coasting"},
+    {Exclusion::PositionStale, "position_stale"},
+}});
+
+/// What the rules decided about a pair in conflict. Names are the statistics' keys.
+enum class PairRule : std::uint8_t {
+  InConflict,   ///< no rule applies: the pair is in conflict
+  SameAircraft, ///< one aircraft seen as two tracks: never in conflict
+  LevelPair,    ///< level at adjacent levels: separated
+  Excluded,     ///< a party may not open an alert (the pair has none open)
+};
+
+/// The codes that are never identity (conspicuity codes shared by many aircraft), and
+/// 7500/7600/7700, which an aircraft in trouble selects and must never be treated as
+/// identity or excluded.
+bool is_discrete_mode3a(std::uint16_t code);
+/// False for 7500, 7600 and 7700 (hijack, radio failure, emergency).
+bool may_exclude_mode3a(std::uint16_t code);
+
+class Rules {
+ public:
+  /// `vertical_minimum_ft`: S_v of the conflict test (level pairs are judged against it).
+  Rules(const EligibilityConfig& config, double vertical_minimum_ft);
+
+  /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
+  Exclusion exclusion(const track::Track& t, double now) const;
+
+  /// Whether two tracks are one aircraft: the same 24-bit address; or, unless both have
+  /// addresses (two different addresses are never one aircraft), the same discrete
+  /// Mode 3/A code within same_code_distance_nm and same_code_altitude_ft. `distance_m`
+  /// is their current horizontal distance (m, on the ellipsoid).
+  bool same_aircraft(const track::Track& a, const track::Track& b, double distance_m) const;
+
+  /// Whether two tracks are level (|reported vertical rate| < level_rate_fpm) and
+  /// reported at adjacent levels (|Δaltitude| ≥ S_v − altimetry_tolerance_ft).
+  bool level_pair(const track::Track& a, const track::Track& b) const;
+
+  const EligibilityConfig& config() const { return config_; }
+
+ private:
+  EligibilityConfig config_;
+  double vertical_minimum_ft_;
+};
+
+}  // namespace kew::eligibility

@@ -1,0 +1,60 @@
+#include "kew/eligibility/eligibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kew::eligibility {
+
+namespace {
+constexpr double kNauticalMile_m = 1852.0;
+}
+
+bool may_exclude_mode3a(std::uint16_t code) { return code != 07500 && code != 07600 && code != 07700; }
+
+bool is_discrete_mode3a(std::uint16_t code) {
+  // 1000: Mode S "conspicuity" (ICAO), 1200: VFR (North America), 2000: entering SSR
+  // airspace without a code, 7000: VFR (ICAO Europe). Many aircraft share them.
+  switch (code) {
+    case 01000:
+    case 01200:
+    case 02000:
+    case 07000:
+      return false;
+    default:
+      return may_exclude_mode3a(code);
+  }
+}
+
+Rules::Rules(const EligibilityConfig& config, double vertical_minimum_ft)
+    : config_(config), vertical_minimum_ft_(vertical_minimum_ft) {
+  // An emergency code must alert whatever the list says (the configuration refuses
+  // them too; this keeps the rule true for programs that build the config themselves).
+  std::erase_if(config_.excluded_mode3a, [](std::uint16_t c) { return !may_exclude_mode3a(c); });
+}
+
+Exclusion Rules::exclusion(const track::Track& t, double now) const {
+  if (t.alt_ft < config_.min_altitude_ft || t.alt_ft > config_.max_altitude_ft) return Exclusion::AltitudeBand;
+  if (config_.lower_limit_ft > 0.0 && t.alt_ft < config_.lower_limit_ft) return Exclusion::BelowLowerLimit;
+  if (t.gs_kt < config_.min_ground_speed_kt) return Exclusion::Slow;
+  if (t.mode3a && std::find(config_.excluded_mode3a.begin(), config_.excluded_mode3a.end(), *t.mode3a) !=
+                      config_.excluded_mode3a.end())
+    return Exclusion::ExcludedCode;
+  if (config_.exclude_coasting && t.coasting) return Exclusion::Coasting;
+  if (now - t.t > config_.max_position_age_s) return Exclusion::PositionStale;
+  return Exclusion::None;
+}
+
+bool Rules::same_aircraft(const track::Track& a, const track::Track& b, double distance_m) const {
+  if (a.address && b.address) return *a.address == *b.address;
+  if (!a.mode3a || !b.mode3a || *a.mode3a != *b.mode3a || !is_discrete_mode3a(*a.mode3a)) return false;
+  return distance_m <= config_.same_code_distance_nm * kNauticalMile_m &&
+         std::abs(a.alt_ft - b.alt_ft) <= config_.same_code_altitude_ft;
+}
+
+bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
+  if (config_.level_rate_fpm <= 0.0) return false;
+  return std::abs(a.vr_fpm) < config_.level_rate_fpm && std::abs(b.vr_fpm) < config_.level_rate_fpm &&
+         std::abs(a.alt_ft - b.alt_ft) >= vertical_minimum_ft_ - config_.altimetry_tolerance_ft;
+}
+
+}  // namespace kew::eligibility

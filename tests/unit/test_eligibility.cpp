@@ -1,0 +1,270 @@
+// Who may alert (design §4.5, issue 17): one aircraft seen as two tracks never alerts
+// against itself, targets that are not airborne aircraft open no alert, level pairs at
+// adjacent levels are separated, and every suppression is counted by rule.
+#include "kew/eligibility/eligibility.hpp"
+#include "kew/pipeline/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <GeographicLib/Geodesic.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kew {
+namespace {
+
+constexpr double kT0 = 1714400000.0;
+constexpr double kKnot = 1852.0 / 3600.0;
+
+// One aircraft's record at time t on a straight track through (50° N, 8° E): `east_m`
+// east of it at t = kT0, flying `trk_deg` at `gs_kt`.
+struct Flight {
+  std::string id;
+  std::string source = "test";
+  double east_m = 0.0;
+  double north_m = 0.0;
+  double alt_ft = 35000.0;
+  double gs_kt = 450.0;
+  double trk_deg = 90.0;
+  double vr_fpm = 0.0;
+  std::function<void(TrackReport&)> edit = {};  // applied to every record
+
+  TrackReport at(double t) const {
+    const auto& wgs84 = GeographicLib::Geodesic::WGS84();
+    const double flown = gs_kt * kKnot * (t - kT0);
+    const double rad = trk_deg * M_PI / 180.0;
+    double lat0, lon0, lat, lon;
+    wgs84.Direct(50.0, 8.0, 90.0, east_m + flown * std::sin(rad), lat0, lon0);
+    wgs84.Direct(lat0, lon0, 0.0, north_m + flown * std::cos(rad), lat, lon);
+    TrackReport r;
+    r.t = t;
+    r.id = id;
+    r.source = source;
+    r.lat_deg = lat;
+    r.lon_deg = lon;
+    r.alt_ft = alt_ft + vr_fpm * (t - kT0) / 60.0;
+    r.gs_kt = gs_kt;
+    r.trk_deg = trk_deg;
+    r.vr_fpm = vr_fpm;
+    if (edit) edit(r);
+    return r;
+  }
+};
+
+struct Outcome {
+  std::unique_ptr<Pipeline> pipeline;
+  std::vector<AlertEvent> events;
+  std::size_t opened() const {
+    std::size_t n = 0;
+    for (const AlertEvent& e : events) n += e.state == AlertState::New;
+    return n;
+  }
+};
+
+// Every flight reports every 4 s from kT0 for `seconds`.
+Outcome fly(const std::vector<Flight>& flights, double seconds = 40.0, const PipelineConfig& config = {}) {
+  Outcome run;
+  run.pipeline = std::make_unique<Pipeline>(config);
+  run.pipeline->set_alert_sink([&run](const AlertEvent& e) { run.events.push_back(e); });
+  for (double dt = 0.0; dt < seconds; dt += 4.0)
+    for (const Flight& f : flights) run.pipeline->process(f.at(kT0 + dt));
+  run.pipeline->set_alert_sink({});  // `run` is moved out: nothing may write to it after
+  return run;
+}
+
+// Two aircraft head-on 20 NM apart, closing at 900 kt: separation is lost in 60 s.
+std::vector<Flight> head_on(double alt_a = 35000.0, double alt_b = 35000.0) {
+  Flight a{"A"};
+  a.east_m = -10.0 * 1852.0;
+  a.alt_ft = alt_a;
+  Flight b{"B"};
+  b.east_m = 10.0 * 1852.0;
+  b.trk_deg = 270.0;
+  b.alt_ft = alt_b;
+  return {a, b};
+}
+
+TEST(Eligibility, AHeadOnPairAtOneLevelAlerts) {
+  EXPECT_EQ(fly(head_on()).opened(), 1u);
+}
+
+TEST(Eligibility, SlowTargetsOpenNoAlert) {
+  // Stationary test targets at FL250, 2 NM apart: in conflict, but not aircraft.
+  std::vector<Flight> targets = head_on(25000.0, 25000.0);
+  targets[0].east_m = -1852.0;
+  targets[1].east_m = 1852.0;
+  for (Flight& f : targets) f.gs_kt = 5.0;
+  const Outcome run = fly(targets, 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("slow"), 0u);
+  for (Flight& f : targets) f.gs_kt = 60.0;
+  EXPECT_EQ(fly(targets).opened(), 1u);
+}
+
+TEST(Eligibility, NoAlertOpensBelowTheLowerLimit) {
+  const Outcome run = fly(head_on(1000.0, 1200.0), 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("below_lower_limit"), 0u);
+  EXPECT_EQ(fly(head_on(2000.0, 2200.0)).opened(), 1u);
+  PipelineConfig disabled;
+  disabled.eligibility.lower_limit_ft = 0.0;
+  EXPECT_EQ(fly(head_on(1000.0, 1200.0), 40.0, disabled).opened(), 1u);
+}
+
+TEST(Eligibility, AltitudesOutsideTheBandAreNotAircraft) {
+  const Outcome run = fly(head_on(71900.0, 71900.0), 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("altitude_band"), 0u);
+}
+
+TEST(Eligibility, Code7777OpensNoAlertButEmergencyCodesAlwaysAlert) {
+  std::vector<Flight> pair = head_on();
+  pair[0].edit = [](TrackReport& r) { r.mode3a = 07777; };
+  const Outcome run = fly(pair, 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("excluded_code"), 0u);
+  // 7700 listed by a program (the configuration refuses it) still alerts.
+  PipelineConfig config;
+  config.eligibility.excluded_mode3a = {07700, 07777};
+  pair[0].edit = [](TrackReport& r) { r.mode3a = 07700; };
+  EXPECT_EQ(fly(pair, 40.0, config).opened(), 1u);
+}
+
+TEST(Eligibility, CoastingTracksOpenNoAlertButAnOpenAlertStaysOpen) {
+  std::vector<Flight> pair = head_on();
+  pair[0].edit = [](TrackReport& r) { r.coasting = true; };
+  const Outcome run = fly(pair, 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("coasting"), 0u);
+  // Coasting from 20 s on, after the alert opened: it stays open, no End.
+  pair[0].edit = [](TrackReport& r) { r.coasting = r.t >= kT0 + 20.0; };
+  const Outcome later = fly(pair, 40.0);
+  EXPECT_EQ(later.opened(), 1u);
+  for (const AlertEvent& e : later.events) EXPECT_NE(e.state, AlertState::End);
+}
+
+TEST(Eligibility, AStaleTrackOpensNoAlert) {
+  // B reports once, then nothing: 24 s later A still predicts a conflict with B's
+  // extrapolation, but B's position is older than max_position_age_s (20 s).
+  std::vector<Flight> pair = head_on();
+  PipelineConfig config;
+  config.eligibility.max_position_age_s = 6.0;
+  Pipeline pipeline(config);
+  std::vector<AlertEvent> events;
+  pipeline.set_alert_sink([&](const AlertEvent& e) { events.push_back(e); });
+  pipeline.process(pair[0].at(kT0));
+  pipeline.process(pair[1].at(kT0));
+  for (double dt = 8.0; dt < 28.0; dt += 4.0) pipeline.process(pair[0].at(kT0 + dt));
+  EXPECT_TRUE(events.empty());
+  EXPECT_GT(pipeline.suppressed().count("position_stale"), 0u);
+}
+
+TEST(Eligibility, LevelPairsAtAdjacentLevelsAreSeparated) {
+  // FL370 and FL380 reported 975 ft apart: separated. 700 ft apart: a conflict.
+  const Outcome run = fly(head_on(37000.0, 37975.0), 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("level_pair"), 0u);
+  EXPECT_EQ(fly(head_on(37000.0, 37700.0)).opened(), 1u);
+  // A climbing aircraft 975 ft below is judged as before.
+  std::vector<Flight> climbing = head_on(37000.0, 37975.0);
+  climbing[0].vr_fpm = 1000.0;
+  EXPECT_EQ(fly(climbing).opened(), 1u);
+  PipelineConfig disabled;
+  disabled.eligibility.level_rate_fpm = 0.0;
+  EXPECT_EQ(fly(head_on(37000.0, 37975.0), 40.0, disabled).opened(), 1u);
+}
+
+TEST(Eligibility, OneAircraftSeenByTwoSourcesNeverAlertsAgainstItself) {
+  // The same aircraft from radar and ADS-B, 200 m apart: the same address.
+  Flight radar{"1234", "cat062/25.100"};
+  radar.edit = [](TrackReport& r) { r.address = 0x4CA123; };
+  Flight adsb{"4CA123", "sbs"};
+  adsb.north_m = 200.0;
+  adsb.edit = radar.edit;
+  const Outcome run = fly({radar, adsb}, 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("same_aircraft"), 0u);
+  // Two different addresses are never one aircraft, whatever their codes.
+  adsb.edit = [](TrackReport& r) { r.address = 0x4CA124; r.mode3a = 04711; };
+  radar.edit = [](TrackReport& r) { r.address = 0x4CA123; r.mode3a = 04711; };
+  EXPECT_EQ(fly({radar, adsb}).opened(), 1u);
+}
+
+TEST(Eligibility, TheSameDiscreteCodeOnColocatedTracksIsOneAircraft) {
+  Flight radar{"1234", "cat062/25.100"};
+  Flight other{"0077", "cat062/25.101"};
+  other.north_m = 500.0;
+  other.alt_ft = 35200.0;
+  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
+  EXPECT_EQ(fly({radar, other}).opened(), 0u);
+  // Conspicuity codes are shared by many aircraft: not identity.
+  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 07000; };
+  EXPECT_EQ(fly({radar, other}).opened(), 1u);
+  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 07700; };
+  EXPECT_EQ(fly({radar, other}).opened(), 1u);
+  // The same discrete code 3 NM apart: two aircraft.
+  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
+  other.north_m = 3.0 * 1852.0;
+  EXPECT_EQ(fly({radar, other}).opened(), 1u);
+}
+
+TEST(Eligibility, OneTrackStaysOneTrackWithAndWithoutAnAddress) {
+  // A CAT062 track whose I062/380 comes and goes: one track, no alert against itself.
+  Flight track{"1234", "cat062/25.100"};
+  track.edit = [](TrackReport& r) {
+    if (static_cast<int>(r.t - kT0) % 8 == 0) r.address = 0x4CA123;
+  };
+  const Outcome run = fly({track}, 40.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_EQ(run.pipeline->tracks().size(), 1u);
+  EXPECT_EQ(run.pipeline->statistics().tracks_restarted, 0u);
+}
+
+TEST(Eligibility, AnotherAddressOnTheSameIdStartsANewTrack) {
+  std::vector<Flight> pair = head_on();
+  pair[0].edit = [](TrackReport& r) { r.address = r.t < kT0 + 20.0 ? 0x4CA123 : 0x3C6543; };
+  const Outcome run = fly(pair, 40.0);
+  EXPECT_EQ(run.pipeline->statistics().tracks_restarted, 1u);
+  // The alert of the first aircraft ended when its track was replaced; a new one opened.
+  ASSERT_GE(run.opened(), 2u);
+  bool ended = false;
+  for (const AlertEvent& e : run.events) ended |= e.end_reason == AlertEndReason::TrackDropped;
+  EXPECT_TRUE(ended);
+}
+
+TEST(Eligibility, TheSourceEndingATrackEndsIt) {
+  std::vector<Flight> pair = head_on();
+  pair[0].edit = [](TrackReport& r) { r.track_end = r.t >= kT0 + 20.0; };
+  const Outcome run = fly(pair, 24.0);
+  EXPECT_EQ(run.pipeline->statistics().tracks_ended, 1u);
+  ASSERT_FALSE(run.events.empty());
+  EXPECT_EQ(run.events.back().state, AlertState::End);
+  EXPECT_EQ(run.events.back().end_reason, AlertEndReason::TrackDropped);
+  EXPECT_EQ(run.pipeline->tracks().size(), 1u);
+}
+
+TEST(Eligibility, RulesOnTheirOwn) {
+  eligibility::Rules rules({}, 1000.0);
+  track::Track t;
+  t.alt_ft = 35000.0;
+  t.gs_kt = 450.0;
+  t.t = 100.0;
+  EXPECT_EQ(rules.exclusion(t, 110.0), eligibility::Exclusion::None);
+  EXPECT_EQ(rules.exclusion(t, 121.0), eligibility::Exclusion::PositionStale);
+  t.gs_kt = 49.0;
+  EXPECT_EQ(rules.exclusion(t, 110.0), eligibility::Exclusion::Slow);
+  EXPECT_FALSE(eligibility::may_exclude_mode3a(07500));
+  EXPECT_FALSE(eligibility::may_exclude_mode3a(07600));
+  EXPECT_FALSE(eligibility::may_exclude_mode3a(07700));
+  EXPECT_TRUE(eligibility::may_exclude_mode3a(07777));
+  for (const int code : {01000, 01200, 02000, 07000, 07500, 07600, 07700})
+    EXPECT_FALSE(eligibility::is_discrete_mode3a(static_cast<std::uint16_t>(code))) << code;
+  EXPECT_TRUE(eligibility::is_discrete_mode3a(04711));
+  EXPECT_EQ(eligibility::kExclusionNames.parse("below_lower_limit"), eligibility::Exclusion::BelowLowerLimit);
+}
+
+}  // namespace
+}  // namespace kew
