@@ -500,10 +500,12 @@ int main(int argc, char** argv) {
       ->default_val("auto")
       ->check(CLI::IsMember(kew::protocol::kFormatNames.names(file_formats)));
   app.add_option("-c,--config", options.config_paths,
-                 "kew TOML configuration to run (repeatable: one column each; none: the default configuration)");
+                 "kew TOML configuration to run (repeatable: one column each; none: the default configuration)")
+      ->allow_extra_args(false);  // one file per --config: the rest are recordings
   app.add_option("--alerts", options.alert_paths,
                  "score this alert log (JSON lines of kew-replay or kewd) as a column of its own (repeatable); "
                  "scored with the first configuration's look-ahead and confirm")
+      ->allow_extra_args(false)
       ->check(CLI::ExistingFile);
   app.add_flag("--sort", options.sort, "replay in time order (stable), as kew-replay --sort");
   app.add_flag("--json", options.json, "print one JSON object instead of the table");
