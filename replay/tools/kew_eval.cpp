@@ -1,0 +1,597 @@
+// kew-eval (design §2.6, §5.6): runs the pipeline over recordings as kew-replay does,
+// once per configuration, or reads alert logs, and scores every alert in hindsight
+// against the truth of the recording itself (kew/replay/truth.hpp, evaluation.hpp).
+// Prints a table with one column per configuration or log, --json, or --list.
+// The rules are in replay/README.md ("kew-eval").
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "kew/config/shared_config.hpp"
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/encoders/alert_json_reader.hpp"
+#include "kew/protocol/version.hpp"
+#include "kew/replay/evaluation.hpp"
+#include "kew/replay/recording_reader.hpp"
+#include "kew/replay/truth.hpp"
+
+namespace {
+
+using kew::replay::AlertSpan;
+using kew::replay::Evaluation;
+using kew::replay::EvaluationFigures;
+using kew::replay::Truth;
+
+constexpr int kUsageError = 64;  // EX_USAGE, as kew-replay
+constexpr int kInputError = 1;   // an alert log cannot be read
+
+struct Options {
+  std::string format = "auto";
+  std::vector<std::string> config_paths;
+  std::vector<std::string> alert_paths;
+  bool sort = false;
+  bool json = false;
+  bool list = false;
+  double h_nm = 5.0;
+  double v_ft = 1000.0;
+  std::vector<std::string> files;
+};
+
+/// One column of the output: a pipeline run with one configuration, or an alert log.
+struct Column {
+  std::string name;
+  bool from_log = false;
+  std::string path;  // the configuration or log; empty for the default configuration
+  kew::replay::ScoringParameters parameters;
+  std::optional<std::uint64_t> records;            // records given to the pipeline
+  std::optional<std::uint64_t> pipeline_rejected;  // of those, refused by the pipeline
+  std::vector<AlertSpan> alerts;
+  Evaluation evaluation;
+};
+
+/// The records of every file, merged in time order as kew-replay merges them, then with
+/// `sort` stable-sorted by time as kew-replay --sort does.
+std::vector<kew::TrackReport> read_records(const Options& options, const kew::protocol::DecoderOptions& decoding,
+                                           bool report, std::uint64_t& rejected) {
+  const kew::protocol::Format format = *kew::protocol::kFormatNames.parse(options.format);
+  kew::replay::MergedRecordings recordings;
+  for (const std::string& file : options.files) {
+    auto reader = std::make_unique<kew::replay::RecordingReader>(file, format, decoding);
+    if (report)
+      reader->rejections().set_reporter([file](std::string_view reason, std::string_view message) {
+        std::fprintf(stderr, "kew-eval: %s: rejected (%.*s) %.*s\n", file.c_str(), static_cast<int>(reason.size()),
+                     reason.data(), static_cast<int>(message.size()), message.data());
+      });
+    recordings.add(std::move(reader));
+  }
+  std::vector<kew::TrackReport> records;
+  kew::TrackReport report_buffer;
+  while (recordings.next(report_buffer)) records.push_back(report_buffer);
+  if (options.sort)
+    std::stable_sort(records.begin(), records.end(),
+                     [](const kew::TrackReport& a, const kew::TrackReport& b) { return a.t < b.t; });
+  rejected = recordings.rejections().total();
+  return records;
+}
+
+/// Runs one pipeline over `records` in their order, as kew-replay does offline (no End
+/// events for alerts still active at the end), and collects its alerts.
+void run_pipeline(const kew::config::SharedConfig& config, const std::vector<kew::TrackReport>& records,
+                  Column& column) {
+  kew::Pipeline pipeline(config.pipeline);
+  kew::replay::AlertCollector collector;
+  pipeline.set_alert_sink([&](const kew::AlertEvent& e) { collector.add(e); });
+  for (const kew::TrackReport& r : records) pipeline.process(r);
+  column.records = pipeline.statistics().records;
+  column.pipeline_rejected = pipeline.rejections().total();
+  column.alerts = collector.alerts();
+}
+
+/// Reads the ALERT lines of an alert log (kew-replay's output, kewd's alert log); other
+/// objects (VERSION, ACK) are skipped. False, with `error`, when the file cannot be read
+/// or a line is not a stream object.
+bool read_alert_log(const std::string& path, Column& column, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot read " + path;
+    return false;
+  }
+  kew::protocol::AlertStreamReader reader;
+  kew::replay::AlertCollector collector;
+  std::string line;
+  for (std::uint64_t number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line == "\r") continue;
+    if (!reader.read(line)) {
+      error = fmt::format("{} line {}: {}", path, number, reader.error());
+      return false;
+    }
+    if (reader.object_class() != kew::protocol::StreamObjectClass::Alert) continue;
+    kew::AlertEvent event = reader.alert();
+    // t_open is optional in the stream; without it a New event opened the alert.
+    if (event.state == kew::AlertState::New && event.opened_t == 0.0) event.opened_t = event.t;
+    collector.add(event);
+  }
+  column.alerts = collector.alerts();
+  return true;
+}
+
+// --- formatting ---------------------------------------------------------------------
+
+/// Fixed decimals, never "-0".
+std::string fixed(double value, int decimals) {
+  std::string s = fmt::format("{:.{}f}", value, decimals);
+  if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
+}
+
+/// UTC ISO-8601 of a data time (UTC s), with milliseconds when `millis`.
+std::string utc(double t, bool millis) {
+  if (!std::isfinite(t)) return "null";
+  double whole = std::floor(t);
+  long ms = millis ? std::lround((t - whole) * 1000.0) : 0;
+  if (ms == 1000) {
+    whole += 1.0;
+    ms = 0;
+  }
+  using namespace std::chrono;
+  const sys_seconds s{seconds{static_cast<long long>(whole)}};
+  const sys_days day = floor<days>(s);
+  const year_month_day ymd{day};
+  const hh_mm_ss<seconds> hms{s - day};
+  std::string out = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}", static_cast<int>(ymd.year()),
+                                static_cast<unsigned>(ymd.month()), static_cast<unsigned>(ymd.day()),
+                                hms.hours().count(), hms.minutes().count(), hms.seconds().count());
+  if (millis) out += fmt::format(".{:03}", ms);
+  return out + "Z";
+}
+
+std::string party(const std::string& source, const std::string& id, const std::string& callsign) {
+  std::string out = source.empty() ? id : source + ":" + id;
+  if (!callsign.empty()) out += " (" + callsign + ")";
+  return out;
+}
+
+std::string track_party(const Truth& truth, kew::replay::TruthTrackId t) {
+  const kew::replay::TruthTrack& track = truth.track(t);
+  return party(track.source, track.id, track.callsign);
+}
+
+std::string class_name(const kew::replay::ScoredAlert& s) {
+  std::string out(kew::replay::kAlertClassNames.name(s.cls));
+  if (s.reason != kew::replay::IneligibleReason::None)
+    out += "/" + std::string(kew::replay::kIneligibleReasonNames.name(s.reason));
+  return out;
+}
+
+std::string json_string(std::string_view text) {
+  std::string out;
+  kew::protocol::append_json_string(out, text);
+  return out;
+}
+
+template <class T>
+std::string number_or_na(const std::optional<T>& value, int decimals, bool json) {
+  if (!value) return json ? "\"n/a\"" : "n/a";
+  return fixed(*value, decimals);
+}
+
+// --- the table ----------------------------------------------------------------------
+
+struct Row {
+  std::string label;
+  std::vector<std::string> cells;
+};
+
+std::vector<Row> figure_rows(const std::vector<Column>& columns) {
+  std::vector<Row> rows;
+  const auto add = [&](std::string label, auto cell) {
+    Row row{std::move(label), {}};
+    for (const Column& c : columns) row.cells.push_back(cell(c, c.evaluation.figures));
+    rows.push_back(std::move(row));
+  };
+  const auto count = [](std::size_t n) { return std::to_string(n); };
+  const auto optional_count = [](const std::optional<std::uint64_t>& n) {
+    return n ? std::to_string(*n) : std::string("-");
+  };
+  add("look-ahead T (s)",
+      [](const Column& c, const EvaluationFigures&) { return fixed(c.parameters.lookahead_s, 0); });
+  add("confirm", [](const Column& c, const EvaluationFigures&) { return std::to_string(c.parameters.confirm); });
+  add("records run", [&](const Column& c, const EvaluationFigures&) { return optional_count(c.records); });
+  add("  refused by pipeline",
+      [&](const Column& c, const EvaluationFigures&) { return optional_count(c.pipeline_rejected); });
+  add("flight hours", [](const Column&, const EvaluationFigures& f) { return fixed(f.flight_hours, 2); });
+  add("alerts", [&](const Column&, const EvaluationFigures& f) { return count(f.alerts); });
+  add("alerts / 100 flight h",
+      [](const Column&, const EvaluationFigures& f) { return number_or_na(f.alerts_per_100_flight_hours, 1, false); });
+  add("hit", [&](const Column&, const EvaluationFigures& f) { return count(f.hits); });
+  add("close call", [&](const Column&, const EvaluationFigures& f) { return count(f.close_calls); });
+  add("nuisance", [&](const Column&, const EvaluationFigures& f) { return count(f.nuisances); });
+  add("ineligible", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible); });
+  add("  one aircraft", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_one_aircraft); });
+  add("  not airborne", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_not_airborne); });
+  add("  no truth", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_no_truth); });
+  add("undesirable", [](const Column&, const EvaluationFigures& f) {
+    return f.undesirable_share ? fixed(100.0 * *f.undesirable_share, 1) + " %" : std::string("n/a");
+  });
+  add("loss events", [&](const Column&, const EvaluationFigures& f) { return count(f.loss_events); });
+  add("detected", [&](const Column&, const EvaluationFigures& f) { return count(f.detected); });
+  add("missed", [&](const Column&, const EvaluationFigures& f) { return count(f.missed); });
+  add("unwarnable", [&](const Column&, const EvaluationFigures& f) { return count(f.unwarnable); });
+  const auto warning = [](double kew::replay::WarningTimes::*field) {
+    return [field](const Column&, const EvaluationFigures& f) {
+      return f.warning ? fixed((*f.warning).*field, 1) : std::string("n/a");
+    };
+  };
+  add("warning min (s)", warning(&kew::replay::WarningTimes::min));
+  add("warning p10 (s)", warning(&kew::replay::WarningTimes::p10));
+  add("warning p50 (s)", warning(&kew::replay::WarningTimes::p50));
+  add("warning p90 (s)", warning(&kew::replay::WarningTimes::p90));
+  add("warning max (s)", warning(&kew::replay::WarningTimes::max));
+  return rows;
+}
+
+void print_table(const Options& options, const Truth& truth, const std::vector<Column>& columns) {
+  const kew::replay::TruthFigures& t = truth.figures();
+  const kew::replay::SeparationStandard& standard = truth.standard();
+  std::string out = "truth\n";
+  for (const std::string& file : options.files) out += fmt::format("  {:<14}{}\n", "recording", file);
+  out += fmt::format("  {:<14}{} ({} refused)\n", "records", t.records, t.records_refused);
+  out += fmt::format("  {:<14}{} tracks, {} aircraft ({} merged by address, {} by proximity)\n", "tracks", t.tracks,
+                     t.aircraft, t.merged_by_address, t.merged_by_proximity);
+  out += fmt::format("  {:<14}{}\n", "flight hours", fixed(t.flight_hours(), 2));
+  out += fmt::format("  {:<14}below {} NM and {} ft (S_v {} ft less the altimetry tolerance)\n", "loss",
+                     fixed(standard.horizontal_m / kew::replay::truth_rules::kNauticalMile_m, 2),
+                     fixed(standard.vertical_loss_ft(), 0), fixed(standard.vertical_ft, 0));
+  out += fmt::format("  {:<14}{}\n\n", "loss events", truth.loss_events().size());
+
+  const std::vector<Row> rows = figure_rows(columns);
+  std::size_t label_width = 0;
+  for (const Row& r : rows) label_width = std::max(label_width, r.label.size());
+  std::vector<std::size_t> widths;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    std::size_t w = columns[c].name.size();
+    for (const Row& r : rows) w = std::max(w, r.cells[c].size());
+    widths.push_back(w);
+  }
+  out += fmt::format("{:<{}}", "", label_width);
+  for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", columns[c].name, widths[c]);
+  out += '\n';
+  for (const Row& r : rows) {
+    out += fmt::format("{:<{}}", r.label, label_width);
+    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", r.cells[c], widths[c]);
+    out += '\n';
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
+
+// --- the list -----------------------------------------------------------------------
+
+void print_list(const Truth& truth, const std::vector<Column>& columns) {
+  std::string out;
+  for (const Column& c : columns) {
+    for (std::size_t i = 0; i < c.alerts.size(); ++i) {
+      const AlertSpan& a = c.alerts[i];
+      const kew::replay::ScoredAlert& s = c.evaluation.alerts[i];
+      out += fmt::format("[{}] alert {} {} opened {} {} {} x {} max {}", c.name, a.id, class_name(s),
+                         utc(a.opened_t, true),
+                         a.ended_t ? "ended " + utc(*a.ended_t, true) : std::string("active at end"),
+                         party(a.a_source, a.a_id, a.a_callsign), party(a.b_source, a.b_id, a.b_callsign),
+                         kew::to_string(a.max_severity));
+      if (s.loss_s) out += " loss " + utc(static_cast<double>(*s.loss_s), false);
+      out += '\n';
+    }
+    const auto& losses = truth.loss_events();
+    for (std::size_t k = 0; k < losses.size(); ++k) {
+      const kew::replay::LossEvent& l = losses[k];
+      const kew::replay::ScoredLoss& s = c.evaluation.losses[k];
+      out += fmt::format("[{}] loss {} to {} {} {} x {} min {} NM {} ft eligible for {} s", c.name,
+                         utc(static_cast<double>(l.start_s), false), utc(static_cast<double>(l.end_s), false),
+                         kew::replay::kLossOutcomeNames.name(s.outcome), track_party(truth, l.track_a),
+                         track_party(truth, l.track_b),
+                         fixed(l.min_horizontal_m / kew::replay::truth_rules::kNauticalMile_m, 2),
+                         fixed(l.vertical_at_min_ft, 0), s.eligible_for_s);
+      if (s.alert) out += fmt::format(" warning {} s alert {}", fixed(*s.warning_s, 3), c.alerts[*s.alert].id);
+      out += '\n';
+    }
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
+
+// --- JSON ---------------------------------------------------------------------------
+
+/// Appends one JSON object member by member, in call order (so the bytes are fixed).
+class JsonObject {
+ public:
+  explicit JsonObject(std::string& out) : out_(out) { out_ += '{'; }
+  /// `json` must already be a JSON value.
+  JsonObject& raw(std::string_view key, std::string_view json) {
+    if (!first_) out_ += ',';
+    first_ = false;
+    out_ += '"';
+    out_ += key;
+    out_ += "\":";
+    out_ += json;
+    return *this;
+  }
+  JsonObject& text(std::string_view key, std::string_view value) { return raw(key, json_string(value)); }
+  JsonObject& count(std::string_view key, std::uint64_t value) { return raw(key, std::to_string(value)); }
+  JsonObject& number(std::string_view key, double value, int decimals) { return raw(key, fixed(value, decimals)); }
+  /// A number, or the string "n/a" when empty.
+  JsonObject& number_or_na(std::string_view key, const std::optional<double>& value, int decimals) {
+    return raw(key, ::number_or_na(value, decimals, true));
+  }
+  JsonObject& count_or_null(std::string_view key, const std::optional<std::uint64_t>& value) {
+    return raw(key, value ? std::to_string(*value) : "null");
+  }
+  void close() { out_ += '}'; }
+
+ private:
+  std::string& out_;
+  bool first_ = true;
+};
+
+std::string json_party(const std::string& source, const std::string& id, const std::string& callsign) {
+  std::string out;
+  JsonObject(out).text("src", source).text("id", id).text("cs", callsign).close();
+  return out;
+}
+
+std::string json_alert(const AlertSpan& a, const kew::replay::ScoredAlert& s) {
+  std::string out;
+  JsonObject o(out);
+  o.text("id", a.id).text("class", kew::replay::kAlertClassNames.name(s.cls));
+  if (s.reason == kew::replay::IneligibleReason::None)
+    o.raw("reason", "null");
+  else
+    o.text("reason", kew::replay::kIneligibleReasonNames.name(s.reason));
+  o.number("t_open", a.opened_t, 3).text("opened", utc(a.opened_t, true));
+  if (a.ended_t)
+    o.number("t_end", *a.ended_t, 3).text("ended", utc(*a.ended_t, true));
+  else
+    o.raw("t_end", "null").raw("ended", "null");
+  o.raw("a", json_party(a.a_source, a.a_id, a.a_callsign)).raw("b", json_party(a.b_source, a.b_id, a.b_callsign));
+  o.text("max_severity", kew::to_string(a.max_severity));
+  o.raw("loss_t", s.loss_s ? std::to_string(*s.loss_s) : "null");
+  o.close();
+  return out;
+}
+
+std::string json_loss(const Truth& truth, const Column& c, const kew::replay::LossEvent& l,
+                      const kew::replay::ScoredLoss& s) {
+  const kew::replay::TruthTrack& ta = truth.track(l.track_a);
+  const kew::replay::TruthTrack& tb = truth.track(l.track_b);
+  std::string out;
+  JsonObject o(out);
+  o.raw("start_t", std::to_string(l.start_s)).text("start", utc(static_cast<double>(l.start_s), false));
+  o.raw("end_t", std::to_string(l.end_s)).raw("loss_seconds", std::to_string(l.loss_seconds));
+  o.text("outcome", kew::replay::kLossOutcomeNames.name(s.outcome));
+  o.raw("a", json_party(ta.source, ta.id, ta.callsign)).raw("b", json_party(tb.source, tb.id, tb.callsign));
+  o.number("min_h_m", l.min_horizontal_m, 1).number("v_at_min_ft", l.vertical_at_min_ft, 0);
+  o.raw("eligible_for_s", std::to_string(s.eligible_for_s));
+  o.raw("warning_s", s.warning_s ? fixed(*s.warning_s, 3) : "null");
+  o.raw("alert", s.alert ? json_string(c.alerts[*s.alert].id) : "null");
+  o.close();
+  return out;
+}
+
+std::string json_column(const Truth& truth, const Column& c, bool list) {
+  const EvaluationFigures& f = c.evaluation.figures;
+  std::string out;
+  JsonObject o(out);
+  o.text("name", c.name).text("kind", c.from_log ? "alerts" : "config");
+  if (c.path.empty())
+    o.raw("path", "null");
+  else
+    o.text("path", c.path);
+  o.number("lookahead_s", c.parameters.lookahead_s, 3);
+  o.count("confirm", static_cast<std::uint64_t>(c.parameters.confirm));
+  o.count_or_null("records", c.records).count_or_null("pipeline_rejected", c.pipeline_rejected);
+  o.number("flight_hours", f.flight_hours, 3).count("alerts", f.alerts);
+  o.number_or_na("alerts_per_100_flight_hours", f.alerts_per_100_flight_hours, 3);
+  o.count("hit", f.hits).count("close_call", f.close_calls).count("nuisance", f.nuisances);
+  o.count("ineligible", f.ineligible);
+  std::string reasons;
+  JsonObject(reasons)
+      .count("one_aircraft", f.ineligible_one_aircraft)
+      .count("not_airborne", f.ineligible_not_airborne)
+      .count("no_truth", f.ineligible_no_truth)
+      .close();
+  o.raw("ineligible_reasons", reasons);
+  o.number_or_na("undesirable_share", f.undesirable_share, 4);
+  o.count("loss_events", f.loss_events).count("detected", f.detected).count("missed", f.missed);
+  o.count("unwarnable", f.unwarnable);
+  if (f.warning) {
+    std::string warning;
+    JsonObject(warning)
+        .number("min", f.warning->min, 3)
+        .number("p10", f.warning->p10, 3)
+        .number("p50", f.warning->p50, 3)
+        .number("p90", f.warning->p90, 3)
+        .number("max", f.warning->max, 3)
+        .close();
+    o.raw("warning_s", warning);
+  } else {
+    o.raw("warning_s", "\"n/a\"");
+  }
+  if (list) {
+    std::string alerts = "[";
+    for (std::size_t i = 0; i < c.alerts.size(); ++i)
+      alerts += (i ? "," : "") + json_alert(c.alerts[i], c.evaluation.alerts[i]);
+    o.raw("alert_list", alerts + "]");
+    std::string losses = "[";
+    const auto& events = truth.loss_events();
+    for (std::size_t k = 0; k < events.size(); ++k)
+      losses += (k ? "," : "") + json_loss(truth, c, events[k], c.evaluation.losses[k]);
+    o.raw("loss_list", losses + "]");
+  }
+  o.close();
+  return out;
+}
+
+void print_json(const Options& options, const Truth& truth, const std::vector<Column>& columns) {
+  const kew::replay::TruthFigures& t = truth.figures();
+  std::string files = "[";
+  for (std::size_t i = 0; i < options.files.size(); ++i) files += (i ? "," : "") + json_string(options.files[i]);
+  std::string truth_json;
+  JsonObject(truth_json)
+      .raw("files", files + "]")
+      .number("h_nm", options.h_nm, 3)
+      .number("v_ft", options.v_ft, 1)
+      .count("records", t.records)
+      .count("records_refused", t.records_refused)
+      .count("tracks", t.tracks)
+      .count("aircraft", t.aircraft)
+      .count("merged_by_address", t.merged_by_address)
+      .count("merged_by_proximity", t.merged_by_proximity)
+      .number("flight_hours", t.flight_hours(), 3)
+      .count("loss_events", truth.loss_events().size())
+      .close();
+  std::string runs = "[";
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    runs += (c ? "," : "") + json_column(truth, columns[c], options.list);
+  std::string out;
+  JsonObject(out).raw("truth", truth_json).raw("runs", runs + "]").close();
+  out += '\n';
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
+
+/// Column names: the configuration's file stem or the log's file name ("default" for
+/// the built-in configuration); a name taken twice becomes the path as given.
+void name_columns(std::vector<Column>& columns) {
+  for (Column& c : columns) {
+    if (c.path.empty())
+      c.name = "default";
+    else
+      c.name = c.from_log ? std::filesystem::path(c.path).filename().string()
+                          : std::filesystem::path(c.path).stem().string();
+  }
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    bool taken = false;
+    for (std::size_t j = 0; j < columns.size(); ++j) taken |= j != i && columns[j].name == columns[i].name;
+    if (taken && !columns[i].path.empty()) columns[i].name = columns[i].path;
+  }
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (!seen.insert(columns[i].name).second) columns[i].name += fmt::format("#{}", i + 1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{
+      "kew-eval: score kew's alerts on recordings in hindsight (hits, close calls, nuisances, ineligible; "
+      "detected, missed and unwarnable losses; warning times)"};
+  app.set_version_flag("--version", std::string("kew-eval ") + std::string(kew::protocol::release()));
+  const auto file_formats = {kew::protocol::Format::AsterixDatagram};
+  app.add_option("--format", options.format, "input format: " + kew::protocol::kFormatNames.list(file_formats))
+      ->default_val("auto")
+      ->check(CLI::IsMember(kew::protocol::kFormatNames.names(file_formats)));
+  app.add_option("-c,--config", options.config_paths,
+                 "kew TOML configuration to run (repeatable: one column each; none: the default configuration)")
+      ->allow_extra_args(false);  // one file per --config: the rest are recordings
+  app.add_option("--alerts", options.alert_paths,
+                 "score this alert log (JSON lines of kew-replay or kewd) as a column of its own (repeatable); "
+                 "scored with the first configuration's look-ahead and confirm")
+      ->allow_extra_args(false)
+      ->check(CLI::ExistingFile);
+  app.add_flag("--sort", options.sort, "replay in time order (stable), as kew-replay --sort");
+  app.add_flag("--json", options.json, "print one JSON object instead of the table");
+  app.add_flag("--list", options.list, "list every alert and every loss with its class (in the JSON with --json)");
+  app.add_option("--h-nm", options.h_nm, "horizontal separation minimum of the truth, NM")
+      ->default_val(5.0)
+      ->check(CLI::Range(0.001, 100.0));
+  app.add_option("--v-ft", options.v_ft,
+                 "vertical separation minimum of the truth, ft (a loss is below it less 200 ft)")
+      ->default_val(1000.0)
+      ->check(CLI::Range(201.0, 10000.0));
+  app.add_option("files", options.files, "recordings (merged in time order)")->required()->check(CLI::ExistingFile);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kUsageError;
+  }
+
+  // Configurations to run: those given, else the default one unless only logs are scored.
+  std::vector<kew::config::SharedConfig> configs;
+  std::vector<Column> columns;
+  try {
+    for (const std::string& path : options.config_paths) {
+      configs.push_back(kew::config::load_shared_config(path));
+      columns.push_back(Column{});
+      columns.back().path = path;
+    }
+  } catch (const kew::config::ConfigError& e) {
+    std::fprintf(stderr, "kew-eval: %s\n", e.what());
+    return kUsageError;
+  }
+  const bool run_default = configs.empty() && options.alert_paths.empty();
+  if (configs.empty()) configs.emplace_back();
+  if (run_default) columns.push_back(Column{});
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    columns[i].parameters = {configs[i].pipeline.minima.lookahead_s, configs[i].pipeline.alerts.confirm};
+  }
+  for (const std::string& path : options.alert_paths) {
+    Column c;
+    c.from_log = true;
+    c.path = path;
+    c.parameters = {configs.front().pipeline.minima.lookahead_s, configs.front().pipeline.alerts.confirm};
+    columns.push_back(std::move(c));
+  }
+  name_columns(columns);
+
+  // The truth comes from the first configuration's decoding; each run decodes with its
+  // own configuration, as kew-replay with that file would.
+  std::uint64_t decode_rejected = 0;
+  const std::vector<kew::TrackReport> records = read_records(options, configs.front().decoding, true, decode_rejected);
+  kew::replay::SeparationStandard standard;
+  standard.horizontal_m = options.h_nm * kew::replay::truth_rules::kNauticalMile_m;
+  standard.vertical_ft = options.v_ft;
+  const auto start = std::chrono::steady_clock::now();
+  const Truth truth(records, standard);
+  const double truth_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    Column& c = columns[i];
+    if (c.from_log) {
+      std::string error;
+      if (!read_alert_log(c.path, c, error)) {
+        std::fprintf(stderr, "kew-eval: %s\n", error.c_str());
+        return kInputError;
+      }
+    } else if (i == 0) {
+      run_pipeline(configs[i], records, c);
+    } else {
+      std::uint64_t ignored = 0;
+      run_pipeline(configs[i], read_records(options, configs[i].decoding, false, ignored), c);
+    }
+    c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
+  }
+  std::fprintf(stderr,
+               "kew-eval: %zu records decoded (%llu rejected by the decoders), %zu tracks, %.2f flight hours, "
+               "%zu loss events; truth in %.2f s\n",
+               records.size(), static_cast<unsigned long long>(decode_rejected), truth.figures().tracks,
+               truth.figures().flight_hours(), truth.loss_events().size(), truth_s);
+
+  if (options.json) {
+    print_json(options, truth, columns);
+  } else {
+    if (options.list) print_list(truth, columns);
+    print_table(options, truth, columns);
+  }
+  std::fflush(stdout);
+  return 0;
+}
