@@ -89,7 +89,10 @@ void clear_report(TrackReport& report) {
   report.trk_deg.reset();
   report.vr_fpm.reset();
   report.mode3a.reset();
+  report.address.reset();
   report.on_ground = false;
+  report.coasting = false;
+  report.track_end = false;
 }
 
 LineResult check_report(TrackReport& report) {
