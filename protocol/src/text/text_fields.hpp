@@ -53,6 +53,9 @@ inline std::optional<std::uint32_t> icao_address(std::uint32_t key) {
   return key;
 }
 
+/// Exactly 6 hex digits, either case, nothing around them (canonical NDJSON "addr").
+bool parse_icao_address(std::string_view text, std::uint32_t& address);
+
 /// A Mode 3/A code as exactly 4 octal digits ("7700" → 0xFC0), surrounding blanks allowed.
 bool parse_mode3a(std::string_view text, std::uint16_t& code);
 
