@@ -330,7 +330,12 @@ void TrafficGenerator::Impl::fill(const Slot& slot, double t, const Measurement&
   }
   write_callsign(address, out.callsign);
   out.mode3a.reset();
+  // Cleared, not set (`out` may be a reused report): every generated aircraft is one
+  // track of one source, so an address attribute would tell the rules nothing more.
+  out.address.reset();
   out.on_ground = false;
+  out.coasting = false;
+  out.track_end = false;
 }
 
 // ------------------------------------------------------------------------ facade

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "kew/protocol/asterix/asterix_decoder.hpp"
@@ -172,6 +174,13 @@ void expect_sample(const TrackReport& r, const std::map<std::string, std::string
   }
   EXPECT_EQ(r.callsign, sample.at("cs") == "-" ? "" : sample.at("cs"));
   EXPECT_EQ(r.on_ground, sample.at("gnd") == "1");
+  if (sample.count("addr")) {
+    EXPECT_EQ(r.address, std::optional<std::uint32_t>(std::stoul(sample.at("addr"), nullptr, 16)));
+  } else {
+    EXPECT_FALSE(r.address.has_value());
+  }
+  EXPECT_EQ(r.coasting, sample.at("coast") == "1");
+  EXPECT_EQ(r.track_end, sample.at("end") == "1");
 }
 
 /// Decodes `data` with the framing and radars of expected/<name>.txt (every radar at
@@ -189,14 +198,23 @@ std::vector<TrackReport> expect_golden(const std::string& name, const std::strin
 
   EXPECT_EQ(reports.size(), expected.number("reports"));
   const test::Summary summary = test::summarize(reports);
-  std::set<std::string> keys, addresses;
+  std::set<std::string> keys;
+  std::set<std::uint32_t> addresses;
+  std::size_t coasting = 0, track_ends = 0;
   for (const TrackReport& r : reports) {
     keys.insert(r.source + "/" + r.id);
-    if (r.id.size() == 6) addresses.insert(r.id);
+    if (r.address) addresses.insert(*r.address);
+    coasting += r.coasting ? 1 : 0;
+    track_ends += r.track_end ? 1 : 0;
   }
   EXPECT_EQ(keys.size(), expected.number("distinct_ids"));
   if (expected.values.count("distinct_addresses")) {
     EXPECT_EQ(addresses.size(), expected.number("distinct_addresses"));
+  }
+  // tshark's I062/080 CST, TSE and I048/170 TRE: an independent check of kew's bit positions.
+  if (expected.values.count("coasting")) {
+    EXPECT_EQ(coasting, expected.number("coasting"));
+    EXPECT_EQ(track_ends, expected.number("track_ends"));
   }
   if (!reports.empty()) {
     EXPECT_DOUBLE_EQ(summary.t_min, expected.number("t_first"));
@@ -289,6 +307,7 @@ TEST(AsterixCat021, Edition026DecodedByHand) {
   const TrackReport& r = reports[0];
   EXPECT_EQ(r.source, "cat021/0.5");
   EXPECT_EQ(r.id, "496C2E");
+  EXPECT_EQ(r.address, std::optional<std::uint32_t>(0x496C2E));
   EXPECT_DOUBLE_EQ(r.t, 1845566 / 128.0);
   EXPECT_DOUBLE_EQ(r.lat_deg, 0x006e4cc9 * 180.0 / 33554432.0);
   EXPECT_DOUBLE_EQ(r.lon_deg, -1702186 * 180.0 / 33554432.0);
@@ -309,10 +328,10 @@ TEST(AsterixSharedRecordings, UpcBarcelonaCat048Hour) {
   const auto reports = expect_golden("shared/upc-bcn-cat048", read_file(path), kBarcelonaSite);
   // The MANIFEST's figures: 44,085 records (expect_golden: every one reported or rejected
   // for a counted reason), 177 Mode S addresses, 60 minutes.
-  std::set<std::string> addresses;
+  std::set<std::uint32_t> addresses;
   double t_min = 1e300, t_max = -1e300, farthest_m = 0;
   for (const TrackReport& r : reports) {
-    if (r.id.size() == 6) addresses.insert(r.id);
+    if (r.address) addresses.insert(*r.address);
     t_min = std::min(t_min, r.t);
     t_max = std::max(t_max, r.t);
     farthest_m = std::max(farthest_m, distance_m(kBarcelonaSite.lat_deg, kBarcelonaSite.lon_deg,

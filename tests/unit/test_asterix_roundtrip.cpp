@@ -119,6 +119,7 @@ struct Cat062Truth {
   std::uint16_t track_number = 0;
   std::optional<std::uint16_t> mode3a;
   std::string callsign;
+  bool coasting = false, track_end = false;  // I062/080 CST, TSE
 };
 
 std::string random_callsign(std::mt19937& random) {
@@ -135,18 +136,31 @@ Bytes random_bytes(std::mt19937& random, std::size_t n) {
   return out;
 }
 
-/// Random FX-chained item of 1-4 parts of `part_bytes` bytes; the masks clear bits of the
-/// first byte of parts 1 and 2 (flags that would make the decoder refuse the record).
-Bytes random_extended(std::mt19937& random, std::size_t part_bytes, std::uint8_t first_mask = 0xFF,
-                      std::uint8_t second_mask = 0xFF) {
+/// Random FX-chained item of 1-4 parts of `part_bytes` bytes.
+Bytes random_extended(std::mt19937& random, std::size_t part_bytes) {
   Bytes out;
   const std::size_t parts = 1 + random() % 4;
   for (std::size_t p = 0; p < parts; ++p) {
     Bytes part = random_bytes(random, part_bytes);
-    if (p == 0) part[0] &= first_mask;
-    if (p == 1) part[0] &= second_mask;
     part.back() = static_cast<std::uint8_t>((part.back() & 0xFE) | (p + 1 < parts ? 1 : 0));
     out.insert(out.end(), part.begin(), part.end());
+  }
+  return out;
+}
+
+/// I062/080 of 1-6 random octets with CNF and SIM clear (the decoder would refuse the
+/// record) and TSE (octet 2, bit 7) and CST (octet 4, bit 8) as `truth` says; octets are
+/// added when a flag to be set needs them.
+Bytes cat062_track_status(std::mt19937& random, const Cat062Truth& truth) {
+  std::size_t octets = 1 + random() % 6;
+  if (truth.track_end) octets = std::max<std::size_t>(octets, 2);
+  if (truth.coasting) octets = std::max<std::size_t>(octets, 4);
+  Bytes out = random_bytes(random, octets);
+  out[0] &= 0xFD;
+  if (octets >= 2) out[1] = static_cast<std::uint8_t>((out[1] & 0x3F) | (truth.track_end ? 0x40 : 0));
+  if (octets >= 4) out[3] = static_cast<std::uint8_t>((out[3] & 0x7F) | (truth.coasting ? 0x80 : 0));
+  for (std::size_t i = 0; i < octets; ++i) {
+    out[i] = static_cast<std::uint8_t>((out[i] & 0xFE) | (i + 1 < octets ? 1 : 0));
   }
   return out;
 }
@@ -252,7 +266,7 @@ Bytes random_cat062_record(std::mt19937& random, const Cat062Truth& truth) {
   if (random() % 2 != 0) w.set(3, random_bytes(random, 1));                        // 015
   if (random() % 2 != 0) w.set(6, random_bytes(random, 6));                        // 100
   if (random() % 2 != 0) w.set(8, random_bytes(random, 2));                        // 210
-  if (random() % 2 != 0) w.set(kTrackStatus, random_extended(random, 1, 0xFD, 0x7F));  // 080: CNF, SIM = 0
+  if (truth.coasting || truth.track_end || random() % 2 != 0) w.set(kTrackStatus, cat062_track_status(random, truth));
   if (random() % 2 != 0) {                                                         // 290
     w.set(14, compound_item({{0, random_bytes(random, 1)}, {4, random_bytes(random, 2)},
                              {9, random_bytes(random, 1)}}));
@@ -291,18 +305,17 @@ Cat062Truth random_cat062_truth(std::mt19937& random, double tod_s) {
   t.track_number = static_cast<std::uint16_t>(random());
   if (random() % 2 != 0) t.mode3a = static_cast<std::uint16_t>(random() & 07777);
   if (random() % 4 != 0) t.callsign = random_callsign(random);
+  t.coasting = random() % 4 == 0;
+  t.track_end = random() % 8 == 0;
   return t;
 }
 
 void expect_matches(const TrackReport& r, const Cat062Truth& t) {
   EXPECT_EQ(r.source, "cat062/" + std::to_string(t.sac) + "." + std::to_string(t.sic));
-  if (t.address) {
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "%06X", *t.address);
-    EXPECT_EQ(r.id, hex);
-  } else {
-    EXPECT_EQ(r.id, std::to_string(t.track_number));
-  }
+  EXPECT_EQ(r.id, std::to_string(t.track_number));
+  EXPECT_EQ(r.address, t.address);
+  EXPECT_EQ(r.coasting, t.coasting);
+  EXPECT_EQ(r.track_end, t.track_end);
   EXPECT_NEAR(r.t, t.tod_s, 1.0 / 256 + 1e-9);
   EXPECT_NEAR(r.lat_deg, t.lat, 90.0 / 33554432.0 + 1e-12);
   EXPECT_NEAR(r.lon_deg, t.lon, 90.0 / 33554432.0 + 1e-12);
@@ -375,6 +388,99 @@ TEST(AsterixRoundTrip, Cat062RecordWithoutPositionIsCounted) {
   expect_matches(reports[0], truth);
   EXPECT_EQ(rejections.count("asterix_missing_position"), 1U);
   EXPECT_EQ(rejections.count("cat062_cartesian_only"), 1U);
+}
+
+/// A minimal CAT062 record of SAC/SIC 25/100 that the decoder accepts: time of day
+/// `tod_lsb` (1/128 s), a WGS-84 position, FL350, and the track number if given.
+RecordWriter minimal_cat062(std::uint32_t tod_lsb, std::optional<std::uint16_t> track_number) {
+  using namespace asterix::cat062;
+  RecordWriter w;
+  w.set(kDataSource, {25, 100});
+  Bytes tod;
+  put(tod, tod_lsb, 3);
+  w.set(kTimeOfTrack, tod);
+  Bytes position;
+  put(position, static_cast<std::uint32_t>(quantize(51.47, 180.0 / 33554432.0)), 4);
+  put(position, static_cast<std::uint32_t>(quantize(-0.45, 180.0 / 33554432.0)), 4);
+  w.set(kPositionWgs84, position);
+  w.set(kMeasuredFl, {0x05, 0x78});  // 1400 quarter FL = FL350
+  if (track_number) {
+    Bytes number;
+    put(number, *track_number, 2);
+    w.set(kTrackNumber, number);
+  }
+  return w;
+}
+
+TEST(AsterixCat062Identity, TrackNumberIsTheIdentityWhetherOrNotTheAddressIsSent) {
+  // An SDPS sends I062/380 ADR in some updates of a track and not in others. Keyed by
+  // the address when present, such a track became two kew tracks (the address, then the
+  // track number) that alerted against each other. The identity is SAC/SIC + I062/040;
+  // the address is an attribute of the update that carries it.
+  using namespace asterix::cat062;
+  RecordWriter with_address = minimal_cat062(128 * 1000, 2603);
+  with_address.set(kAircraftDerived, compound_item({{k380Address, {0x4C, 0xA1, 0x23}}}));
+  const RecordWriter without_address = minimal_cat062(128 * 1004, 2603);
+  Rejections rejections;
+  const auto reports =
+      decode_bytes(data_block(62, {with_address.bytes(), without_address.bytes()}), {}, &rejections);
+  EXPECT_EQ(rejections.total(), 0U);
+  ASSERT_EQ(reports.size(), 2U);
+  EXPECT_EQ(reports[0].source, "cat062/25.100");
+  EXPECT_EQ(reports[0].id, "2603");
+  EXPECT_EQ(reports[1].source, reports[0].source);
+  EXPECT_EQ(reports[1].id, reports[0].id);
+  EXPECT_EQ(reports[0].address, std::optional<std::uint32_t>(0x4CA123));
+  EXPECT_FALSE(reports[1].address.has_value());
+}
+
+TEST(AsterixCat062Identity, RecordWithoutTrackNumberIsRefusedEvenWithAnAddress) {
+  using namespace asterix::cat062;
+  RecordWriter address_only = minimal_cat062(128 * 1000, std::nullopt);
+  address_only.set(kAircraftDerived, compound_item({{k380Address, {0x4C, 0xA1, 0x23}}}));
+  Rejections rejections;
+  const auto reports = decode_bytes(
+      data_block(62, {address_only.bytes(), minimal_cat062(128 * 1001, std::nullopt).bytes(),
+                      minimal_cat062(128 * 1002, 7).bytes()}),
+      {}, &rejections);
+  ASSERT_EQ(reports.size(), 1U);
+  EXPECT_EQ(reports[0].id, "7");
+  EXPECT_EQ(rejections.count("asterix_missing_identity"), 2U);
+  EXPECT_EQ(rejections.total(), 2U);
+}
+
+TEST(AsterixCat062TrackStatus, CoastingIsCstOfTheFourthOctetAndTrackEndTseOfTheSecond) {
+  // I062/080, editions 1.16-1.21: MON SPI MRH SRC CNF FX | SIM TSE TSB FPC AFF STP KOS FX |
+  // AMA MD4 ME MI MD5 FX | CST PSR SSR MDS ADS SUC AAC FX | ...
+  using namespace asterix::cat062;
+  struct Case {
+    Bytes status;
+    bool coasting, track_end;
+  };
+  const std::vector<Case> cases = {
+      {{0x00}, false, false},
+      {{0x01, 0x40}, false, true},                    // TSE
+      {{0x01, 0x01, 0x01, 0x80}, true, false},        // CST
+      {{0x01, 0x41, 0x01, 0x80}, true, true},
+      {{0x01, 0x01, 0x80}, false, false},             // AMA, the first bit of octet 3
+      // Every other bit set (CNF and SIM would refuse the record): neither flag.
+      {{0xFD, 0x3F, 0xFF, 0x7F, 0xFE}, false, false},
+  };
+  std::vector<Bytes> records;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    RecordWriter w = minimal_cat062(128 * static_cast<std::uint32_t>(1000 + i), 1);
+    w.set(kTrackStatus, cases[i].status);
+    records.push_back(w.bytes());
+  }
+  Rejections rejections;
+  const auto reports = decode_bytes(data_block(62, records), {}, &rejections);
+  EXPECT_EQ(rejections.total(), 0U);
+  ASSERT_EQ(reports.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    EXPECT_EQ(reports[i].coasting, cases[i].coasting);
+    EXPECT_EQ(reports[i].track_end, cases[i].track_end);
+  }
 }
 
 TEST(AsterixRoundTrip, TimeOfDayRollsOverToTheNextDay) {
@@ -478,7 +584,87 @@ TEST(AsterixRoundTrip, RandomCat048PolarPlotsLandWhereTheyWereMeasured) {
     EXPECT_LT(error_m, tolerance_m);
     EXPECT_EQ(reports[0].alt_ft, fl * 100);
     EXPECT_EQ(reports[0].source, "cat048/25.7");
+    EXPECT_EQ(reports[0].address, std::optional<std::uint32_t>(0x4B1800 | static_cast<std::uint8_t>(trial)));
     if (HasFailure()) return;
+  }
+}
+
+/// A minimal CAT048 record of radar 25/7 that the decoder accepts (a plot at 50 NM, FL200),
+/// with the track number and address if given.
+RecordWriter minimal_cat048(std::optional<std::uint16_t> track_number,
+                            std::optional<std::uint32_t> address) {
+  using namespace asterix::cat048;
+  RecordWriter w;
+  w.set(kDataSource, {25, 7});
+  w.set(kTimeOfDay, {0x10, 0x00, 0x00});
+  w.set(kPolarPosition, {0x32, 0x00, 0x40, 0x00});  // RHO 50 NM, THETA 90 deg
+  w.set(kFlightLevel, {0x03, 0x20});                 // 800 quarter FL = FL200
+  if (track_number) {
+    Bytes number;
+    put(number, *track_number, 2);
+    w.set(kTrackNumber, number);
+  }
+  if (address) {
+    Bytes bytes;
+    put(bytes, *address, 3);
+    w.set(kAddress, bytes);
+  }
+  return w;
+}
+
+AsterixOptions radar_25_7() {
+  AsterixOptions options;
+  options.radars.push_back({25, 7, 47.45, 8.56, 500.0});
+  return options;
+}
+
+TEST(AsterixCat048Identity, TrackNumberIsTheIdentityAndTheAddressAnAttribute) {
+  // As in CAT062: a Mode S address that comes and goes within one radar track must not
+  // split it. Only a plot without a track number is keyed by its address.
+  Rejections rejections;
+  const auto reports = decode_bytes(
+      data_block(48, {minimal_cat048(0xF123, 0x4B1812).bytes(),  // spare bits above the 12
+                      minimal_cat048(0x0123, std::nullopt).bytes(),
+                      minimal_cat048(std::nullopt, 0x4B1812).bytes(),
+                      minimal_cat048(std::nullopt, std::nullopt).bytes()}),
+      radar_25_7(), &rejections);
+  ASSERT_EQ(reports.size(), 3U);
+  EXPECT_EQ(reports[0].id, "291");
+  EXPECT_EQ(reports[0].address, std::optional<std::uint32_t>(0x4B1812));
+  EXPECT_EQ(reports[1].id, "291");
+  EXPECT_FALSE(reports[1].address.has_value());
+  EXPECT_EQ(reports[2].id, "4B1812");
+  EXPECT_EQ(reports[2].address, std::optional<std::uint32_t>(0x4B1812));
+  for (const TrackReport& r : reports) EXPECT_EQ(r.source, "cat048/25.7");
+  EXPECT_EQ(rejections.count("asterix_missing_identity"), 1U);
+  EXPECT_EQ(rejections.total(), 1U);
+}
+
+TEST(AsterixCat048TrackStatus, TrackEndIsTreOfTheSecondOctetAndNothingIsCoasting) {
+  // I048/170: CNF RAD DOU MAH CDM FX | TRE GHO SUP TCC spare FX. No coasting bit exists.
+  struct Case {
+    Bytes status;
+    bool track_end;
+  };
+  const std::vector<Case> cases = {
+      {{0x00}, false},
+      {{0x01, 0x80}, true},
+      {{0x7F, 0x7E}, false},  // every other bit (CNF would refuse the record)
+  };
+  std::vector<Bytes> records;
+  for (const Case& c : cases) {
+    RecordWriter w = minimal_cat048(5, std::nullopt);
+    w.set(asterix::cat048::kTrackStatus, c.status);
+    records.push_back(w.bytes());
+  }
+  Rejections rejections;
+  const auto reports = decode_bytes(data_block(48, records), radar_25_7(), &rejections);
+  EXPECT_EQ(rejections.total(), 0U);
+  ASSERT_EQ(reports.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    EXPECT_EQ(reports[i].track_end, cases[i].track_end);
+    EXPECT_FALSE(reports[i].coasting);
   }
 }
 

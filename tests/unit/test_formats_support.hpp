@@ -103,7 +103,10 @@ inline void expect_same_report(const TrackReport& a, const TrackReport& b, std::
   EXPECT_EQ(bits(a.vr_fpm), bits(b.vr_fpm));
   EXPECT_EQ(a.callsign, b.callsign);
   EXPECT_EQ(a.mode3a, b.mode3a);
+  EXPECT_EQ(a.address, b.address);
   EXPECT_EQ(a.on_ground, b.on_ground);
+  EXPECT_EQ(a.coasting, b.coasting);
+  EXPECT_EQ(a.track_end, b.track_end);
 }
 
 inline void expect_same_reports(const std::vector<TrackReport>& a,

@@ -19,7 +19,8 @@ TEST(NdjsonDecoder, DecodesEveryMember) {
   const auto reports = decode_all(
       *decoder,
       R"({"t":1714400000.25,"id":"4CA123","lat":51.47,"lon":-0.45,"alt_ft":35000,"gs_kt":450,)"
-      R"("trk_deg":270.5,"vr_fpm":-64,"cs":"BAW123","src":"adsb","gnd":true,"sq":"7700"})"
+      R"("trk_deg":270.5,"vr_fpm":-64,"cs":"BAW123","src":"adsb","gnd":true,"sq":"7700",)"
+      R"("addr":"4ca12F","coast":true,"end":true})"
       "\n");
   ASSERT_EQ(reports.size(), 1u);
   const TrackReport& r = reports[0];
@@ -35,6 +36,9 @@ TEST(NdjsonDecoder, DecodesEveryMember) {
   EXPECT_EQ(r.source, "adsb");
   EXPECT_TRUE(r.on_ground);
   EXPECT_EQ(r.mode3a, std::optional<std::uint16_t>(07700));
+  EXPECT_EQ(r.address, std::optional<std::uint32_t>(0x4CA12F));  // hex digits of either case
+  EXPECT_TRUE(r.coasting);
+  EXPECT_TRUE(r.track_end);
   EXPECT_EQ(decoder->rejections().total(), 0u);
 }
 
@@ -44,7 +48,8 @@ TEST(NdjsonDecoder, OptionalMembersAbsentOrNullAndUnknownKeysIgnored) {
       *decoder,
       "{\"t\":1,\"id\":\"A\",\"lat\":0,\"lon\":0,\"alt_ft\":100}\n"
       "{\"t\":2,\"id\":\"A\",\"lat\":0,\"lon\":0,\"alt_ft\":100,\"gs_kt\":null,\"cs\":null,"
-      "\"extra\":{\"nested\":[1,2,{\"x\":\"y\"}]},\"gnd\":null}\n");
+      "\"extra\":{\"nested\":[1,2,{\"x\":\"y\"}]},\"gnd\":null,\"addr\":null,\"coast\":null,"
+      "\"end\":false}\n");
   ASSERT_EQ(reports.size(), 2u);
   for (const TrackReport& r : reports) {
     EXPECT_FALSE(r.gs_kt);
@@ -54,6 +59,9 @@ TEST(NdjsonDecoder, OptionalMembersAbsentOrNullAndUnknownKeysIgnored) {
     EXPECT_EQ(r.callsign, "");
     EXPECT_EQ(r.source, "");
     EXPECT_FALSE(r.on_ground);
+    EXPECT_FALSE(r.address);
+    EXPECT_FALSE(r.coasting);
+    EXPECT_FALSE(r.track_end);
   }
   EXPECT_EQ(decoder->rejections().total(), 0u);
 }
@@ -110,23 +118,30 @@ TEST(NdjsonDecoder, BadLinesAreCountedByReasonWithTheirLineNumberAndLaterLinesDe
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3} trailing\n" +     // 14 bad_json
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"gnd\":1}\n" +    // 15 wrong_type
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":null}\n" +           // 16 wrong_type
-      good +                                                                     // 17
-      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt";                         // 18 truncated
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"addr\":\"4CA12\"}\n" +  // 17 bad addr
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"addr\":\"~4CA123\"}\n" +  // 18
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"addr\":\" 4CA123\"}\n" +  // 19
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"coast\":1}\n" +    // 20 wrong_type
+      good +                                                                     // 21
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt";                         // 22 truncated
   const auto reports = decode_all(*decoder, input);
   ASSERT_EQ(reports.size(), 2u);
   EXPECT_EQ(reports[1].id, "OK");
   const Rejections& r = decoder->rejections();
-  EXPECT_EQ(r.by_reason(), (test::Counts{{"bad_id", 1}, {"bad_json", 3}, {"bad_mode3a", 1},
-                                          {"bad_number", 1}, {"gs_out_of_range", 1},
-                                          {"lat_out_of_range", 1}, {"line_too_long", 1},
-                                          {"lon_out_of_range", 1}, {"missing_field", 1},
-                                          {"truncated", 1}, {"wrong_type", 4}}));
-  ASSERT_EQ(messages.size(), 16u);
+  EXPECT_EQ(r.by_reason(), (test::Counts{{"bad_address", 3}, {"bad_id", 1}, {"bad_json", 3},
+                                          {"bad_mode3a", 1}, {"bad_number", 1},
+                                          {"gs_out_of_range", 1}, {"lat_out_of_range", 1},
+                                          {"line_too_long", 1}, {"lon_out_of_range", 1},
+                                          {"missing_field", 1}, {"truncated", 1},
+                                          {"wrong_type", 5}}));
+  ASSERT_EQ(messages.size(), 20u);
   EXPECT_NE(messages[0].find("line 2"), std::string::npos) << messages[0];
   EXPECT_NE(messages[1].find("line 3"), std::string::npos) << messages[1];
   EXPECT_NE(messages[1].find("alt_ft"), std::string::npos) << messages[1];
   EXPECT_NE(messages[10].find("line 12"), std::string::npos) << messages[10];
-  EXPECT_NE(messages[15].find("line 18"), std::string::npos) << messages[15];
+  EXPECT_NE(messages[15].find("line 17"), std::string::npos) << messages[15];
+  EXPECT_NE(messages[15].find("addr"), std::string::npos) << messages[15];
+  EXPECT_NE(messages[19].find("line 22"), std::string::npos) << messages[19];
 }
 
 TEST(NdjsonDecoder, OverlongLineSplitAcrossFeedsIsSkippedToItsNewline) {
@@ -186,12 +201,15 @@ TEST(NdjsonWriter, WritesShortestRoundTripNumbersAndOnlyPresentMembers) {
   r.source = "sbs";
   r.on_ground = true;
   r.mode3a = 0;
+  r.address = 0x00ABCF;
+  r.coasting = true;
+  r.track_end = true;
   std::string line;
   append_ndjson(line, r);
   EXPECT_EQ(line,
             "{\"t\":1714400000.25,\"id\":\"4CA123\",\"lat\":51.47,\"lon\":-0.45,\"alt_ft\":35000,"
             "\"gs_kt\":450,\"trk_deg\":0.1,\"vr_fpm\":-1e-07,\"cs\":\"BAW123\",\"src\":\"sbs\","
-            "\"gnd\":true,\"sq\":\"0000\"}");
+            "\"gnd\":true,\"sq\":\"0000\",\"addr\":\"00ABCF\",\"coast\":true,\"end\":true}");
 }
 
 TEST(NdjsonWriter, EscapesStringsAndReplacesInvalidUtf8) {
@@ -269,6 +287,9 @@ TEST(NdjsonRoundTrip, RandomReportsReadBackEqual) {
     if (random() % 2) r.vr_fpm = random_double(random, -1e5, 1e5);
     if (random() % 2) r.mode3a = static_cast<std::uint16_t>(random() % 010000);
     r.on_ground = random() % 2 == 0;
+    if (random() % 2) r.address = static_cast<std::uint32_t>(random() & 0xFFFFFF);
+    r.coasting = random() % 2 == 0;
+    r.track_end = random() % 2 == 0;
     append_ndjson(stream, r);
     stream += '\n';
     written.push_back(r);

@@ -25,6 +25,7 @@ TEST(OpenskyCsvDecoder, BundledSampleConvertsUnitsAndPrefersTheRightColumns) {
 
   const TrackReport& baw = reports[0];
   EXPECT_EQ(baw.id, "4CA7B4");
+  EXPECT_EQ(baw.address, std::optional<std::uint32_t>(0x4CA7B4));
   EXPECT_EQ(baw.source, "opensky");
   EXPECT_EQ(baw.t, 1590364799.25);  // lastposupdate, not time
   EXPECT_EQ(baw.lat_deg, 51.47);
@@ -55,6 +56,7 @@ TEST(OpenskyCsvDecoder, ColumnsAreFoundByNameInAnyOrder) {
                                   "100,2.5,00abcd,whatever,45.5,1000,TRUE\n");
   ASSERT_EQ(reports.size(), 1u);
   EXPECT_EQ(reports[0].id, "00ABCD");
+  EXPECT_EQ(reports[0].address, std::optional<std::uint32_t>(0x00ABCD));
   EXPECT_EQ(reports[0].lat_deg, 45.5);
   EXPECT_EQ(reports[0].lon_deg, 2.5);
   EXPECT_EQ(reports[0].alt_ft, 100 / 0.3048);
@@ -120,6 +122,7 @@ TEST(OpenskyJsonDecoder, MapsMembersAndTimestampUnits) {
   const TrackReport& a = reports[0];
   EXPECT_EQ(a.t, 1533101250.0);  // milliseconds
   EXPECT_EQ(a.id, "3003AE");
+  EXPECT_EQ(a.address, std::optional<std::uint32_t>(0x3003AE));
   EXPECT_EQ(a.source, "opensky");
   EXPECT_EQ(a.lat_deg, 45.8189849854);
   EXPECT_EQ(a.lon_deg, 9.2295455933);
@@ -133,6 +136,7 @@ TEST(OpenskyJsonDecoder, MapsMembersAndTimestampUnits) {
   EXPECT_EQ(b.alt_ft, 1200.0);
   EXPECT_TRUE(b.on_ground);
   EXPECT_EQ(b.mode3a, std::optional<std::uint16_t>(07000));
+  EXPECT_EQ(b.address, std::optional<std::uint32_t>(0x3461CE));
   EXPECT_EQ(b.callsign, "");
   EXPECT_EQ(decoder->rejections().total(), 0u);
 }

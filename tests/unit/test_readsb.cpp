@@ -22,6 +22,7 @@ TEST(ReadsbDecoder, MapsMembersAndUnits) {
   const TrackReport& r = reports[0];
   EXPECT_EQ(r.t, 1693383000.0);
   EXPECT_EQ(r.id, "AB80BC");
+  EXPECT_EQ(r.address, std::optional<std::uint32_t>(0xAB80BC));
   EXPECT_EQ(r.source, "readsb");
   EXPECT_EQ(r.lat_deg, 39.854628);
   EXPECT_EQ(r.lon_deg, -119.856323);
@@ -66,6 +67,8 @@ TEST(ReadsbDecoder, GroundNumericStringsNullsAndNonIcaoAddresses) {
       "\n");
   ASSERT_EQ(reports.size(), 3u);
   EXPECT_EQ(reports[0].id, "~2B1FCC");
+  EXPECT_FALSE(reports[0].address.has_value());  // non-ICAO: no aircraft address
+  EXPECT_EQ(reports[1].address, std::optional<std::uint32_t>(0xA9D63A));
   EXPECT_TRUE(reports[0].on_ground);
   EXPECT_EQ(reports[0].alt_ft, 95.0);
   EXPECT_FALSE(reports[0].trk_deg);
@@ -198,9 +201,13 @@ TEST(ReadsbDecoder, SharedGridSampleValues) {
   EXPECT_EQ(reports[2].trk_deg, 281.1);
   EXPECT_EQ(reports[2].vr_fpm, -256.0);
   EXPECT_EQ(reports[2].callsign, "N611TH");
-  std::size_t non_icao = 0;
-  for (const TrackReport& r : reports) non_icao += r.id.front() == '~' ? 1 : 0;
+  std::size_t non_icao = 0, without_address = 0;
+  for (const TrackReport& r : reports) {
+    non_icao += r.id.front() == '~' ? 1 : 0;
+    without_address += r.address ? 0 : 1;
+  }
   EXPECT_EQ(non_icao, 1337u);
+  EXPECT_EQ(without_address, non_icao);
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ TEST(SbsDecoder, PositionCarriesLatestVelocityCallsignAndSquawkOfItsAddress) {
   const TrackReport& r = reports[0];
   EXPECT_DOUBLE_EQ(r.t, kT0 + 0.25);
   EXPECT_EQ(r.id, "4CA123");
+  EXPECT_EQ(r.address, std::optional<std::uint32_t>(0x4CA123));
   EXPECT_EQ(r.source, "sbs");
   EXPECT_EQ(r.lat_deg, 51.47);
   EXPECT_EQ(r.lon_deg, -0.45);
@@ -86,6 +87,17 @@ TEST(SbsDecoder, AddressesAreMergedSeparately) {
   EXPECT_FALSE(reports[0].gs_kt);
   EXPECT_EQ(reports[1].callsign, "ONE");
   EXPECT_EQ(reports[1].gs_kt, 100.0);
+}
+
+TEST(SbsDecoder, NonIcaoAddressHasNoAddressAttribute) {
+  // '~' marks a non-ICAO (TIS-B, anonymous) address: its digits name no aircraft.
+  auto decoder = make_sbs_decoder();
+  const auto reports = decode_all(*decoder, position("4ca123", "14:13:20.000", "1000", "1", "2") +
+                                                position("~4ca123", "14:13:21.000", "1000", "1", "2"));
+  ASSERT_EQ(reports.size(), 2u);
+  EXPECT_EQ(reports[0].address, std::optional<std::uint32_t>(0x4CA123));
+  EXPECT_EQ(reports[1].id, "~4CA123");
+  EXPECT_FALSE(reports[1].address.has_value());
 }
 
 TEST(SbsDecoder, OnGroundFlagAndUtcOffset) {

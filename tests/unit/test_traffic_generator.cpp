@@ -60,7 +60,8 @@ bool identical(const TrackReport& a, const TrackReport& b) {
   return a.t == b.t && a.id == b.id && a.source == b.source && a.lat_deg == b.lat_deg &&
          a.lon_deg == b.lon_deg && a.alt_ft == b.alt_ft && a.gs_kt == b.gs_kt && a.trk_deg == b.trk_deg &&
          a.vr_fpm == b.vr_fpm && a.callsign == b.callsign && a.mode3a == b.mode3a &&
-         a.on_ground == b.on_ground;
+         a.address == b.address && a.on_ground == b.on_ground && a.coasting == b.coasting &&
+         a.track_end == b.track_end;
 }
 
 double distance_from_centre_m(const GeneratorConfig& config, const TrackReport& r) {

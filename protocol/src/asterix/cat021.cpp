@@ -56,7 +56,9 @@ bool finish_common(const Cat021Fields& fields, RecordContext& context, TrackRepo
     rejections.reject("asterix_missing_identity", "CAT021 record without I021/080");
     return false;
   }
-  set_address_id(be24(fields.address), report);
+  // ADS-B has no track number: the address is the identity and an attribute both.
+  report.address = be24(fields.address);
+  set_address_id(*report.address, report);
   if (!set_time_of_day(fields.time_of_day, context, report)) return false;
   if (!accept_position(context, report)) return false;
   set_source("cat021", fields.data_source, report);

@@ -56,9 +56,15 @@ bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport
       return false;
     }
   }
-  if (items.has(kTrackStatus) && (items.data(kTrackStatus)[0] & 0x80) != 0) {
-    rejections.reject("asterix_tentative_track", "CAT048 track status CNF: tentative");
-    return false;
+  if (items.has(kTrackStatus)) {
+    // I048/170 octets (editions 1.15-1.32): CNF RAD(2) DOU MAH CDM(2) FX | TRE GHO SUP TCC
+    // spare(3) FX. No bit says the track is coasted, so CAT048 never sets `coasting`.
+    const auto status = items.item(kTrackStatus);
+    if ((status[0] & 0x80) != 0) {
+      rejections.reject("asterix_tentative_track", "CAT048 track status CNF: tentative");
+      return false;
+    }
+    report.track_end = status.size() >= 2 && (status[1] & 0x80) != 0;
   }
   const std::uint8_t* source = items.data(kDataSource);
   const int site = context.radars.find(source[0], source[1]);
@@ -80,12 +86,17 @@ bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport
     }
     report.alt_ft = 0;
   }
-  if (items.has(kAddress)) {
-    set_address_id(be24(items.data(kAddress)), report);
-  } else if (items.has(kTrackNumber)) {
+  // Identity as in CAT062: SAC/SIC + track number, the address an attribute (a Mode S
+  // address can come and go within one track). A plot of a radar that does not track has
+  // no track number and is keyed by its address; the two never collide within a source,
+  // track numbers having at most 4 digits (12 bits) and addresses always 6.
+  if (items.has(kAddress)) report.address = be24(items.data(kAddress));
+  if (items.has(kTrackNumber)) {
     set_track_number_id(be16(items.data(kTrackNumber)) & 0x0FFF, report);
+  } else if (report.address) {
+    set_address_id(*report.address, report);
   } else {
-    rejections.reject("asterix_missing_identity", "CAT048 record without I048/220 or I048/161");
+    rejections.reject("asterix_missing_identity", "CAT048 record without I048/161 or I048/220");
     return false;
   }
   if (!set_time_of_day(items.data(kTimeOfDay), context, report)) return false;

@@ -64,6 +64,9 @@ bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport
     return false;
   }
   if (items.has(kTrackStatus)) {
+    // I062/080 octets (editions 1.16-1.21): MON SPI MRH SRC(3) CNF FX | SIM TSE TSB FPC
+    // AFF STP KOS FX | AMA MD4(2) ME MI MD5(2) FX | CST PSR SSR MDS ADS SUC AAC FX | ...
+    // An extension absent from the record means its bits are 0.
     const auto status = items.item(kTrackStatus);
     if ((status[0] & 0x02) != 0) {
       rejections.reject("asterix_tentative_track", "CAT062 track status CNF: tentative");
@@ -73,6 +76,8 @@ bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport
       rejections.reject("asterix_simulated_target", "CAT062 track status SIM: simulated");
       return false;
     }
+    report.track_end = status.size() >= 2 && (status[1] & 0x40) != 0;
+    report.coasting = status.size() >= 4 && (status[3] & 0x80) != 0;
   }
   if (!items.has(kPositionWgs84)) {
     // I062/100 is relative to the SDPS's system reference point, which ASTERIX does not
@@ -88,16 +93,16 @@ bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport
     rejections.reject("asterix_missing_altitude", "CAT062 record without I062/136, 135 or 130");
     return false;
   }
-  const auto address =
-      compound_subfield(format_of(kAircraftDerived), items.item(kAircraftDerived), k380Address);
-  if (address.size() == 3) {
-    set_address_id(be24(address.data()), report);
-  } else if (items.has(kTrackNumber)) {
-    set_track_number_id(be16(items.data(kTrackNumber)), report);
-  } else {
-    rejections.reject("asterix_missing_identity", "CAT062 record without I062/040 or I062/380 ADR");
+  // The track is SAC/SIC + system track number. An SDPS need not send I062/380 ADR in
+  // every update of a track, so the address keys nothing: it is an attribute.
+  if (!items.has(kTrackNumber)) {
+    rejections.reject("asterix_missing_identity", "CAT062 record without I062/040 track number");
     return false;
   }
+  set_track_number_id(be16(items.data(kTrackNumber)), report);
+  const auto address =
+      compound_subfield(format_of(kAircraftDerived), items.item(kAircraftDerived), k380Address);
+  if (address.size() == 3) report.address = be24(address.data());
   if (!set_time_of_day(items.data(kTimeOfTrack), context, report)) return false;
 
   const std::uint8_t* position = items.data(kPositionWgs84);

@@ -45,7 +45,10 @@ void reset_report(TrackReport& report) {
   report.vr_fpm.reset();
   report.callsign.clear();
   report.mode3a.reset();
+  report.address.reset();
   report.on_ground = false;
+  report.coasting = false;
+  report.track_end = false;
 }
 
 bool set_time_of_day(const std::uint8_t* tod, RecordContext& context, TrackReport& report) {

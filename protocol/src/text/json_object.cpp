@@ -59,17 +59,32 @@ LineResult read_bool(simdjson::dom::element value, std::string_view key,
   return std::nullopt;
 }
 
-LineResult read_mode3a(simdjson::dom::element value, std::string_view key,
-                       std::optional<std::uint16_t>& out) {
+namespace {
+/// A string member whose text `parse` turns into a code; text it refuses is the problem
+/// `reason` ("\"key\" must be <what>"); null → nullopt.
+template <class Code>
+LineResult read_coded_string(simdjson::dom::element value, std::string_view key,
+                             std::optional<Code>& out, bool (*parse)(std::string_view, Code&),
+                             std::string_view reason, std::string_view what) {
   std::optional<std::string_view> text;
   if (LineResult r = read_string(value, key, text)) return r;
   out.reset();
   if (!text) return std::nullopt;
-  std::uint16_t code = 0;
-  if (!parse_mode3a(*text, code))
-    return problem("bad_mode3a", fmt::format("\"{}\" must be 4 octal digits", key));
+  Code code{};
+  if (!parse(*text, code)) return problem(reason, fmt::format("\"{}\" must be {}", key, what));
   out = code;
   return std::nullopt;
+}
+}  // namespace
+
+LineResult read_mode3a(simdjson::dom::element value, std::string_view key,
+                       std::optional<std::uint16_t>& out) {
+  return read_coded_string(value, key, out, parse_mode3a, "bad_mode3a", "4 octal digits");
+}
+
+LineResult read_icao_address(simdjson::dom::element value, std::string_view key,
+                             std::optional<std::uint32_t>& out) {
+  return read_coded_string(value, key, out, parse_icao_address, "bad_address", "6 hex digits");
 }
 
 }  // namespace kew::protocol::text

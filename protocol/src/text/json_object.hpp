@@ -38,6 +38,10 @@ LineResult read_bool(simdjson::dom::element value, std::string_view key,
 /// A Mode 3/A member: a string of 4 octal digits; null → nullopt.
 LineResult read_mode3a(simdjson::dom::element value, std::string_view key,
                        std::optional<std::uint16_t>& out);
+/// A 24-bit ICAO address member: a string of exactly 6 hex digits, either case
+/// ("bad_address" otherwise); null → nullopt.
+LineResult read_icao_address(simdjson::dom::element value, std::string_view key,
+                             std::optional<std::uint32_t>& out);
 
 class JsonObjectParser {
  public:

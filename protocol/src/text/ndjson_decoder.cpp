@@ -43,6 +43,10 @@ class NdjsonDecoder final : public text::LineDecoder {
     if (key == "trk_deg") return text::read_number(value, key, report_.trk_deg);
     if (key == "vr_fpm") return text::read_number(value, key, report_.vr_fpm);
     if (key == "sq") return text::read_mode3a(value, key, report_.mode3a);
+    if (key == "addr") return text::read_icao_address(value, key, report_.address);
+    if (key == "coast") return optional_flag(value, key, report_.coasting);
+    if (key == "end") return optional_flag(value, key, report_.track_end);
+    if (key == "gnd") return optional_flag(value, key, report_.on_ground);
     if (key == "id") {
       std::optional<std::string_view> id;
       if (LineResult r = text::read_string(value, key, id)) return r;
@@ -53,11 +57,14 @@ class NdjsonDecoder final : public text::LineDecoder {
     }
     if (key == "cs") return optional_string(value, key, report_.callsign);
     if (key == "src") return optional_string(value, key, report_.source);
-    if (key == "gnd") {
-      std::optional<bool> on_ground;
-      if (LineResult r = text::read_bool(value, key, on_ground)) return r;
-      report_.on_ground = on_ground.value_or(false);
-    }
+    return std::nullopt;
+  }
+
+  /// An optional boolean member; absent and null mean false.
+  static LineResult optional_flag(simdjson::dom::element value, std::string_view key, bool& out) {
+    std::optional<bool> flag;
+    if (LineResult r = text::read_bool(value, key, flag)) return r;
+    out = flag.value_or(false);
     return std::nullopt;
   }
 

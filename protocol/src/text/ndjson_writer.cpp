@@ -116,6 +116,9 @@ void append_ndjson(std::string& out, const TrackReport& report) {
   }
   if (report.on_ground) out += ",\"gnd\":true";
   if (report.mode3a) fmt::format_to(std::back_inserter(out), ",\"sq\":\"{:04o}\"", *report.mode3a & 07777u);
+  if (report.address) fmt::format_to(std::back_inserter(out), ",\"addr\":\"{:06X}\"", *report.address & 0xFFFFFFu);
+  if (report.coasting) out += ",\"coast\":true";
+  if (report.track_end) out += ",\"end\":true";
   out += '}';
 }
 

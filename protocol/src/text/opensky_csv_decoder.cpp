@@ -153,6 +153,7 @@ class OpenskyCsvDecoder final : public text::LineDecoder {
     std::uint32_t key = 0;
     if (!text::parse_address(field(c.icao24), report_.id, key))
       return text::problem("bad_address", fmt::format("icao24 \"{}\"", field(c.icao24)));
+    report_.address = text::icao_address(key);
     report_.source = "opensky";
     if (field(c.lat).empty() || field(c.lon).empty())
       return text::problem("no_position", "empty lat/lon");

@@ -180,6 +180,7 @@ class OpenskyJsonDecoder final : public Decoder {
     std::uint32_t key = 0;
     if (!text::parse_address(*s.icao24, report_.id, key))
       return text::problem("bad_address", fmt::format("icao24 \"{}\"", *s.icao24));
+    report_.address = text::icao_address(key);
     report_.source = "opensky";
     report_.t = *s.timestamp > kMillisecondTimestampAbove ? *s.timestamp / 1000.0 : *s.timestamp;
     report_.lat_deg = *s.latitude;

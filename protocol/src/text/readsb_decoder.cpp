@@ -107,6 +107,7 @@ class ReadsbDecoder final : public text::LineDecoder {
     std::uint32_t key = 0;
     if (!text::parse_address(*m.hex, report_.id, key))
       return text::problem("bad_address", fmt::format("hex \"{}\" is not 6 hex digits", *m.hex));
+    report_.address = text::icao_address(key);  // none for '~' (non-ICAO) addresses
     report_.source = "readsb";
     report_.t = *m.now;
     report_.lat_deg = *m.lat;

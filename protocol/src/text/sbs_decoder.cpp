@@ -142,7 +142,7 @@ class SbsDecoder final : public text::LineDecoder {
       case '6':
         return read_squawk(f, n, state);
       default:
-        return emit_position(f, n, t, state, sink);
+        return emit_position(f, n, t, key, state, sink);
     }
   }
 
@@ -174,7 +174,8 @@ class SbsDecoder final : public text::LineDecoder {
   }
 
   LineResult emit_position(const std::array<std::string_view, kFieldCount>& f, std::size_t n,
-                           double t, const AircraftState* state, const ReportSink& sink) {
+                           double t, std::uint32_t key, const AircraftState* state,
+                           const ReportSink& sink) {
     if (n <= kLongitude || text::trim(f[kLatitude]).empty() || text::trim(f[kLongitude]).empty())
       return text::problem("no_position", "MSG,3 without latitude/longitude");
     if (text::trim(f[kAltitude]).empty()) return text::problem("no_altitude", "MSG,3 without altitude");
@@ -185,6 +186,7 @@ class SbsDecoder final : public text::LineDecoder {
       return text::problem("bad_number", "bad latitude, longitude or altitude");
     report_.t = t;
     report_.id = address_id_;
+    report_.address = text::icao_address(key);
     report_.source = "sbs";
     if (n > kIsOnGround) {
       const std::string_view on_ground = text::trim(f[kIsOnGround]);

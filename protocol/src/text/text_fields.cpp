@@ -55,6 +55,18 @@ bool parse_address(std::string_view text, std::string& id, std::uint32_t& key) {
   return true;
 }
 
+bool parse_icao_address(std::string_view text, std::uint32_t& address) {
+  if (text.size() != 6) return false;
+  std::uint32_t value = 0;
+  for (const char c : text) {
+    const int v = hex_digit_value(c);
+    if (v < 0) return false;
+    value = (value << 4) | static_cast<std::uint32_t>(v);
+  }
+  address = value;
+  return true;
+}
+
 bool parse_mode3a(std::string_view text, std::uint16_t& code) {
   text = trim(text);
   if (text.size() != 4) return false;
@@ -89,7 +101,10 @@ void clear_report(TrackReport& report) {
   report.trk_deg.reset();
   report.vr_fpm.reset();
   report.mode3a.reset();
+  report.address.reset();
   report.on_ground = false;
+  report.coasting = false;
+  report.track_end = false;
 }
 
 LineResult check_report(TrackReport& report) {

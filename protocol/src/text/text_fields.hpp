@@ -45,6 +45,17 @@ bool parse_finite_double(std::string_view s, double& out);
 /// `key` receives the address with bit 24 set for '~' addresses (a compact map key).
 bool parse_address(std::string_view text, std::string& id, std::uint32_t& key);
 
+/// The 24-bit ICAO address of a parse_address() `key`, or nullopt for a '~' one: a
+/// non-ICAO address (TIS-B, anonymous) is not an aircraft's, so it is no TrackReport
+/// address attribute.
+inline std::optional<std::uint32_t> icao_address(std::uint32_t key) {
+  if ((key >> 24) != 0) return std::nullopt;
+  return key;
+}
+
+/// Exactly 6 hex digits, either case, nothing around them (canonical NDJSON "addr").
+bool parse_icao_address(std::string_view text, std::uint32_t& address);
+
 /// A Mode 3/A code as exactly 4 octal digits ("7700" → 0xFC0), surrounding blanks allowed.
 bool parse_mode3a(std::string_view text, std::uint16_t& code);
 

@@ -200,15 +200,16 @@ def cat062(f, capture, framing):
         alt = float(g("130_VALUE"))
     else:
         raise Reject("asterix_missing_altitude")
-    if g("380_ADR_VALUE") is not None:
-        ident = "%06X" % int(g("380_ADR_VALUE"), 16)
-    elif g("040_VALUE") is not None:
-        ident = str(int(g("040_VALUE"), 16))
-    else:
+    # The track number is the identity; the address only an attribute.
+    if g("040_VALUE") is None:
         raise Reject("asterix_missing_identity")
-    r = {"src": source(62, f, "062"), "id": ident, "t": utc_of(float(g("070_VALUE")), capture, framing),
-         "lat": float(g("105_LAT")), "lon": float(g("105_LON")), "alt_ft": alt, "gnd": 0}
+    r = {"src": source(62, f, "062"), "id": str(int(g("040_VALUE"), 16)),
+         "t": utc_of(float(g("070_VALUE")), capture, framing),
+         "lat": float(g("105_LAT")), "lon": float(g("105_LON")), "alt_ft": alt, "gnd": 0,
+         "coast": int(g("080_CST") == "1"), "end": int(g("080_TSE") == "1")}
     check_position(r)
+    if g("380_ADR_VALUE") is not None:
+        r["addr"] = "%06X" % int(g("380_ADR_VALUE"), 16)
     if g("185_VX") is not None:
         r["gs_kt"], r["trk_deg"] = velocity(float(g("185_VX")), float(g("185_VY")))
     if g("220_VALUE") is not None:
@@ -243,15 +244,20 @@ def cat048(f, capture, framing):
         alt = 0.0
     else:
         raise Reject("asterix_missing_altitude")
-    if g("220_VALUE") is not None:
-        ident = "%06X" % int(g("220_VALUE"), 16)
-    elif g("161_TRN") is not None:
+    # The track number is the identity, the address an attribute; a plot without a track
+    # number is keyed by its address.
+    address = "%06X" % int(g("220_VALUE"), 16) if g("220_VALUE") is not None else None
+    if g("161_TRN") is not None:
         ident = str(int(g("161_TRN")))
+    elif address is not None:
+        ident = address
     else:
         raise Reject("asterix_missing_identity")
     r = {"src": source(48, f, "048"), "id": ident, "t": utc_of(float(g("140_VALUE")), capture, framing),
          "rho_nm": float(g("040_RHO")), "theta_deg": float(g("040_THETA")), "alt_ft": alt,
-         "gnd": int(on_ground)}
+         "gnd": int(on_ground), "coast": 0, "end": int(g("170_TRE") == "1")}
+    if address is not None:
+        r["addr"] = address
     if g("200_GSP") is not None:
         r["gs_kt"] = float(g("200_GSP")) * 3600
         r["trk_deg"] = float(g("200_HDG"))
@@ -289,9 +295,10 @@ def cat021(f, capture, framing):
         raise Reject("asterix_missing_altitude")
     if g("080_VALUE") is None:
         raise Reject("asterix_missing_identity")
-    r = {"src": source(21, f, "021"), "id": "%06X" % int(g("080_VALUE"), 16),
+    address = "%06X" % int(g("080_VALUE"), 16)
+    r = {"src": source(21, f, "021"), "id": address,
          "t": utc_of(float(tod), capture, framing), "lat": lat, "lon": lon, "alt_ft": alt,
-         "gnd": int(on_ground)}
+         "gnd": int(on_ground), "coast": 0, "end": 0, "addr": address}
     check_position(r)
     if g("160_GS") is not None:
         r["gs_kt"] = float(g("160_GS")) * 3600
@@ -340,8 +347,9 @@ def expected_lines(fixture, framing, blocks):
         return lines
     lines.append(f"reports {len(reports)}")
     lines.append(f"distinct_ids {len({(r['src'], r['id']) for r in reports})}")
-    # Ids of 6 characters are 24-bit addresses (track numbers are 12 or 16 bits: at most 5 digits).
-    lines.append(f"distinct_addresses {len({r['id'] for r in reports if len(r['id']) == 6})}")
+    lines.append(f"distinct_addresses {len({r['addr'] for r in reports if 'addr' in r})}")
+    lines.append(f"coasting {sum(r['coast'] for r in reports)}")
+    lines.append(f"track_ends {sum(r['end'] for r in reports)}")
     if reports:
         lines.append(f"t_first {fmt(min(r['t'] for r in reports))}")
         lines.append(f"t_last {fmt(max(r['t'] for r in reports))}")

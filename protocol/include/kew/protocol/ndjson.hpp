@@ -2,18 +2,23 @@
 // Decoder of the canonical track record, one JSON object per line (design §5.1).
 //
 //   {"t":1714400000.25,"id":"4CA123","lat":51.47,"lon":-0.45,"alt_ft":35000,
-//    "gs_kt":450,"trk_deg":270.0,"vr_fpm":0,"cs":"BAW123","src":"adsb","gnd":false,"sq":"7000"}
+//    "gs_kt":450,"trk_deg":270.0,"vr_fpm":0,"cs":"BAW123","src":"adsb","gnd":false,"sq":"7000",
+//    "addr":"4CA123","coast":false,"end":false}
 //
 // Required: t (UTC s since 1970), id (string), lat, lon (degrees), alt_ft (feet).
 // Optional: gs_kt (knots), trk_deg (degrees, wrapped into [0, 360)), vr_fpm (ft/min),
-// cs, src (strings), gnd (bool), sq (Mode 3/A, string of 4 octal digits). null for an
-// optional member means absent. Unknown keys are ignored (so that producers may add
-// members); when a key repeats, the last value wins. Lines starting with '#' and blank
-// lines are skipped; CRLF is accepted; the last line needs no newline.
+// cs, src (strings), gnd (bool), sq (Mode 3/A, string of 4 octal digits), addr (24-bit
+// ICAO address, an attribute of the track, not its id: string of exactly 6 hex digits,
+// either case), coast (bool: the position is extrapolated), end (bool: the track's last
+// update). null for an optional member means absent (false for the booleans). Unknown
+// keys are ignored (so that producers may add members); when a key repeats, the last
+// value wins. Lines starting with '#' and blank lines are skipped; CRLF is accepted; the
+// last line needs no newline.
 //
 // Rejection reasons (each message names the line number): bad_json, wrong_type,
-// bad_number, missing_field, bad_id, bad_mode3a, lat_out_of_range, lon_out_of_range,
-// gs_out_of_range, line_too_long, truncated (a refused last line without newline).
+// bad_number, missing_field, bad_id, bad_mode3a, bad_address, lat_out_of_range,
+// lon_out_of_range, gs_out_of_range, line_too_long, truncated (a refused last line
+// without newline).
 
 #include <cstddef>
 #include <memory>

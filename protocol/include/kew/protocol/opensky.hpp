@@ -1,5 +1,6 @@
 #pragma once
-// Decoders of OpenSky Network state vectors (source "opensky", id = upper-case icao24).
+// Decoders of OpenSky Network state vectors (source "opensky", id = upper-case icao24,
+// TrackReport::address = icao24 as a 24-bit number).
 //
 // CSV: the OpenSky historical "states" files. A header line is required and columns
 // are found by name (order free, extra columns ignored):

@@ -1,7 +1,7 @@
 #pragma once
 // Decoder of readsb-style JSON lines, one aircraft state per line, as in
 // recordings/adsb_actions-readsb (source "readsb", id = upper-case hex, '~' kept for
-// non-ICAO addresses):
+// non-ICAO addresses; TrackReport::address = the hex as a 24-bit number, none for '~'):
 //   {"now":1693383000,"hex":"ab80bc","flight":"N840KB","lat":39.85,"lon":-119.85,
 //    "alt_baro":9975,"gscp":240,"track":164.1}
 // Members read: now (UTC s), hex, flight (trimmed callsign; "N/A" means none), lat, lon,

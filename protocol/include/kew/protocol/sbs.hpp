@@ -12,7 +12,8 @@
 // time (an older velocity would extrapolate the track wrongly, so it is left out and the
 // track table derives one from positions), the latest MSG,1 callsign, and the latest
 // MSG,6 squawk. MSG,2 (surface), 5, 7, 8 and the other transmission types (SEL, ID,
-// AIR, STA, CLK) are counted as "ignored_message_type". id = upper-case hex, source "sbs".
+// AIR, STA, CLK) are counted as "ignored_message_type". id = upper-case hex, source "sbs",
+// TrackReport::address = the hex as a 24-bit number (none for a '~' non-ICAO address).
 //
 // Time: the "generated" date and time (fields 7, 8), or the "logged" ones (9, 10) when
 // those are empty. SBS times are the receiver's local time with no zone; the decoder

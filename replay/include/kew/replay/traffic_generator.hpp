@@ -110,7 +110,8 @@ class TrafficGenerator {
   /// leaves `out` unchanged, once every record of the run has been produced.
   /// Records: id = 6 upper-case hex digits (a pseudo 24-bit address, unique for the
   /// first 16,777,215 aircraft of a run), source "gen", callsign 3 letters + 1–4
-  /// digits derived from the address, on_ground false, mode3a absent.
+  /// digits derived from the address, on_ground false, mode3a and address absent,
+  /// coasting and track_end false.
   bool next(TrackReport& out);
 
   /// Aircraft that have existed so far: the initial `aircraft`, plus one per
