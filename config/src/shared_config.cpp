@@ -54,6 +54,7 @@ void read_probe(TableReader& r, PipelineConfig& p) {
   r.number("horizontal_nm", horizontal_nm, 0.1, 100.0);
   r.number("vertical_ft", vertical_ft, 1.0, 100000.0);
   r.number("lookahead_s", p.minima.lookahead_s, 0.0, 3600.0);
+  r.number("vertical_lookahead_s", p.minima.vertical_lookahead_s, 0.0, 3600.0);
   p.minima.horizontal_m = horizontal_nm * kNauticalMile;
   p.minima.vertical_m = vertical_ft * kFoot;
 }

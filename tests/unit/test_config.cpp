@@ -56,6 +56,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(p.minima.horizontal_m, d.minima.horizontal_m);
   EXPECT_DOUBLE_EQ(p.minima.vertical_m, d.minima.vertical_m);
   EXPECT_EQ(p.minima.lookahead_s, d.minima.lookahead_s);
+  EXPECT_EQ(p.minima.vertical_lookahead_s, d.minima.vertical_lookahead_s);
   EXPECT_EQ(p.alerts.confirm, d.alerts.confirm);
   EXPECT_EQ(p.alerts.clear, d.alerts.clear);
   EXPECT_EQ(p.alerts.warning_s, d.alerts.warning_s);

@@ -1,4 +1,5 @@
-// Hand-computed CPA cases (design §4.4): S_h = 9260 m, S_v = 304.8 m, T = 120 s.
+// Hand-computed CPA cases (design §4.4): S_h = 9260 m, S_v = 304.8 m, T = 120 s, the
+// vertical prediction linear for the whole look-ahead (T_v = T) unless a case says otherwise.
 #include "kew/probe/cpa.hpp"
 
 #include <gtest/gtest.h>
@@ -12,7 +13,35 @@ Kinematics at(double x, double y, double vx, double vy, double alt_m = 10000.0, 
   return {{x, y}, {vx, vy}, alt_m, vz};
 }
 
-const SeparationMinima kMinima{};
+SeparationMinima linear_minima() {
+  SeparationMinima m;
+  m.vertical_lookahead_s = m.lookahead_s;
+  return m;
+}
+const SeparationMinima kMinima = linear_minima();
+
+TEST(Cpa, AVerticalConvergenceCountsOnlyWithinTheVerticalLookahead) {
+  // The vertical crossing below begins at 69.52 s: a conflict when T_v is above that,
+  // none when it is below (the climb may level off before).
+  SeparationMinima m = kMinima;
+  const Kinematics level = at(0, 0, 200, 0, 10000), climbing = at(0, 0, 200, 0, 9000, 10);
+  m.vertical_lookahead_s = 70.0;
+  EXPECT_TRUE(evaluate_pair(level, climbing, m).in_conflict);
+  EXPECT_NEAR(evaluate_pair(level, climbing, m).t_los_s, 69.52, 1e-9);
+  m.vertical_lookahead_s = 69.0;
+  EXPECT_FALSE(evaluate_pair(level, climbing, m).in_conflict);
+  EXPECT_FALSE(in_conflict(level, climbing, m));
+  // Vertically within S_v now and diverging: trusted for the whole look-ahead, whatever
+  // T_v. 100 m apart, separating at 10 m/s: within S_v until 20.48 s; head-on 20 km apart
+  // at 2 × 250 m/s, horizontally within S_h from 21.48 s: clear. Closer: a conflict.
+  m.vertical_lookahead_s = 0.0;
+  EXPECT_FALSE(in_conflict(at(0, 0, 250, 0, 10000), at(20000, 0, -250, 0, 10100, 10), m));
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 250, 0, 10000), at(15000, 0, -250, 0, 10100, 10), m);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_NEAR(g.t_los_s, (15000.0 - 9260.0) / 500.0, 1e-9);
+  // Level pairs are unaffected.
+  EXPECT_TRUE(in_conflict(at(0, 0, 250, 0, 10000), at(60000, 0, -250, 0, 10100), m));
+}
 
 TEST(Cpa, HeadOnLosesSeparationWhenTheGapCloses) {
   // 60 km apart, closing at 2 × 250 m/s: loss when the gap is 9260 m, after

@@ -246,6 +246,20 @@ TEST(Eligibility, TheSourceEndingATrackEndsIt) {
   EXPECT_EQ(run.pipeline->tracks().size(), 1u);
 }
 
+TEST(Eligibility, AnUnknownVerticalRateIsNotLevel) {
+  // grid_20250602 (readsb): a climbing aircraft's first record had no vertical rate, so it
+  // read 0 ft/min and its pair 975 ft apart was taken for a level pair; the alert opened
+  // after the loss had begun.
+  eligibility::Rules rules({}, 1000.0);
+  track::Track a, b;
+  a.alt_ft = 3625.0;
+  b.alt_ft = 4600.0;
+  a.vertical_rate_known = b.vertical_rate_known = true;
+  EXPECT_TRUE(rules.level_pair(a, b));
+  a.vertical_rate_known = false;
+  EXPECT_FALSE(rules.level_pair(a, b));
+}
+
 TEST(Eligibility, RulesOnTheirOwn) {
   eligibility::Rules rules({}, 1000.0);
   track::Track t;

@@ -53,6 +53,8 @@ bool Rules::same_aircraft(const track::Track& a, const track::Track& b, double d
 
 bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   if (config_.level_rate_fpm <= 0.0) return false;
+  // A first record without a vertical rate reads 0 ft/min: that is not "level".
+  if (!a.vertical_rate_known || !b.vertical_rate_known) return false;
   return std::abs(a.vr_fpm) < config_.level_rate_fpm && std::abs(b.vr_fpm) < config_.level_rate_fpm &&
          std::abs(a.alt_ft - b.alt_ft) >= vertical_minimum_ft_ - config_.altimetry_tolerance_ft;
 }

@@ -127,13 +127,20 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   }
 
   double vertical_rate_mps = 0.0;
+  bool vertical_rate_known = false;
   if (r.vr_fpm) {
     vertical_rate_mps = *r.vr_fpm * kFpmToMps;
+    vertical_rate_known = true;
   } else if (can_derive) {
     vertical_rate_mps = (r.alt_ft - previous->alt_ft) * kFootToMetre / gap;
-    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) vertical_rate_mps = 0.0;
+    vertical_rate_known = true;
+    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) {
+      vertical_rate_mps = 0.0;
+      vertical_rate_known = false;
+    }
   } else if (previous) {
     vertical_rate_mps = previous->kinematics.vertical_rate_mps;
+    vertical_rate_known = previous->vertical_rate_known;
   }
 
   TrackSlot slot = existing;
@@ -156,6 +163,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.kinematics.altitude_m = r.alt_ft * kFootToMetre;
   track.kinematics.vertical_rate_mps = vertical_rate_mps;
   track.has_velocity = has_velocity;
+  track.vertical_rate_known = vertical_rate_known;
   track.vr_fpm = vertical_rate_mps / kFpmToMps;
   if (r.gs_kt && r.trk_deg) {
     track.gs_kt = *r.gs_kt;

@@ -20,7 +20,9 @@ using Slot = std::uint32_t;
 
 struct AlertConfig {
   int confirm = 2;  ///< consecutive conflicting evaluations to open (≥ 1)
-  int clear = 2;    ///< consecutive clear evaluations to end (≥ 1)
+  /// Consecutive clear evaluations to end (≥ 1). 4, not 2: a pair whose prediction
+  /// hovers at the minima otherwise ends and reopens every few seconds (design §8.6).
+  int clear = 4;
   double warning_s = 60.0;  ///< t_los at or below this is a warning (s)
   /// An active alert is re-emitted (state "update") when its severity changes or when a
   /// figure moved by at least this much from the last emitted event (t_los compared

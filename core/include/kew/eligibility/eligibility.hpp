@@ -98,8 +98,9 @@ class Rules {
   /// is their current horizontal distance (m, on the ellipsoid).
   bool same_aircraft(const track::Track& a, const track::Track& b, double distance_m) const;
 
-  /// Whether two tracks are level (|reported vertical rate| < level_rate_fpm) and
-  /// reported at adjacent levels (|Δaltitude| ≥ S_v − altimetry_tolerance_ft).
+  /// Whether two tracks are level (|vertical rate| < level_rate_fpm, the rate known:
+  /// reported or derived, Track::vertical_rate_known) and reported at adjacent levels
+  /// (|Δaltitude| ≥ S_v − altimetry_tolerance_ft).
   bool level_pair(const track::Track& a, const track::Track& b) const;
 
   const EligibilityConfig& config() const { return config_; }

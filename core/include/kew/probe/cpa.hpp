@@ -2,8 +2,9 @@
 // Exact linear closest-point-of-approach test of one pair (design §4.4).
 // Both aircraft move in straight lines at constant velocity (horizontal in the plane,
 // vertical by vertical rate). The pair is in conflict when, for some τ' in [0, T], the
-// horizontal distance is below S_h and the vertical distance below S_v at the same τ':
-// the intersection of the two open time intervals, each from a quadratic or linear
+// horizontal distance is below S_h and the vertical distance below S_v at the same τ',
+// and the vertical separation is lost (or already lost) no later than T_v: the
+// intersection of the two open time intervals, each from a quadratic or linear
 // inequality solved in closed form, clipped to [0, T].
 
 #include "kew/geometry/vector2.hpp"
@@ -22,6 +23,12 @@ struct SeparationMinima {
   double horizontal_m = 9260.0;  ///< S_h (> 0); default 5 NM
   double vertical_m = 304.8;     ///< S_v (> 0); default 1,000 ft
   double lookahead_s = 120.0;    ///< T (≥ 0)
+  /// T_v (≥ 0, s): a loss of vertical separation that the vertical rates predict to
+  /// begin later than this does not count (design §4.4). Aircraft level off at their
+  /// cleared level, which kew does not know; a climb carried on for two minutes through
+  /// the level above is the commonest nuisance alert. A vertical divergence is trusted
+  /// for the whole look-ahead. At or above T: plain linear prediction.
+  double vertical_lookahead_s = 30.0;
 };
 
 struct ConflictGeometry {

@@ -12,8 +12,9 @@ namespace kew {
 struct TrackReport {
   /// Data time, UTC seconds since the Unix epoch (fractional).
   double t = 0.0;
-  /// Track identity within its source: the 24-bit address as 6 upper-case hex digits when
-  /// known, otherwise a track number in decimal. Never empty in a valid report.
+  /// Track identity within its source: the system track number in decimal for ASTERIX
+  /// tracks (CAT062, CAT048 with I048/161), otherwise the 24-bit address as 6 upper-case
+  /// hex digits (ADS-B, SBS, OpenSky, readsb). Never empty in a valid report.
   std::string id;
   /// Where the record came from ("sbs", "cat062/25.100", ...). Tracks are keyed by
   /// source + id, so two radars' track numbers never collide. Empty is a valid source.

@@ -52,6 +52,9 @@ struct Track {
   bool coasting = false;     ///< the last record was extrapolated by its source
   std::uint16_t number = 0;  ///< 16-bit system track number for CAT004 and Modbus, ≠ 0
   bool has_velocity = false;  ///< false until a velocity was reported or derived
+  /// The vertical rate was reported or derived from altitudes (or kept from such a
+  /// record): false when vr_fpm is 0 only because nothing said otherwise.
+  bool vertical_rate_known = false;
   bool in_use = false;
 
   double t = 0.0;            ///< data time of the last accepted record (UTC s)
