@@ -55,6 +55,10 @@ void read_probe(TableReader& r, PipelineConfig& p) {
   r.number("vertical_ft", vertical_ft, 1.0, 100000.0);
   r.number("lookahead_s", p.minima.lookahead_s, 0.0, 3600.0);
   r.number("vertical_lookahead_s", p.minima.vertical_lookahead_s, 0.0, 3600.0);
+  double tolerance_ft = p.minima.altimetry_tolerance_m / kFoot;
+  r.number("altimetry_tolerance_ft", tolerance_ft, 0.0, 1000.0);
+  p.minima.altimetry_tolerance_m = tolerance_ft * kFoot;
+  if (tolerance_ft >= vertical_ft) r.fail(nullptr, "altimetry_tolerance_ft must be below vertical_ft");
   p.minima.horizontal_m = horizontal_nm * kNauticalMile;
   p.minima.vertical_m = vertical_ft * kFoot;
 }
@@ -81,7 +85,6 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
   r.boolean("exclude_coasting", e.exclude_coasting);
   r.number("max_position_age_s", e.max_position_age_s, 0.1, 3600.0);
   r.number("level_rate_fpm", e.level_rate_fpm, 0.0, 5000.0);
-  r.number("altimetry_tolerance_ft", e.altimetry_tolerance_ft, 0.0, 1000.0);
   r.number("same_code_distance_nm", e.same_code_distance_nm, 0.0, 20.0);
   r.number("same_code_altitude_ft", e.same_code_altitude_ft, 0.0, 5000.0);
 }

@@ -57,6 +57,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_DOUBLE_EQ(p.minima.vertical_m, d.minima.vertical_m);
   EXPECT_EQ(p.minima.lookahead_s, d.minima.lookahead_s);
   EXPECT_EQ(p.minima.vertical_lookahead_s, d.minima.vertical_lookahead_s);
+  EXPECT_DOUBLE_EQ(p.minima.altimetry_tolerance_m, d.minima.altimetry_tolerance_m);
   EXPECT_EQ(p.alerts.confirm, d.alerts.confirm);
   EXPECT_EQ(p.alerts.clear, d.alerts.clear);
   EXPECT_EQ(p.alerts.warning_s, d.alerts.warning_s);
@@ -71,7 +72,6 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.eligibility.exclude_coasting, d.eligibility.exclude_coasting);
   EXPECT_EQ(p.eligibility.max_position_age_s, d.eligibility.max_position_age_s);
   EXPECT_EQ(p.eligibility.level_rate_fpm, d.eligibility.level_rate_fpm);
-  EXPECT_EQ(p.eligibility.altimetry_tolerance_ft, d.eligibility.altimetry_tolerance_ft);
   EXPECT_EQ(p.eligibility.same_code_distance_nm, d.eligibility.same_code_distance_nm);
   EXPECT_EQ(p.eligibility.same_code_altitude_ft, d.eligibility.same_code_altitude_ft);
   EXPECT_EQ(file.cat004.enabled, defaults.cat004.enabled);

@@ -1,5 +1,6 @@
 // Hand-computed CPA cases (design §4.4): S_h = 9260 m, S_v = 304.8 m, T = 120 s, the
-// vertical prediction linear for the whole look-ahead (T_v = T) unless a case says otherwise.
+// vertical prediction plainly linear (T_v = T, no altimetry tolerance) unless a case says
+// otherwise.
 #include "kew/probe/cpa.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@ Kinematics at(double x, double y, double vx, double vy, double alt_m = 10000.0, 
 SeparationMinima linear_minima() {
   SeparationMinima m;
   m.vertical_lookahead_s = m.lookahead_s;
+  m.altimetry_tolerance_m = 0.0;
   return m;
 }
 const SeparationMinima kMinima = linear_minima();
@@ -41,6 +43,23 @@ TEST(Cpa, AVerticalConvergenceCountsOnlyWithinTheVerticalLookahead) {
   EXPECT_NEAR(g.t_los_s, (15000.0 - 9260.0) / 500.0, 1e-9);
   // Level pairs are unaffected.
   EXPECT_TRUE(in_conflict(at(0, 0, 250, 0, 10000), at(60000, 0, -250, 0, 10100), m));
+}
+
+TEST(Cpa, AConvergenceToTheAdjacentLevelIsNoConflict) {
+  // 400 m (1,312 ft) below, climbing at 5 m/s on the same track: within S_v from 19.04 s,
+  // below S_v − 60.96 m (800 ft) from 31.23 s. With T_v = 30 s that is too late: the climb
+  // may level off at the adjacent level (975 ft apart). With T_v = 32 s: a conflict from
+  // 19.04 s, the figures of the linear prediction.
+  SeparationMinima m = kMinima;
+  m.altimetry_tolerance_m = 60.96;
+  const Kinematics level = at(0, 0, 200, 0, 10000), climbing = at(0, 0, 200, 0, 9600, 5);
+  m.vertical_lookahead_s = 30.0;
+  EXPECT_FALSE(in_conflict(level, climbing, m));
+  m.vertical_lookahead_s = 32.0;
+  const ConflictGeometry g = evaluate_pair(level, climbing, m);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_NEAR(g.t_los_s, (400.0 - 304.8) / 5.0, 1e-9);
+  EXPECT_NEAR(g.t_end_s, 120.0, 1e-9);
 }
 
 TEST(Cpa, HeadOnLosesSeparationWhenTheGapCloses) {

@@ -250,7 +250,7 @@ TEST(Eligibility, AnUnknownVerticalRateIsNotLevel) {
   // grid_20250602 (readsb): a climbing aircraft's first record had no vertical rate, so it
   // read 0 ft/min and its pair 975 ft apart was taken for a level pair; the alert opened
   // after the loss had begun.
-  eligibility::Rules rules({}, 1000.0);
+  eligibility::Rules rules({}, probe::SeparationMinima{});
   track::Track a, b;
   a.alt_ft = 3625.0;
   b.alt_ft = 4600.0;
@@ -261,7 +261,7 @@ TEST(Eligibility, AnUnknownVerticalRateIsNotLevel) {
 }
 
 TEST(Eligibility, RulesOnTheirOwn) {
-  eligibility::Rules rules({}, 1000.0);
+  eligibility::Rules rules({}, probe::SeparationMinima{});
   track::Track t;
   t.alt_ft = 35000.0;
   t.gs_kt = 450.0;

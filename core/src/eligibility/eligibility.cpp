@@ -25,8 +25,8 @@ bool is_discrete_mode3a(std::uint16_t code) {
   }
 }
 
-Rules::Rules(const EligibilityConfig& config, double vertical_minimum_ft)
-    : config_(config), vertical_minimum_ft_(vertical_minimum_ft) {
+Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima)
+    : config_(config), adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / 0.3048) {
   // An emergency code must alert whatever the list says (the configuration refuses
   // them too; this keeps the rule true for programs that build the config themselves).
   std::erase_if(config_.excluded_mode3a, [](std::uint16_t c) { return !may_exclude_mode3a(c); });
@@ -56,7 +56,7 @@ bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   // A first record without a vertical rate reads 0 ft/min: that is not "level".
   if (!a.vertical_rate_known || !b.vertical_rate_known) return false;
   return std::abs(a.vr_fpm) < config_.level_rate_fpm && std::abs(b.vr_fpm) < config_.level_rate_fpm &&
-         std::abs(a.alt_ft - b.alt_ft) >= vertical_minimum_ft_ - config_.altimetry_tolerance_ft;
+         std::abs(a.alt_ft - b.alt_ft) >= adjacent_level_ft_;
 }
 
 }  // namespace kew::eligibility

@@ -45,7 +45,7 @@ Pipeline::Pipeline(const PipelineConfig& config)
         const track::Track& track = tracks_[slot];
         return alert::PartyName{track.source, track.id};
       }),
-      rules_(config.eligibility, config.minima.vertical_m / kFootToMetre) {
+      rules_(config.eligibility, config.minima) {
   if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
 }
 

@@ -33,14 +33,20 @@ Interval horizontal_interval(geometry::Vector2 d, geometry::Vector2 w, double r)
   return {s1, s2};
 }
 
-// { s : |dz + wz·s| < r }, empty when it begins after tv: a vertical convergence is
-// trusted only that far ahead (aircraft level off), a divergence for the whole look-ahead.
-Interval vertical_interval(double dz, double wz, double r, double tv) {
+// { s : |dz + wz·s| < r }, with the vertical look-ahead of design §4.4: a pair vertically
+// apart now (the interval starts at s ≥ 0) counts only when its vertical rates bring it
+// below r − tolerance, a real loss rather than the adjacent level, within tv. A pair
+// already within r keeps its interval: a divergence is trusted for the whole look-ahead.
+Interval vertical_interval(double dz, double wz, double r, double tolerance, double tv) {
   if (wz == 0.0) return std::abs(dz) < r ? Interval{-kInfinity, kInfinity} : Interval{};
   double s1 = (-r - dz) / wz;
   double s2 = (r - dz) / wz;
   if (s1 > s2) std::swap(s1, s2);
-  if (s1 >= tv) return {};
+  if (s1 >= 0.0) {
+    const double real_loss = std::max(r - tolerance, 0.0);
+    const double real_loss_from = std::min((-real_loss - dz) / wz, (real_loss - dz) / wz);
+    if (real_loss_from >= tv) return {};
+  }
   return {s1, s2};
 }
 
@@ -54,7 +60,7 @@ struct Window {
 // two agree bit for bit.
 Window conflict_window(geometry::Vector2 d, geometry::Vector2 w, double dz, double wz, const SeparationMinima& m) {
   Window out;
-  const Interval v = vertical_interval(dz, wz, m.vertical_m, m.vertical_lookahead_s);
+  const Interval v = vertical_interval(dz, wz, m.vertical_m, m.altimetry_tolerance_m, m.vertical_lookahead_s);
   // A vertical window wholly before now or after T cannot overlap [0, T].
   if (v.empty() || v.hi <= 0.0 || v.lo >= m.lookahead_s) return out;
   const Interval h = horizontal_interval(d, w, m.horizontal_m);

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "kew/probe/cpa.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/name_table.hpp"
 
@@ -40,9 +41,6 @@ struct EligibilityConfig {
   double max_position_age_s = 20.0;
   /// Level pairs: |vertical rate| below this is level (ft/min, ≥ 0; 0 disables the rule).
   double level_rate_fpm = 300.0;
-  /// Level pairs: aircraft at least S_v − this apart are at adjacent levels (ft, ≥ 0):
-  /// altimetry and Mode C rounding make FL370 and FL380 read 975 ft apart.
-  double altimetry_tolerance_ft = 200.0;
   /// One aircraft without addresses: the same discrete Mode 3/A code on two tracks within
   /// this distance (NM) and altitude difference (ft) of each other.
   double same_code_distance_nm = 1.0;
@@ -86,8 +84,9 @@ bool may_exclude_mode3a(std::uint16_t code);
 
 class Rules {
  public:
-  /// `vertical_minimum_ft`: S_v of the conflict test (level pairs are judged against it).
-  Rules(const EligibilityConfig& config, double vertical_minimum_ft);
+  /// `minima`: those of the conflict test; level pairs are judged against S_v and its
+  /// altimetry tolerance.
+  Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima);
 
   /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
   Exclusion exclusion(const track::Track& t, double now) const;
@@ -100,14 +99,14 @@ class Rules {
 
   /// Whether two tracks are level (|vertical rate| < level_rate_fpm, the rate known:
   /// reported or derived, Track::vertical_rate_known) and reported at adjacent levels
-  /// (|Δaltitude| ≥ S_v − altimetry_tolerance_ft).
+  /// (|Δaltitude| ≥ S_v − the altimetry tolerance).
   bool level_pair(const track::Track& a, const track::Track& b) const;
 
   const EligibilityConfig& config() const { return config_; }
 
  private:
   EligibilityConfig config_;
-  double vertical_minimum_ft_;
+  double adjacent_level_ft_;  // S_v − the altimetry tolerance
 };
 
 }  // namespace kew::eligibility

@@ -3,7 +3,8 @@
 // Both aircraft move in straight lines at constant velocity (horizontal in the plane,
 // vertical by vertical rate). The pair is in conflict when, for some τ' in [0, T], the
 // horizontal distance is below S_h and the vertical distance below S_v at the same τ',
-// and the vertical separation is lost (or already lost) no later than T_v: the
+// and, for a pair vertically apart now, the vertical rates bring it below S_v less the
+// altimetry tolerance no later than T_v: the
 // intersection of the two open time intervals, each from a quadratic or linear
 // inequality solved in closed form, clipped to [0, T].
 
@@ -23,12 +24,18 @@ struct SeparationMinima {
   double horizontal_m = 9260.0;  ///< S_h (> 0); default 5 NM
   double vertical_m = 304.8;     ///< S_v (> 0); default 1,000 ft
   double lookahead_s = 120.0;    ///< T (≥ 0)
-  /// T_v (≥ 0, s): a loss of vertical separation that the vertical rates predict to
-  /// begin later than this does not count (design §4.4). Aircraft level off at their
-  /// cleared level, which kew does not know; a climb carried on for two minutes through
-  /// the level above is the commonest nuisance alert. A vertical divergence is trusted
-  /// for the whole look-ahead. At or above T: plain linear prediction.
+  /// T_v (≥ 0, s): a pair vertically apart now is in conflict only when its vertical
+  /// rates bring it below S_v − altimetry_tolerance_m (a real loss, not the adjacent
+  /// level) within T_v (design §4.4). Aircraft level off at cleared levels kew does not
+  /// know; a climb carried on for two minutes through the level above is the commonest
+  /// nuisance alert. A pair already within S_v is predicted linearly for the whole
+  /// look-ahead (a divergence is trusted). With altimetry_tolerance_m = 0 and T_v ≥ T:
+  /// the plain linear prediction.
   double vertical_lookahead_s = 30.0;
+  /// Altimetry tolerance (≥ 0, m; default 200 ft): aircraft at adjacent levels read as
+  /// little as S_v − this apart (altimetry error, 25 ft and 100 ft rounding), and are
+  /// separated. Also the level-pair rule's (design §4.5).
+  double altimetry_tolerance_m = 200.0 * 0.3048;
 };
 
 struct ConflictGeometry {

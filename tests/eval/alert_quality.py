@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""The README's "Alert quality" tables: kew-eval on every shared recording kew reads.
+
+    python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR]
+
+Prints two markdown tables: each recording with every filter off (filters-off.toml, kew
+before issue 17) and with the default configuration; then, summed over the recordings,
+what switching off each rule alone gives back. UPC is read with its [[radar]] table,
+switzerland with --sort, as tests/golden/run_golden.py replays them.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tests", "golden"))
+from run_golden import BARCELONA_RADAR  # noqa: E402
+
+CASES = [
+    ("jade-cat062-ff (30 min)", "jade-cat062-ff/final_frame_062_30min.ff", False, []),
+    ("upc-bcn-cat048 (60 min)", "upc-bcn-cat048/230502-est-080001_BCN_60MN_08_09.ast", True, []),
+    ("opensky switzerland (17 h)", "traffic-opensky/switzerland.json.gz", False, ["--sort"]),
+    ("readsb 1hr", "adsb_actions-readsb/1hr.json", False, []),
+    ("readsb 20minutes", "adsb_actions-readsb/20minutes.json", False, []),
+    ("readsb grid 2025-06-01 (28.6 h)", "adsb_actions-readsb/grid_20250601_36_-122.jsonl.gz", False, []),
+    ("readsb grid 2025-06-02 (24 h)", "adsb_actions-readsb/grid_20250602_36_-122.jsonl.gz", False, []),
+    ("sbs-japan (2 h)", "sbs-japan/adsb202201082242.csv", False, []),
+]
+
+# One rule off at a time, on top of the default configuration.
+RULES_OFF = [
+    ("one aircraft by discrete code (the address rule cannot be switched off)", "[eligibility]\nsame_code_distance_nm = 0\nsame_code_altitude_ft = 0\n"),
+    ("level pairs", "[eligibility]\nlevel_rate_fpm = 0\n"),
+    ("speed floor 50 kt", "[eligibility]\nmin_ground_speed_kt = 0\n"),
+    ("altitude band", "[eligibility]\nmin_altitude_ft = -5000\nmax_altitude_ft = 200000\n"),
+    ("lower limit 1,500 ft", "[eligibility]\nlower_limit_ft = 0\n"),
+    ("code 7777", "[eligibility]\nexcluded_mode3a = []\n"),
+    ("coasting", "[eligibility]\nexclude_coasting = false\n"),
+    ("stale position 20 s", "[eligibility]\nmax_position_age_s = 3600\n"),
+    ("vertical look-ahead 30 s + tolerance", "[probe]\nvertical_lookahead_s = 3600\naltimetry_tolerance_ft = 0\n"),
+    ("clear = 4 (2 instead)", "[alerts]\nclear = 2\n"),
+]
+
+
+def evaluate(kew_eval, recording, radar, extra, configs, workdir):
+    args = [kew_eval, "--json", *extra]
+    for index, text in enumerate(configs):
+        path = os.path.join(workdir, f"c{index}.toml")
+        with open(path, "w") as f:
+            f.write(text + (BARCELONA_RADAR if radar else ""))
+        args += ["-c", path]
+    out = subprocess.run(args + [recording], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, check=True)
+    return json.loads(out.stdout)
+
+
+def share(run):
+    u = run["undesirable_share"]
+    return "n/a" if u == "n/a" else f"{100 * u:.1f} %"
+
+
+def cell(run):
+    return f"{run['alerts']} ({run['hit']} / {run['close_call']} / {run['nuisance']} / {run['ineligible']})"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--kew-eval", default=os.path.join(ROOT, "build", "replay", "kew-eval"))
+    parser.add_argument("--recordings", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings"))
+    options = parser.parse_args()
+    with open(os.path.join(HERE, "filters-off.toml")) as f:
+        before = f.read()
+    totals = {name: [0, 0, 0] for name, _ in RULES_OFF}  # alerts, undesirable, missed
+    default_total = [0, 0, 0]
+    print("| recording | flight h | loss events | alerts before (hit / close / nuisance / inelig.) | undesirable before | "
+          "alerts now | undesirable now | per 100 flight h now | detected / missed / unwarnable now | warning p10 / p50 (s) |")
+    print("|---|---:|---:|---|---:|---|---:|---:|---|---|")
+    with tempfile.TemporaryDirectory(prefix="kew-quality-") as workdir:
+        for label, relative, radar, extra in CASES:
+            path = os.path.join(options.recordings, relative)
+            if not os.path.exists(path):
+                print(f"*** {path} is absent: not evaluated ***", file=sys.stderr)
+                continue
+            result = evaluate(options.kew_eval, path, radar, extra,
+                              [before, ""] + [text for _, text in RULES_OFF], workdir)
+            old, now, *off = result["runs"]
+            w = now["warning_s"]
+            warning = "n/a" if w == "n/a" else f"{w['p10']:.0f} / {w['p50']:.0f}"
+            print(f"| {label} | {result['truth']['flight_hours']:.1f} | {result['truth']['loss_events']} | {cell(old)} | "
+                  f"{share(old)} | {cell(now)} | {share(now)} | {now['alerts_per_100_flight_hours']:.0f} | "
+                  f"{now['detected']} / {now['missed']} / {now['unwarnable']} | {warning} |")
+            for total, run in [(default_total, now)] + list(zip(totals.values(), off)):
+                total[0] += run["alerts"]
+                total[1] += run["nuisance"] + run["ineligible"]
+                total[2] += run["missed"]
+    print()
+    print("| rule switched off alone | alerts (all recordings) | undesirable | missed losses |")
+    print("|---|---:|---:|---:|")
+    print(f"| none (default) | {default_total[0]} | {default_total[1]} | {default_total[2]} |")
+    for name, (alerts, undesirable, missed) in totals.items():
+        print(f"| {name} | {alerts} (+{alerts - default_total[0]}) | {undesirable} (+{undesirable - default_total[1]}) | "
+              f"{missed} |")
+
+
+if __name__ == "__main__":
+    main()
