@@ -211,6 +211,41 @@ TEST(Eligibility, TheSameDiscreteCodeOnColocatedTracksIsOneAircraft) {
   EXPECT_EQ(fly({radar, other}).opened(), 1u);
 }
 
+TEST(Eligibility, ADuplicatedCodeNeverEndsAnOpenAlert) {
+  // Two aircraft squawking one code (a code duplication) head-on: the alert opens while
+  // they are far apart and must stay open as they come within 1 NM and 500 ft.
+  std::vector<Flight> pair = head_on();
+  pair[0].edit = pair[1].edit = [](TrackReport& r) { r.mode3a = 04711; };
+  const Outcome run = fly(pair, 88.0);  // they pass each other at 80 s
+  EXPECT_EQ(run.opened(), 1u);
+  for (const AlertEvent& e : run.events) {
+    if (e.t < kT0 + 80.0) {
+      EXPECT_NE(e.state, AlertState::End) << e.t - kT0;
+    }
+  }
+}
+
+TEST(Eligibility, AReusedTrackNumberForgetsTheOldAircraftsAddress) {
+  // Track 17 was aircraft 4CA1B2; the number is reused 80 NM away by an aircraft without
+  // an address (the jump resets the velocity). The new one must not be "one aircraft"
+  // with 4CA1B2, still seen by ADS-B.
+  Flight old_aircraft{"17", "cat062/25.100"};
+  old_aircraft.edit = [](TrackReport& r) { r.address = 0x4CA1B2; };
+  Pipeline pipeline;
+  pipeline.process(old_aircraft.at(kT0));
+  pipeline.process(old_aircraft.at(kT0 + 4.0));
+  Flight reused{"17", "cat062/25.100"};
+  reused.east_m = 80.0 * 1852.0;
+  reused.edit = [](TrackReport& r) {  // positions only: the jump is seen when deriving
+    r.gs_kt.reset();
+    r.trk_deg.reset();
+  };
+  pipeline.process(reused.at(kT0 + 8.0));
+  const track::Track& track = pipeline.tracks()[pipeline.tracks().find("cat062/25.100", "17")];
+  EXPECT_FALSE(track.address.has_value());
+  EXPECT_EQ(pipeline.tracks().velocity_resets(), 1u);
+}
+
 TEST(Eligibility, OneTrackStaysOneTrackWithAndWithoutAnAddress) {
   // A CAT062 track whose I062/380 comes and goes: one track, no alert against itself.
   Flight track{"1234", "cat062/25.100"};
@@ -257,6 +292,32 @@ TEST(Eligibility, AnUnknownVerticalRateIsNotLevel) {
   a.vertical_rate_known = b.vertical_rate_known = true;
   EXPECT_TRUE(rules.level_pair(a, b));
   a.vertical_rate_known = false;
+  EXPECT_FALSE(rules.level_pair(a, b));
+}
+
+TEST(Eligibility, OneAltitudeStepBetweenRadarRecordsIsLevel) {
+  // upc-bcn-cat048: CAT048 carries no vertical rate; one 25 ft step in a 4 s scan derives
+  // 375 ft/min, and level aircraft at FL360 and FL370 (975 ft apart) alerted.
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  track::Track a, b;
+  a.alt_ft = 36025.0;
+  b.alt_ft = 37000.0;
+  a.vertical_rate_known = b.vertical_rate_known = true;
+  a.vertical_rate_derived = true;
+  a.altitude_step_ft = 25.0;
+  a.vr_fpm = 375.0;
+  EXPECT_TRUE(rules.level_pair(a, b));
+  // The same step in one second is a 1,500 ft/min climb.
+  a.vr_fpm = 1500.0;
+  EXPECT_FALSE(rules.level_pair(a, b));
+  // Two steps in 4 s: 750 ft/min.
+  a.altitude_step_ft = 50.0;
+  a.vr_fpm = 750.0;
+  EXPECT_FALSE(rules.level_pair(a, b));
+  // A reported 375 ft/min is a climb (the threshold is 300).
+  a.vertical_rate_derived = false;
+  a.altitude_step_ft = 0.0;
+  a.vr_fpm = 375.0;
   EXPECT_FALSE(rules.level_pair(a, b));
 }
 

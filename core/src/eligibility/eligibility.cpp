@@ -7,6 +7,11 @@ namespace kew::eligibility {
 
 namespace {
 constexpr double kNauticalMile_m = 1852.0;
+// Mode S and ASTERIX altitudes come in 25 ft steps: a rate derived from one step between
+// two radar records (375 ft/min at 4 s) is quantisation, not a climb. One step in a
+// second or two (750 ft/min and more, ADS-B) may well be a climb.
+constexpr double kAltitudeQuantum_ft = 25.0;
+constexpr double kQuantumRate_fpm = 400.0;
 }
 
 bool may_exclude_mode3a(std::uint16_t code) { return code != 07500 && code != 07600 && code != 07700; }
@@ -44,8 +49,12 @@ Exclusion Rules::exclusion(const track::Track& t, double now) const {
   return Exclusion::None;
 }
 
-bool Rules::same_aircraft(const track::Track& a, const track::Track& b, double distance_m) const {
-  if (a.address && b.address) return *a.address == *b.address;
+bool Rules::same_address(const track::Track& a, const track::Track& b) const {
+  return a.address && b.address && *a.address == *b.address;
+}
+
+bool Rules::same_code_colocated(const track::Track& a, const track::Track& b, double distance_m) const {
+  if (a.address && b.address) return false;
   if (!a.mode3a || !b.mode3a || *a.mode3a != *b.mode3a || !is_discrete_mode3a(*a.mode3a)) return false;
   return distance_m <= config_.same_code_distance_nm * kNauticalMile_m &&
          std::abs(a.alt_ft - b.alt_ft) <= config_.same_code_altitude_ft;
@@ -55,8 +64,12 @@ bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   if (config_.level_rate_fpm <= 0.0) return false;
   // A first record without a vertical rate reads 0 ft/min: that is not "level".
   if (!a.vertical_rate_known || !b.vertical_rate_known) return false;
-  return std::abs(a.vr_fpm) < config_.level_rate_fpm && std::abs(b.vr_fpm) < config_.level_rate_fpm &&
-         std::abs(a.alt_ft - b.alt_ft) >= adjacent_level_ft_;
+  const auto level = [&](const track::Track& t) {
+    return std::abs(t.vr_fpm) < config_.level_rate_fpm ||
+           (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft &&
+            std::abs(t.vr_fpm) <= kQuantumRate_fpm);
+  };
+  return level(a) && level(b) && std::abs(a.alt_ft - b.alt_ft) >= adjacent_level_ft_;
 }
 
 }  // namespace kew::eligibility

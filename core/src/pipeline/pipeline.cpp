@@ -312,8 +312,7 @@ void Pipeline::probe(track::TrackSlot slot) {
 bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
   const track::Track& tp = tracks_[pair.p];
   const track::Track& tq = tracks_[pair.q];
-  const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
-  if (rules_.same_aircraft(tp, tq, distance_m)) {
+  if (rules_.same_address(tp, tq)) {
     suppressed_.reject("same_aircraft");
     return true;
   }
@@ -322,6 +321,13 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
     return true;
   }
   if (alerts_.is_active(pair.p, pair.q)) return false;
+  // Codes are duplicated: two aircraft with one code that close in on each other must not
+  // lose an open alert, so the code rule only keeps one from opening.
+  const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
+  if (rules_.same_code_colocated(tp, tq, distance_m)) {
+    suppressed_.reject("same_aircraft");
+    return true;
+  }
   eligibility::Exclusion why = rules_.exclusion(tp, clock_);
   if (why == eligibility::Exclusion::None) why = rules_.exclusion(tq, clock_);
   if (why == eligibility::Exclusion::None) return false;

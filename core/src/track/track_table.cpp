@@ -128,19 +128,24 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
 
   double vertical_rate_mps = 0.0;
   bool vertical_rate_known = false;
+  bool vertical_rate_derived = false;
+  double altitude_step_ft = 0.0;
   if (r.vr_fpm) {
     vertical_rate_mps = *r.vr_fpm * kFpmToMps;
     vertical_rate_known = true;
   } else if (can_derive) {
     vertical_rate_mps = (r.alt_ft - previous->alt_ft) * kFootToMetre / gap;
-    vertical_rate_known = true;
+    vertical_rate_known = vertical_rate_derived = true;
+    altitude_step_ft = std::abs(r.alt_ft - previous->alt_ft);
     if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) {
       vertical_rate_mps = 0.0;
-      vertical_rate_known = false;
+      vertical_rate_known = vertical_rate_derived = false;
     }
   } else if (previous) {
     vertical_rate_mps = previous->kinematics.vertical_rate_mps;
     vertical_rate_known = previous->vertical_rate_known;
+    vertical_rate_derived = previous->vertical_rate_derived;
+    altitude_step_ft = previous->altitude_step_ft;
   }
 
   TrackSlot slot = existing;
@@ -153,6 +158,13 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.lat_deg = r.lat_deg;
   track.lon_deg = r.lon_deg;
   track.alt_ft = r.alt_ft;
+  if (result.velocity_reset) {
+    // The previous position was another aircraft's (a reused track number): so were its
+    // attributes, and one aircraft's address on another would make them "one aircraft".
+    track.callsign.clear();
+    track.mode3a.reset();
+    track.address.reset();
+  }
   if (!r.callsign.empty()) track.callsign = r.callsign;
   if (r.mode3a) track.mode3a = r.mode3a;
   if (r.address) track.address = r.address;
@@ -164,6 +176,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.kinematics.vertical_rate_mps = vertical_rate_mps;
   track.has_velocity = has_velocity;
   track.vertical_rate_known = vertical_rate_known;
+  track.vertical_rate_derived = vertical_rate_derived;
+  track.altitude_step_ft = altitude_step_ft;
   track.vr_fpm = vertical_rate_mps / kFpmToMps;
   if (r.gs_kt && r.trk_deg) {
     track.gs_kt = *r.gs_kt;

@@ -116,7 +116,12 @@ bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport
     report.gs_kt = be16(velocity) * kSpeedLsbKt;
     report.trk_deg = be16(velocity + 2) * kAngleLsbDeg;
   }
-  if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
+  if (items.has(kMode3A)) {
+    // I048/070: V (bit 16) = code not validated, G (bit 15) = garbled. Such a code is no
+    // identity and must not exclude a track (design §4.5): it is left out.
+    const std::uint16_t word = static_cast<std::uint16_t>(be16(items.data(kMode3A)));
+    if ((word & 0xC000) == 0) report.mode3a = static_cast<std::uint16_t>(word & 0x0FFF);
+  }
   if (items.has(kIdentification)) decode_icao_characters(items.data(kIdentification), report.callsign);
   return true;
 }

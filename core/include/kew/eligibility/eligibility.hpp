@@ -91,15 +91,19 @@ class Rules {
   /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
   Exclusion exclusion(const track::Track& t, double now) const;
 
-  /// Whether two tracks are one aircraft: the same 24-bit address; or, unless both have
-  /// addresses (two different addresses are never one aircraft), the same discrete
-  /// Mode 3/A code within same_code_distance_nm and same_code_altitude_ft. `distance_m`
-  /// is their current horizontal distance (m, on the ellipsoid).
-  bool same_aircraft(const track::Track& a, const track::Track& b, double distance_m) const;
+  /// Whether two tracks carry the same 24-bit address: one aircraft, whatever else.
+  bool same_address(const track::Track& a, const track::Track& b) const;
+  /// Whether two tracks without two addresses (two different addresses are never one
+  /// aircraft) squawk the same discrete Mode 3/A code within same_code_distance_nm and
+  /// same_code_altitude_ft. `distance_m` is their current horizontal distance (m, on the
+  /// ellipsoid). Weaker evidence than an address (codes are duplicated): the pipeline
+  /// uses it only for pairs without an open alert.
+  bool same_code_colocated(const track::Track& a, const track::Track& b, double distance_m) const;
 
-  /// Whether two tracks are level (|vertical rate| < level_rate_fpm, the rate known:
-  /// reported or derived, Track::vertical_rate_known) and reported at adjacent levels
-  /// (|Δaltitude| ≥ S_v − the altimetry tolerance).
+  /// Whether two tracks are level (|vertical rate| < level_rate_fpm, or a rate derived
+  /// from altitudes one 25 ft step apart; the rate known: reported or derived,
+  /// Track::vertical_rate_known) and reported at adjacent levels (|Δaltitude| ≥ S_v −
+  /// the altimetry tolerance).
   bool level_pair(const track::Track& a, const track::Track& b) const;
 
   const EligibilityConfig& config() const { return config_; }

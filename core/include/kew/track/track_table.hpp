@@ -55,6 +55,11 @@ struct Track {
   /// The vertical rate was reported or derived from altitudes (or kept from such a
   /// record): false when vr_fpm is 0 only because nothing said otherwise.
   bool vertical_rate_known = false;
+  /// The vertical rate was derived from the last two altitudes, which differed by
+  /// altitude_step_ft (ft, ≥ 0): one 25 ft step between two records is the altitude's
+  /// quantum, not a climb (the level-pair rule, design §4.5).
+  bool vertical_rate_derived = false;
+  double altitude_step_ft = 0.0;
   bool in_use = false;
 
   double t = 0.0;            ///< data time of the last accepted record (UTC s)
