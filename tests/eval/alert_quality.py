@@ -42,7 +42,7 @@ RULES_OFF = [
     ("code 7777", "[eligibility]\nexcluded_mode3a = []\n"),
     ("coasting", "[eligibility]\nexclude_coasting = false\n"),
     ("stale position 20 s", "[eligibility]\nmax_position_age_s = 3600\n"),
-    ("vertical look-ahead 30 s + tolerance", "[probe]\nvertical_lookahead_s = 3600\naltimetry_tolerance_ft = 0\n"),
+    ("vertical look-ahead 30 s + tolerance (T_v = T, tolerance 0)", "[probe]\nvertical_lookahead_s = 120\naltimetry_tolerance_ft = 0\n"),
     ("clear = 4 (2 instead)", "[alerts]\nclear = 2\n"),
 ]
 

@@ -295,6 +295,24 @@ TEST(Eligibility, AnUnknownVerticalRateIsNotLevel) {
   EXPECT_FALSE(rules.level_pair(a, b));
 }
 
+TEST(Eligibility, SlowDriftsTowardsEachOtherAreNotALevelPair) {
+  // 850 ft apart, each "level" at 290 ft/min towards the other: 580 ft/min closing, 560 ft
+  // apart after T_v = 30 s. Not at adjacent levels for long: judged by the conflict test.
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  track::Track a, b;
+  a.alt_ft = 35000.0;
+  b.alt_ft = 35850.0;
+  a.vertical_rate_known = b.vertical_rate_known = true;
+  EXPECT_TRUE(rules.level_pair(a, b));
+  a.vr_fpm = 290.0;
+  b.vr_fpm = -290.0;
+  EXPECT_FALSE(rules.level_pair(a, b));
+  // Drifting apart is still a level pair.
+  a.vr_fpm = -290.0;
+  b.vr_fpm = 290.0;
+  EXPECT_TRUE(rules.level_pair(a, b));
+}
+
 TEST(Eligibility, OneAltitudeStepBetweenRadarRecordsIsLevel) {
   // upc-bcn-cat048: CAT048 carries no vertical rate; one 25 ft step in a 4 s scan derives
   // 375 ft/min, and level aircraft at FL360 and FL370 (975 ft apart) alerted.

@@ -31,7 +31,9 @@ bool is_discrete_mode3a(std::uint16_t code) {
 }
 
 Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima)
-    : config_(config), adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / 0.3048) {
+    : config_(config),
+      adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / 0.3048),
+      vertical_lookahead_s_(minima.vertical_lookahead_s) {
   // An emergency code must alert whatever the list says (the configuration refuses
   // them too; this keeps the rule true for programs that build the config themselves).
   std::erase_if(config_.excluded_mode3a, [](std::uint16_t c) { return !may_exclude_mode3a(c); });
@@ -64,12 +66,23 @@ bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   if (config_.level_rate_fpm <= 0.0) return false;
   // A first record without a vertical rate reads 0 ft/min: that is not "level".
   if (!a.vertical_rate_known || !b.vertical_rate_known) return false;
-  const auto level = [&](const track::Track& t) {
-    return std::abs(t.vr_fpm) < config_.level_rate_fpm ||
-           (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft &&
-            std::abs(t.vr_fpm) <= kQuantumRate_fpm);
+  // The rate a level track is taken to have: its own below level_rate_fpm, 0 for one
+  // quantum step, none (not level) otherwise.
+  const auto level_rate = [&](const track::Track& t) -> std::optional<double> {
+    if (std::abs(t.vr_fpm) < config_.level_rate_fpm) return t.vr_fpm;
+    if (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft && std::abs(t.vr_fpm) <= kQuantumRate_fpm)
+      return 0.0;
+    return std::nullopt;
   };
-  return level(a) && level(b) && std::abs(a.alt_ft - b.alt_ft) >= adjacent_level_ft_;
+  const std::optional<double> rate_a = level_rate(a), rate_b = level_rate(b);
+  if (!rate_a || !rate_b) return false;
+  // "Level" tolerates a few hundred ft/min each: the pair must still be at adjacent levels
+  // at the end of the vertical look-ahead, or two slow drifts towards each other could
+  // cross levels unseen.
+  const double dz_ft = b.alt_ft - a.alt_ft;
+  const double later_ft = dz_ft + (*rate_b - *rate_a) / 60.0 * vertical_lookahead_s_;
+  return std::abs(dz_ft) >= adjacent_level_ft_ && std::abs(later_ft) >= adjacent_level_ft_ &&
+         (dz_ft > 0.0) == (later_ft > 0.0);
 }
 
 }  // namespace kew::eligibility

@@ -103,14 +103,15 @@ class Rules {
   /// Whether two tracks are level (|vertical rate| < level_rate_fpm, or a rate derived
   /// from altitudes one 25 ft step apart; the rate known: reported or derived,
   /// Track::vertical_rate_known) and reported at adjacent levels (|Δaltitude| ≥ S_v −
-  /// the altimetry tolerance).
+  /// the altimetry tolerance), still so at the end of T_v with their rates.
   bool level_pair(const track::Track& a, const track::Track& b) const;
 
   const EligibilityConfig& config() const { return config_; }
 
  private:
   EligibilityConfig config_;
-  double adjacent_level_ft_;  // S_v − the altimetry tolerance
+  double adjacent_level_ft_;     // S_v − the altimetry tolerance
+  double vertical_lookahead_s_;  // T_v
 };
 
 }  // namespace kew::eligibility

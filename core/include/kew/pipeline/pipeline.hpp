@@ -92,7 +92,8 @@ class Pipeline {
   const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_.statistics(); }
   const Rejections& rejections() const { return tracks_.rejections(); }
   Rejections& rejections() { return tracks_.rejections(); }
-  /// Optional fields dropped from accepted records (design §4.3), by reason.
+  /// Optional fields dropped from records that passed the record-level checks (design
+  /// §4.3), by reason.
   const Rejections& dropped_fields() const { return tracks_.dropped_fields(); }
   Rejections& dropped_fields() { return tracks_.dropped_fields(); }
   /// Conflicting evaluations the rules of design §4.5 turned clear, by rule:
