@@ -205,6 +205,11 @@ TEST(Eligibility, TheSameDiscreteCodeOnColocatedTracksIsOneAircraft) {
   EXPECT_EQ(fly({radar, other}).opened(), 1u);
   radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 07700; };
   EXPECT_EQ(fly({radar, other}).opened(), 1u);
+  // The rule switched off (same_code_distance_nm = 0): two aircraft.
+  PipelineConfig off;
+  off.eligibility.same_code_distance_nm = 0.0;
+  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
+  EXPECT_EQ(fly({radar, other}, 40.0, off).opened(), 1u);
   // The same discrete code 3 NM apart: two aircraft.
   radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
   other.north_m = 3.0 * 1852.0;

@@ -56,7 +56,7 @@ bool Rules::same_address(const track::Track& a, const track::Track& b) const {
 }
 
 bool Rules::same_code_colocated(const track::Track& a, const track::Track& b, double distance_m) const {
-  if (a.address && b.address) return false;
+  if (config_.same_code_distance_nm <= 0.0 || (a.address && b.address)) return false;
   if (!a.mode3a || !b.mode3a || *a.mode3a != *b.mode3a || !is_discrete_mode3a(*a.mode3a)) return false;
   return distance_m <= config_.same_code_distance_nm * kNauticalMile_m &&
          std::abs(a.alt_ft - b.alt_ft) <= config_.same_code_altitude_ft;
