@@ -344,6 +344,35 @@ TEST(Eligibility, OneAltitudeStepBetweenRadarRecordsIsLevel) {
   EXPECT_FALSE(rules.level_pair(a, b));
 }
 
+TEST(Eligibility, ARefusedLastRecordStillEndsTheTrack) {
+  Flight a{"1234", "cat062/25.100"};
+  Pipeline pipeline;
+  pipeline.process(a.at(kT0));
+  pipeline.process(a.at(kT0 + 4.0));
+  TrackReport last = a.at(kT0 + 4.0);  // the same time again: refused as duplicate_time
+  last.track_end = true;
+  pipeline.process(last);
+  EXPECT_EQ(pipeline.rejections().count("duplicate_time"), 1u);
+  EXPECT_EQ(pipeline.statistics().tracks_ended, 1u);
+  EXPECT_EQ(pipeline.tracks().size(), 0u);
+}
+
+TEST(Eligibility, ARefusedRecordWithAnotherAddressKeepsTheOldTrack) {
+  Flight a{"17", "cat062/25.100"};
+  a.edit = [](TrackReport& r) { r.address = 0x4CA1B2; };
+  Pipeline pipeline;
+  pipeline.process(a.at(kT0));
+  pipeline.process(a.at(kT0 + 4.0));
+  TrackReport far = a.at(kT0 + 8.0);  // outside the 1,500 km coverage
+  far.address = 0x3C6543;
+  far.lat_deg = -40.0;
+  pipeline.process(far);
+  EXPECT_EQ(pipeline.rejections().count("outside_coverage"), 1u);
+  EXPECT_EQ(pipeline.statistics().tracks_restarted, 0u);
+  ASSERT_NE(pipeline.tracks().find("cat062/25.100", "17"), track::kNoTrack);
+  EXPECT_EQ(pipeline.live_tracks(), 1u);
+}
+
 TEST(Eligibility, RulesOnTheirOwn) {
   eligibility::Rules rules({}, probe::SeparationMinima{});
   track::Track t;

@@ -94,7 +94,15 @@ void Pipeline::process_plausible(const TrackReport& report) {
   restart_if_other_aircraft(report);
 
   const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
-  if (admitted.admission == track::Admission::Rejected) return;
+  if (admitted.admission == track::Admission::Rejected) {
+    // The source ended the track: so it is, even when this last record is refused
+    // (a repeated time, say); otherwise it would linger until the timeout.
+    if (report.track_end) {
+      const track::TrackSlot slot = tracks_.find(report.source, report.id);
+      if (slot != track::kNoTrack) end_track(slot);
+    }
+    return;
+  }
   ++stats_.accepted;
   stats_.last_data_time = clock_;
   track::Track& track = tracks_[admitted.slot];
@@ -120,6 +128,10 @@ void Pipeline::restart_if_other_aircraft(const TrackReport& report) {
   const track::Track& track = tracks_[slot];
   // Two 24-bit addresses are never one aircraft: the id was reused (design §4.5).
   if (!track.address || *track.address == *report.address) return;
+  // Keep the old track when admit() is going to refuse the record anyway.
+  geo::ProjectionError error = geo::ProjectionError::None;
+  (void)projection_->project({report.lat_deg, report.lon_deg}, error);
+  if (error != geo::ProjectionError::None) return;
   ++stats_.tracks_restarted;
   drop_track(slot);
   tracks_.drop(slot);
