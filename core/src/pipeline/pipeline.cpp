@@ -71,17 +71,6 @@ void Pipeline::process(const TrackReport& report) {
     tracks_.rejections().reject(problem, report.id);
     return;
   }
-  if (const unsigned bad_fields = tracks_.implausible_optional_fields(report); bad_fields != 0) {
-    // Rare: the copy is paid only by records with a field to drop.
-    TrackReport cleaned = report;
-    tracks_.drop_optional_fields(cleaned, bad_fields);
-    process_plausible(cleaned);
-    return;
-  }
-  process_plausible(report);
-}
-
-void Pipeline::process_plausible(const TrackReport& report) {
   if (!projection_) projection_.emplace(rounded_reference(report), config_.coverage_radius_m);
   if (!started_) {
     started_ = true;

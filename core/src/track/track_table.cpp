@@ -77,11 +77,10 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     return result;
   };
   if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);
-  if (implausible_optional_fields(r) != 0) {
-    // The pipeline drops bad fields before it calls admit(); a caller that does not
-    // gets the same treatment, on a copy.
+  if (const unsigned bad_fields = implausible_optional_fields(r); bad_fields != 0) {
+    // Rare: only a record with a field to drop pays for the copy.
     TrackReport cleaned = r;
-    drop_optional_fields(cleaned, implausible_optional_fields(cleaned));
+    drop_optional_fields(cleaned, bad_fields);
     return admit(cleaned, now, projection);
   }
   if (r.t < now - config_.max_lateness_s) return reject("too_late");

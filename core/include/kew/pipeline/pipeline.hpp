@@ -114,8 +114,6 @@ class Pipeline {
   double search_radius(double speed_mps) const;
 
  private:
-  /// process() after the record-level checks, with its optional fields made plausible.
-  void process_plausible(const TrackReport& report);
   void move_clock(double t);
   void drop_track(track::TrackSlot slot);
   /// Drops the track of `report`'s id when it carries another 24-bit address.

@@ -102,7 +102,9 @@ class TrackTable {
 
   /// Checks a record and, when it passes, applies it to its track. `now` is the pipeline
   /// clock (UTC s): records older than now − max_lateness_s are refused. On refusal the
-  /// reason is counted in rejections() and nothing else changes.
+  /// reason is counted in rejections() and nothing else changes. An implausible optional
+  /// field (speed, track angle, vertical rate) costs only that field (design §4.3): it is
+  /// dropped, counted in dropped_fields(), and the record judged without it.
   AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection);
 
   /// Forgets a track (its slot may be reused by a later track).
@@ -130,15 +132,8 @@ class TrackTable {
 
   /// The reason a record is implausible on its own (time, position, altitude, on
   /// ground...), or an empty view when it is plausible. Optional fields are not judged
-  /// here (see implausible_optional_fields). No state is read or changed.
+  /// here (admit() drops implausible ones). No state is read or changed.
   std::string_view plausibility_problem(const TrackReport& r) const;
-
-  /// Bits of the optional fields of `r` that are implausible: a bad speed, track angle or
-  /// vertical rate costs only that field (design §4.3), the record is still accepted.
-  enum OptionalField : unsigned { kGroundSpeed = 1, kTrackAngle = 2, kVerticalRate = 4 };
-  unsigned implausible_optional_fields(const TrackReport& r) const;
-  /// Clears the fields of `bits` in `r` and counts each in dropped_fields() with `r`'s id.
-  void drop_optional_fields(TrackReport& r, unsigned bits);
 
   const TrackTableConfig& config() const { return config_; }
   Rejections& rejections() { return rejections_; }
@@ -151,6 +146,11 @@ class TrackTable {
 
  private:
   TrackSlot allocate(const TrackReport& r);
+  /// Bits of the optional fields of `r` that are implausible.
+  enum OptionalField : unsigned { kGroundSpeed = 1, kTrackAngle = 2, kVerticalRate = 4 };
+  unsigned implausible_optional_fields(const TrackReport& r) const;
+  /// Clears the fields of `bits` in `r` and counts each in dropped_fields().
+  void drop_optional_fields(TrackReport& r, unsigned bits);
 
   TrackTableConfig config_;
   util::ChunkedVector<Track> tracks_;  // chunked: no doubling slack on ~200-byte records
