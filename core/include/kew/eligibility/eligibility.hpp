@@ -4,7 +4,8 @@
 // brute-force probe goes through the same rules, so exact = brute still holds.
 //
 // Three kinds of rule, applied to a pair the conflict test found in conflict:
-//  - one aircraft: two tracks of the same aircraft are never in conflict;
+//  - one aircraft: two tracks with one address are never in conflict, and the same
+//    discrete code on co-located tracks opens no alert;
 //  - level pairs: two level aircraft reported at adjacent levels are separated;
 //  - exclusions: a track that is not an airborne aircraft worth alerting on opens no
 //    alert (an alert already open stays open and ends by its own rules).
@@ -67,14 +68,6 @@ inline constexpr util::NameTable<Exclusion, 7> kExclusionNames({{
     {Exclusion::PositionStale, "position_stale"},
 }});
 
-/// What the rules decided about a pair in conflict. Names are the statistics' keys.
-enum class PairRule : std::uint8_t {
-  InConflict,   ///< no rule applies: the pair is in conflict
-  SameAircraft, ///< one aircraft seen as two tracks: never in conflict
-  LevelPair,    ///< level at adjacent levels: separated
-  Excluded,     ///< a party may not open an alert (the pair has none open)
-};
-
 /// The codes that are never identity (conspicuity codes shared by many aircraft), and
 /// 7500/7600/7700, which an aircraft in trouble selects and must never be treated as
 /// identity or excluded.
@@ -106,7 +99,6 @@ class Rules {
   /// the altimetry tolerance), still so at the end of T_v with their rates.
   bool level_pair(const track::Track& a, const track::Track& b) const;
 
-  const EligibilityConfig& config() const { return config_; }
 
  private:
   EligibilityConfig config_;
