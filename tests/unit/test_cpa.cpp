@@ -62,6 +62,27 @@ TEST(Cpa, AConvergenceToTheAdjacentLevelIsNoConflict) {
   EXPECT_NEAR(g.t_end_s, 120.0, 1e-9);
 }
 
+TEST(Cpa, ExactlyTheVerticalMinimumApartIsSeparated) {
+  // Altitudes converted from feet as the pipeline converts them: FL350 − FL340 reads a
+  // few 1e-14 m under 304.8 m. Overhead each other, level or slowly diverging: separated,
+  // with the linear model and with the defaults. Converging at 100 ft/min: a conflict
+  // that starts now with the linear model (not a loss now), none with the defaults (the
+  // real loss, 200 ft further, is 120 s away, beyond T_v).
+  const double fl340 = 34000.0 * 0.3048, fl350 = 35000.0 * 0.3048;
+  ASSERT_LT(fl350 - fl340, 304.8);
+  const SeparationMinima defaults;
+  for (const SeparationMinima& m : {kMinima, defaults}) {
+    EXPECT_FALSE(in_conflict(at(0, 0, 200, 0, fl340), at(0, 0, -200, 0, fl350), m));
+    EXPECT_FALSE(in_conflict(at(0, 0, 200, 0, fl340), at(0, 0, -200, 0, fl350, 0.3251), m));
+    EXPECT_FALSE(in_conflict(at(0, 0, 200, 0, fl340, -0.3251), at(0, 0, -200, 0, fl350), m));
+  }
+  const ConflictGeometry g = evaluate_pair(at(0, 0, 200, 0, fl340), at(0, 0, -200, 0, fl350, -0.508), kMinima);
+  EXPECT_TRUE(g.in_conflict);
+  EXPECT_FALSE(g.lost_now);
+  EXPECT_EQ(g.t_los_s, 0.0);
+  EXPECT_FALSE(in_conflict(at(0, 0, 200, 0, fl340), at(0, 0, -200, 0, fl350, -0.508), defaults));
+}
+
 TEST(Cpa, HeadOnLosesSeparationWhenTheGapCloses) {
   // 60 km apart, closing at 2 × 250 m/s: loss when the gap is 9260 m, after
   // (60000 − 9260) / 500 = 101.48 s; CPA at 120 s (clamped: they would meet at 120 s).

@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kew {
@@ -175,6 +176,28 @@ TEST(Eligibility, LevelPairsAtAdjacentLevelsAreSeparated) {
   PipelineConfig disabled;
   disabled.eligibility.level_rate_fpm = 0.0;
   EXPECT_EQ(fly(head_on(37000.0, 37975.0), 40.0, disabled).opened(), 1u);
+}
+
+TEST(Eligibility, FlightLevelsExactly1000FtApartAreSeparated) {
+  // jade 14:45:52Z: a new track at FL340 whose first records carry no vertical rate (so
+  // no level-pair rule) met an aircraft level at FL350; 35,000 − 34,000 ft converted to
+  // metres reads a hair under 1,000 ft, the pair was "within S_v" and alerted. The same
+  // rounding kept a pair exactly 1,000 ft apart and slowly diverging "within S_v" for the
+  // whole look-ahead (grid_20250602 19:29:10Z, an alert of severity loss).
+  // As on jade, the level aircraft reports first in each scan, so the pair is evaluated
+  // twice while the new track has only one record and no rate.
+  std::vector<Flight> unknown_rate = head_on(34000.0, 35000.0);
+  std::swap(unknown_rate[0], unknown_rate[1]);
+  unknown_rate[1].edit = [](TrackReport& r) { r.vr_fpm.reset(); };
+  EXPECT_EQ(fly(unknown_rate).opened(), 0u);
+  std::vector<Flight> diverging = head_on(34000.0, 35000.0);
+  diverging[1].vr_fpm = 64.0;
+  EXPECT_EQ(fly(diverging).opened(), 0u);
+  // A real loss still alerts, with or without a rate.
+  std::vector<Flight> loss = head_on(34000.0, 34700.0);
+  EXPECT_EQ(fly(loss).opened(), 1u);
+  loss[0].edit = [](TrackReport& r) { r.vr_fpm.reset(); };
+  EXPECT_EQ(fly(loss).opened(), 1u);
 }
 
 TEST(Eligibility, OneAircraftSeenByTwoSourcesNeverAlertsAgainstItself) {

@@ -33,19 +33,30 @@ Interval horizontal_interval(geometry::Vector2 d, geometry::Vector2 w, double r)
   return {s1, s2};
 }
 
+// Altitudes arrive in feet and are compared in metres, where FL350 − FL340 reads a few
+// 1e-14 m under 1,000 ft (35 of the 45 such pairs from 0 to 44,000 ft do). A separation
+// at the minimum exactly is separation, so the test "apart now" allows this much rounding,
+// far below the 1 ft resolution of every input.
+constexpr double kFeetRounding_m = 1e-6;
+
 // { s : |dz + wz·s| < r }, with the vertical look-ahead of design §4.4: a pair vertically
-// apart now (the interval starts at s ≥ 0) counts only when its vertical rates bring it
-// below r − tolerance, a real loss rather than the adjacent level, within tv. A pair
-// already within r keeps its interval: a divergence is trusted for the whole look-ahead.
+// apart now counts only when its vertical rates bring it below r − tolerance, a real loss
+// rather than the adjacent level, within tv; its interval then starts no earlier than now.
+// A pair already within r keeps its interval: a divergence is trusted for the whole
+// look-ahead.
 Interval vertical_interval(double dz, double wz, double r, double tolerance, double tv) {
-  if (wz == 0.0) return std::abs(dz) < r ? Interval{-kInfinity, kInfinity} : Interval{};
+  const bool apart_now = std::abs(dz) >= r - kFeetRounding_m;
+  if (wz == 0.0) return apart_now ? Interval{} : Interval{-kInfinity, kInfinity};
   double s1 = (-r - dz) / wz;
   double s2 = (r - dz) / wz;
   if (s1 > s2) std::swap(s1, s2);
-  if (s1 >= 0.0) {
+  if (apart_now) {
+    const bool closing = dz * wz < 0.0;
+    if (!closing) return {};
     const double real_loss = std::max(r - tolerance, 0.0);
-    const double real_loss_from = std::min((-real_loss - dz) / wz, (real_loss - dz) / wz);
+    const double real_loss_from = (std::abs(dz) - real_loss) / std::abs(wz);
     if (real_loss_from >= tv) return {};
+    s1 = std::max(s1, 0.0);
   }
   return {s1, s2};
 }
