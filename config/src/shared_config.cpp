@@ -35,6 +35,7 @@ void read_tracks(TableReader& r, track::TrackTableConfig& t) {
   r.boolean("exclude_on_ground", t.exclude_on_ground);
   r.integer("max_tracks", t.max_tracks, 1, 10'000'000);
   r.number("max_lateness_s", t.max_lateness_s, 0.0, 3600.0);
+  r.number("max_time_jump_s", t.max_time_jump_s, 0.0, 3600.0);
   r.number("max_derivation_gap_s", t.max_derivation_gap_s, 0.1, 3600.0);
 }
 

@@ -94,6 +94,7 @@ void run_pipeline(const kew::config::SharedConfig& config, const std::vector<kew
   kew::replay::AlertCollector collector;
   pipeline.set_alert_sink([&](const kew::AlertEvent& e) { collector.add(e); });
   for (const kew::TrackReport& r : records) pipeline.process(r);
+  pipeline.end_of_input();
   column.records = pipeline.statistics().records;
   column.pipeline_rejected = pipeline.rejections().total();
   column.alerts = collector.alerts();

@@ -161,6 +161,7 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
       }
       progress.update(pipeline);
     }
+    pipeline.end_of_input();
     if (options.audit) audit();
     progress.done();
   }

@@ -47,6 +47,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.tracks.exclude_on_ground, d.tracks.exclude_on_ground);
   EXPECT_EQ(p.tracks.max_tracks, d.tracks.max_tracks);
   EXPECT_EQ(p.tracks.max_lateness_s, d.tracks.max_lateness_s);
+  EXPECT_EQ(p.tracks.max_time_jump_s, d.tracks.max_time_jump_s);
   EXPECT_EQ(p.tracks.max_derivation_gap_s, d.tracks.max_derivation_gap_s);
   EXPECT_EQ(p.kinetic.tolerance, d.kinetic.tolerance);
   EXPECT_EQ(p.kinetic.tolerance_mode, d.kinetic.tolerance_mode);

@@ -40,6 +40,7 @@ bool ordered_before(const track::Track& x, const track::Track& y) {
 Pipeline::Pipeline(const PipelineConfig& config)
     : config_(config),
       tracks_(config.tracks),
+      time_guard_(config.tracks.max_time_jump_s, config.tracks.max_lateness_s, track::kTimeJumpConfirm),
       kdt_(config.kinetic, 0.0),
       alerts_(config.alerts, [this](track::TrackSlot slot) {
         const track::Track& track = tracks_[slot];
@@ -71,6 +72,50 @@ void Pipeline::process(const TrackReport& report) {
     tracks_.rejections().reject(problem, report.id);
     return;
   }
+  if (!started_) {
+    apply_record(report);
+    return;
+  }
+  if (time_guard_.held() != 0) {
+    guard_scratch_.clear();
+    time_guard_.refuse_contradicted(report.t, guard_scratch_);
+    for (const TrackReport& r : guard_scratch_) refuse_future(r);
+  }
+  if (time_guard_.ahead(report.t, clock_)) {
+    if (time_guard_.hold(report)) {
+      guard_scratch_.clear();
+      time_guard_.release(guard_scratch_);
+      apply_released();
+    }
+    return;
+  }
+  apply_record(report);
+  // Held records this record's time has caught up with are no jump any more.
+  while (time_guard_.held() != 0) {
+    guard_scratch_.clear();
+    time_guard_.release_reached(clock_, guard_scratch_);
+    if (guard_scratch_.empty()) break;
+    apply_released();
+  }
+}
+
+void Pipeline::refuse_future(const TrackReport& r) {
+  tracks_.rejections().reject("future_time", r.id);
+}
+
+void Pipeline::apply_released() {
+  // apply_record() never reaches the guard, so the scratch is not reused meanwhile.
+  for (const TrackReport& r : guard_scratch_) apply_record(r);
+}
+
+void Pipeline::end_of_input() {
+  // Nothing contradicted them, and at the end of the input they can blind nothing.
+  guard_scratch_.clear();
+  time_guard_.release(guard_scratch_);
+  apply_released();
+}
+
+void Pipeline::apply_record(const TrackReport& report) {
   if (!projection_) projection_.emplace(rounded_reference(report), config_.coverage_radius_m);
   if (!started_) {
     started_ = true;

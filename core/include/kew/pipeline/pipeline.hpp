@@ -15,6 +15,7 @@
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/probe/proximity_search.hpp"
+#include "kew/track/time_guard.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/indexed_heap.hpp"
 
@@ -73,8 +74,14 @@ class Pipeline {
   using ConflictTap = std::function<void(track::TrackSlot p, track::TrackSlot q)>;
   void set_conflict_tap(ConflictTap tap) { conflict_tap_ = std::move(tap); }
 
-  /// Processes one record (any data time; see TrackTableConfig for what is refused).
+  /// Processes one record (any data time; see TrackTableConfig for what is refused). A
+  /// record too far ahead of the clock is held, not applied (track::TimeGuard): it is
+  /// applied later, in order, when enough records confirm the jump, or refused.
   void process(const TrackReport& report);
+
+  /// The input ended: records still held ahead of the clock, which nothing contradicted,
+  /// are applied.
+  void end_of_input();
 
   /// Moves the clock to t (UTC s) without a record — live mode's periodic tick: drops
   /// tracks that timed out and executes kinetic events up to t. Ignored if t ≤ now().
@@ -114,6 +121,11 @@ class Pipeline {
   double search_radius(double speed_mps) const;
 
  private:
+  /// process() for a record the time guard lets through.
+  void apply_record(const TrackReport& report);
+  void refuse_future(const TrackReport& r);
+  /// Applies the records the time guard released into guard_scratch_, in order.
+  void apply_released();
   void move_clock(double t);
   void drop_track(track::TrackSlot slot);
   /// Drops the track of `report`'s id when it carries another 24-bit address.
@@ -144,6 +156,8 @@ class Pipeline {
 
   PipelineConfig config_;
   track::TrackTable tracks_;
+  track::TimeGuard time_guard_;
+  std::vector<TrackReport> guard_scratch_;
   std::optional<geo::Projection> projection_;
   kinetic::KineticDelaunay kdt_;
   alert::AlertManager alerts_;

@@ -37,9 +37,18 @@ struct TrackTableConfig {
   /// Records older than the pipeline clock by more than this are rejected as too late
   /// (s, ≥ 0); later ones are extrapolated to the clock with their own velocity.
   double max_lateness_s = 10.0;
+  /// A record more than this ahead of the pipeline clock (s, ≥ 0) does not move it at
+  /// once: it is held until kTimeJumpConfirm records confirm the jump, and refused
+  /// ("future_time") when a later record would have been too late after it (design
+  /// §4.1). At most max_lateness_s, one record can never make the others too late.
+  double max_time_jump_s = 10.0;
   /// Velocity is derived from the previous position only when it is at most this old (s).
   double max_derivation_gap_s = 60.0;
 };
+
+/// Records held ahead of the clock, none contradicted, that show the data really jumped
+/// (TimeGuard): the first and two more.
+inline constexpr std::size_t kTimeJumpConfirm = 3;
 
 /// One aircraft as the table knows it. Reported values are kept in canonical units for
 /// alerts and TRACK objects; kinematics are in the plane, SI units.

@@ -1,0 +1,131 @@
+// Time you can trust (design §4.1, issue 18): one record dated in the future never
+// moves the data clock, and a real jump of the data (a gap in a recording) loses nothing.
+#include "kew/pipeline/pipeline.hpp"
+#include "kew/track/time_guard.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace kew {
+namespace {
+
+constexpr double kT0 = 1714400000.0;
+constexpr double kKnot = 1852.0 / 3600.0;
+
+// Two aircraft head-on along 50° N at FL350, 20 NM apart at kT0 + start, closing at
+// 900 kt: separation is lost 60 s later.
+TrackReport head_on(const std::string& id, double t, double start) {
+  const double metres_per_degree = 111320.0 * std::cos(50.0 * M_PI / 180.0);
+  const double sign = id == "A" ? 1.0 : -1.0;
+  const double east_m = -sign * 10.0 * 1852.0 + sign * 450.0 * kKnot * (t - kT0 - start);
+  TrackReport r;
+  r.t = t;
+  r.id = id;
+  r.source = "test";
+  r.lat_deg = 50.0;
+  r.lon_deg = 8.0 + east_m / metres_per_degree;
+  r.alt_ft = 35000.0;
+  r.gs_kt = 450.0;
+  r.trk_deg = sign > 0 ? 90.0 : 270.0;
+  r.vr_fpm = 0.0;
+  return r;
+}
+
+struct Feed {
+  Pipeline pipeline;
+  std::size_t opened = 0;
+  Feed() {
+    pipeline.set_alert_sink([this](const AlertEvent& e) { opened += e.state == AlertState::New; });
+  }
+  // Both aircraft every 4 s over [from, to), the pair first 20 NM apart at `start`.
+  void fly(double from, double to, double start) {
+    for (double dt = from; dt < to; dt += 4.0) {
+      pipeline.process(head_on("A", kT0 + dt, start));
+      pipeline.process(head_on("B", kT0 + dt, start));
+    }
+  }
+};
+
+TEST(TimeGuard, OneFutureRecordNeverBlindsThePipeline) {
+  // The reliability finding: one record dated 2099 (or a flipped bit of an ASTERIX time
+  // of day, an hour ahead) moved the clock; every track timed out and every later record
+  // was too late, so the conflict below never alerted.
+  for (const double future : {4070908800.0, kT0 + 3600.0, kT0 + 40.0}) {
+    SCOPED_TRACE(future);
+    Feed run;
+    run.fly(0.0, 20.0, 0.0);
+    TrackReport misdated = head_on("C", kT0 + 16.0, 0.0);
+    misdated.t = future;
+    run.pipeline.process(misdated);
+    run.fly(20.0, 80.0, 0.0);
+    EXPECT_EQ(run.opened, 1u);
+    EXPECT_EQ(run.pipeline.rejections().count("future_time"), 1u);
+    EXPECT_EQ(run.pipeline.rejections().count("too_late"), 0u);
+    EXPECT_LT(run.pipeline.now(), kT0 + 80.0);
+    EXPECT_EQ(run.pipeline.statistics().accepted, 40u);
+  }
+}
+
+TEST(TimeGuard, ARealJumpOfTheDataLosesNothing) {
+  // A recording with a 10-minute gap: the first records after it are held until two more
+  // confirm the jump, then applied in order; the conflict after the gap alerts (as the
+  // one before it did, which ended when its tracks timed out in the gap).
+  Feed run;
+  run.fly(0.0, 8.0, 0.0);
+  EXPECT_EQ(run.opened, 1u);
+  run.fly(600.0, 680.0, 600.0);
+  EXPECT_EQ(run.opened, 2u);
+  EXPECT_EQ(run.pipeline.rejections().total(), 0u);
+  EXPECT_EQ(run.pipeline.statistics().accepted, 4u + 40u);
+}
+
+TEST(TimeGuard, HeldRecordsAreAppliedOnceTheClockReachesThemOrTheInputEnds) {
+  Feed run;
+  run.fly(0.0, 8.0, 0.0);
+  // 12 s ahead of a clock at kT0 + 4: held. The next records (kT0 + 8) are not too late
+  // for it (they do not contradict it) and bring the clock within reach: applied.
+  run.pipeline.process(head_on("C", kT0 + 16.0, 0.0));
+  EXPECT_EQ(run.pipeline.statistics().accepted, 4u);
+  run.fly(8.0, 12.0, 0.0);
+  EXPECT_EQ(run.pipeline.statistics().accepted, 7u);
+  // At the end of the input a held record that nothing contradicted is applied.
+  run.pipeline.process(head_on("D", kT0 + 100.0, 0.0));
+  EXPECT_EQ(run.pipeline.statistics().accepted, 7u);
+  run.pipeline.end_of_input();
+  EXPECT_EQ(run.pipeline.statistics().accepted, 8u);
+  EXPECT_EQ(run.pipeline.rejections().total(), 0u);
+}
+
+TEST(TimeGuard, RulesOnTheirOwn) {
+  track::TimeGuard guard(10.0, 10.0, 3);
+  EXPECT_FALSE(guard.ahead(110.0, 100.0));
+  EXPECT_TRUE(guard.ahead(110.5, 100.0));
+  TrackReport r;
+  r.t = 200.0;
+  EXPECT_FALSE(guard.hold(r));
+  r.t = 150.0;  // 50 s before the first held: contradicts it, not itself
+  std::vector<TrackReport> out;
+  guard.refuse_contradicted(r.t, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].t, 200.0);
+  EXPECT_FALSE(guard.hold(r));
+  r.t = 155.0;
+  EXPECT_FALSE(guard.hold(r));
+  r.t = 161.0;
+  EXPECT_TRUE(guard.hold(r));
+  out.clear();
+  guard.release_reached(150.0, out);  // 161 is more than 10 s ahead of 150
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].t, 150.0);
+  EXPECT_EQ(out[1].t, 155.0);
+  out.clear();
+  guard.release(out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(guard.held(), 0u);
+}
+
+}  // namespace
+}  // namespace kew
