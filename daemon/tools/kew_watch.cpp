@@ -143,9 +143,11 @@ int main(int argc, char** argv) {
       std::printf("ACK    %zu alerts acknowledged through %s\n", reader.acknowledged().size(), reader.text().c_str());
     } else if (kind == StreamObjectClass::Alive && flags.alive) {
       const auto& a = reader.alive();
+      const std::string health =
+          a.degraded() ? ", degraded: " + std::string(kew::protocol::kHealthReasonNames.name(a.health)) : "";
       std::printf("%s ALIVE  %llu tracks, %llu alerts, %.0f records/s%s\n",
                   a.last_data_t ? utc(*a.last_data_t).c_str() : "--:--:--", static_cast<unsigned long long>(a.tracks),
-                  static_cast<unsigned long long>(a.alerts), a.records_per_s, a.degraded ? ", degraded" : "");
+                  static_cast<unsigned long long>(a.alerts), a.records_per_s, health.c_str());
     }
     if (kind == StreamObjectClass::Error) {
       std::fprintf(stderr, "kew-watch: server error: %s\n", reader.text().c_str());

@@ -137,12 +137,12 @@ TEST(AlertJson, VersionAliveErrorAndTrackObjectsAreByteExact) {
   append_alive_json(out, alive, 5);
   EXPECT_EQ(out, R"({"class":"ALIVE","seq":5,"t":1714400000.250,"tracks":123,"alerts":2,)"
                  R"("rates":{"records_per_s":250.0,"updates_per_s":200.1},"uptime_s":3600,)"
-                 R"("degraded":false})" "\n");
+                 R"("degraded":false,"health":"healthy"})" "\n");
   out.clear();
   append_alive_json(out, AliveStatus{}, 6);
   EXPECT_EQ(out, R"({"class":"ALIVE","seq":6,"t":null,"tracks":0,"alerts":0,)"
                  R"("rates":{"records_per_s":0.0,"updates_per_s":0.0},"uptime_s":0,)"
-                 R"("degraded":false})" "\n");
+                 R"("degraded":false,"health":"healthy"})" "\n");
 
   out.clear();
   append_error_json(out, "queue full: \"slow\" subscriber", 7);
@@ -349,14 +349,23 @@ TEST(AlertStreamReader, ReadsEveryObjectClassBack) {
   AliveStatus alive;
   alive.tracks = 9;
   alive.records_per_s = 12.5;
-  alive.degraded = true;
+  alive.health = HealthReason::RecordsRefused;
   append_alive_json(line, alive, 41);
+  EXPECT_NE(line.find("\"degraded\":true,\"health\":\"records_refused\""), std::string::npos) << line;
   ASSERT_TRUE(reader.read(line)) << reader.error();
   EXPECT_EQ(reader.object_class(), StreamObjectClass::Alive);
   EXPECT_FALSE(reader.alive().last_data_t);
   EXPECT_EQ(reader.alive().tracks, 9u);
   EXPECT_DOUBLE_EQ(reader.alive().records_per_s, 12.5);
-  EXPECT_TRUE(reader.alive().degraded);
+  EXPECT_TRUE(reader.alive().degraded());
+  EXPECT_EQ(reader.alive().health, HealthReason::RecordsRefused);
+  // A server before "health" sent only "degraded", which meant a stale feed.
+  ASSERT_TRUE(reader.read(R"({"class":"ALIVE","seq":1,"t":null,"tracks":0,"alerts":0,)"
+                          R"("rates":{"records_per_s":0,"updates_per_s":0},"degraded":true})"))
+      << reader.error();
+  EXPECT_EQ(reader.alive().health, HealthReason::FeedStale);
+  EXPECT_FALSE(reader.read(R"({"class":"ALIVE","seq":1,"t":null,"tracks":0,"alerts":0,)"
+                           R"("rates":{"records_per_s":0,"updates_per_s":0},"health":"fine"})"));
 
   line.clear();
   TrackReport track;

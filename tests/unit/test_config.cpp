@@ -37,6 +37,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.alert_log_keep, defaults.service.alert_log_keep);
   EXPECT_EQ(file.service.record_file, defaults.service.record_file);
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
+  EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
   EXPECT_FALSE(p.reference.has_value());
   EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
   EXPECT_EQ(p.tracks.track_timeout_s, d.tracks.track_timeout_s);

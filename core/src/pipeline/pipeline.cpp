@@ -72,6 +72,10 @@ void Pipeline::process(const TrackReport& report) {
     tracks_.rejections().reject(problem, report.id);
     return;
   }
+  if (report.t > time_ceiling_) {
+    refuse_future(report);
+    return;
+  }
   if (!started_) {
     apply_record(report);
     return;

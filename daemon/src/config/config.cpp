@@ -20,6 +20,7 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.integer("alert_log_keep", s.alert_log_keep, 0, 1000);
   r.string("record_file", s.record_file);
   r.boolean("tracks_stream", s.tracks_stream);
+  r.number("max_future_s", s.max_future_s, 0.0, 86400.0);
 }
 
 void read_cat004(TableReader& r, Cat004Config& c) {

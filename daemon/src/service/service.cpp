@@ -75,6 +75,7 @@ Service::Service(Config config, ServiceOptions options)
       options_(std::move(options)),
       pipeline_(config_.pipeline),
       started_(std::chrono::steady_clock::now()),
+      health_(config_.pipeline.tracks.track_timeout_s),
       last_alive_(started_) {
   pipeline_.set_alert_sink([this](const AlertEvent& e) { on_alert(e); });
   pipeline_.rejections().set_reporter([](std::string_view reason, std::string_view message) {
@@ -156,9 +157,13 @@ void Service::on_report(const TrackReport& report) {
     record_file_->append(line_);
   }
   if (subscribers_->anyone_wants_tracks()) subscribers_->broadcast_track(report);
+  // No record may carry the clock past the wall clock (a host synchronised by NTP is the
+  // best time kewd has; recordings replayed by kewd are in the past).
+  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  pipeline_.set_time_ceiling(wall + config_.service.max_future_s);
+  const std::uint64_t accepted = pipeline_.statistics().accepted;
   pipeline_.process(report);
-  any_record_ = true;
-  last_record_wall_ = std::chrono::steady_clock::now();
+  if (pipeline_.statistics().accepted != accepted) health_.accepted(std::chrono::steady_clock::now());
 }
 
 void Service::on_alert(const AlertEvent& event) {
@@ -192,8 +197,8 @@ void Service::publish_modbus() {
   protocol::AlarmSnapshot snapshot;
   snapshot.active = pipeline_.alerts().snapshot();
   snapshot.live_tracks = static_cast<std::uint32_t>(pipeline_.live_tracks());
-  if (any_record_) snapshot.seconds_since_last_record = std::chrono::duration<double>(now - last_record_wall_).count();
-  snapshot.feed_healthy = feed_healthy();
+  snapshot.seconds_since_last_record = health_.seconds_since_accepted(now).value_or(1e9);
+  snapshot.feed_healthy = health_.reason(now) == protocol::HealthReason::Healthy;
   snapshot.degraded = !snapshot.feed_healthy;
   snapshot.uptime_s = static_cast<std::uint32_t>(std::chrono::duration<double>(now - started_).count());
   snapshot.unacknowledged = static_cast<std::uint32_t>(pipeline_.alerts().unacknowledged_count());
@@ -222,7 +227,7 @@ void Service::acknowledge(std::string_view by) {
 double Service::data_clock_now() const {
   // Live mode: the data clock runs on with the wall clock between records, so that
   // tracks of a silent feed time out and kinetic events happen on time.
-  const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_record_wall_).count();
+  const double idle = health_.seconds_since_accepted(std::chrono::steady_clock::now()).value_or(0.0);
   return pipeline_.statistics().last_data_time + idle;
 }
 
@@ -237,11 +242,10 @@ void Service::schedule_tick() {
 
 void Service::tick() {
   if (record_file_) record_file_->flush();
-  if (!any_record_) return;
-  const auto idle = std::chrono::steady_clock::now() - last_record_wall_;
-  // While records flow, their own times drive the clock; only a feed silent for a whole
-  // tick moves it on.
-  if (idle >= seconds(config_.service.tick_interval_s)) pipeline_.advance_to(data_clock_now());
+  const std::optional<double> idle = health_.seconds_since_accepted(std::chrono::steady_clock::now());
+  // While records are accepted, their own times drive the clock; only a feed silent (or
+  // wholly refused) for a whole tick moves it on, so its tracks time out.
+  if (idle && *idle >= config_.service.tick_interval_s) pipeline_.advance_to(data_clock_now());
 }
 
 void Service::schedule_alive() {
@@ -251,12 +255,6 @@ void Service::schedule_alive() {
     alive();
     schedule_alive();
   });
-}
-
-bool Service::feed_healthy() const {
-  if (!any_record_) return false;
-  const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_record_wall_).count();
-  return idle <= config_.pipeline.tracks.track_timeout_s;
 }
 
 void Service::alive() {
@@ -269,22 +267,24 @@ void Service::alive() {
     updates_per_s_ = static_cast<double>(updates - updates_at_last_alive_) / span;
   }
   accepted_at_last_alive_ = s.accepted;
+  health_.sample(s.records, s.accepted);
   updates_at_last_alive_ = updates;
   last_alive_ = now;
 
   protocol::AliveStatus status;
-  if (any_record_) status.last_data_t = s.last_data_time;
+  const bool any_accepted = health_.seconds_since_accepted(now).has_value();
+  if (any_accepted) status.last_data_t = s.last_data_time;
   status.tracks = pipeline_.live_tracks();
   status.alerts = pipeline_.alerts().active_count();
   status.records_per_s = records_per_s_;
   status.updates_per_s = updates_per_s_;
   status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
-  status.degraded = !feed_healthy();
+  status.health = health_.reason(now);
   subscribers_->broadcast_alive(status);
   if (cat004_) {
     protocol::Cat004Alive a;
-    a.t = any_record_ ? data_clock_now() : static_cast<double>(std::time(nullptr));
-    a.degraded = status.degraded;
+    a.t = any_accepted ? data_clock_now() : static_cast<double>(std::time(nullptr));
+    a.degraded = status.degraded();
     cat004_->send_alive(a);
   }
 }

@@ -13,6 +13,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cat004_sender.hpp"
+#include "feed_health.hpp"
 #include "inputs.hpp"
 #include "line_file.hpp"
 #include "subscribers.hpp"
@@ -54,8 +55,6 @@ class Service {
   void shutdown();
   std::string stats_json() const;
   double data_clock_now() const;
-  /// A record arrived within the track timeout.
-  bool feed_healthy() const;
 
   boost::asio::io_context io_;
   boost::asio::signal_set signals_;
@@ -78,8 +77,7 @@ class Service {
   std::string line_;  // scratch for encoding
 
   std::chrono::steady_clock::time_point started_;
-  std::chrono::steady_clock::time_point last_record_wall_{};
-  bool any_record_ = false;
+  FeedHealth health_;
   std::uint64_t last_alert_seq_ = 0;
   std::uint64_t accepted_at_last_alive_ = 0;
   std::uint64_t updates_at_last_alive_ = 0;

@@ -193,7 +193,8 @@ void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_
     rates.close();
   }
   o.integer("uptime_s", status.uptime_s);
-  o.boolean("degraded", status.degraded);
+  o.boolean("degraded", status.degraded());
+  o.text("health", kHealthReasonNames.name(status.health));
   o.close();
   out.push_back('\n');
 }

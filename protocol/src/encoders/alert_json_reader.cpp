@@ -191,10 +191,18 @@ bool read_alive(dom::object object, AliveStatus& alive, std::string& error) {
   alive = AliveStatus{};
   Members m(object, error);
   dom::object rates;
+  bool degraded = false;
+  std::string health;
   if (!(m.optional("t", alive.last_data_t) && m.required("tracks", alive.tracks) &&
         m.required("alerts", alive.alerts) && m.required("rates", rates) &&
-        m.optional("uptime_s", alive.uptime_s) && m.optional("degraded", alive.degraded))) {
+        m.optional("uptime_s", alive.uptime_s) && m.optional("degraded", degraded) &&
+        m.optional("health", health))) {
     return false;
+  }
+  // Servers before "health" sent only "degraded", which meant a stale feed.
+  alive.health = degraded ? HealthReason::FeedStale : HealthReason::Healthy;
+  if (!health.empty() && !parse_name(kHealthReasonNames, health, alive.health)) {
+    return m.fail("unknown health " + quoted(std::string_view(health)));
   }
   Members r(rates, error, "rates");
   return r.required("records_per_s", alive.records_per_s) &&

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -78,6 +79,11 @@ class Pipeline {
   /// record too far ahead of the clock is held, not applied (track::TimeGuard): it is
   /// applied later, in order, when enough records confirm the jump, or refused.
   void process(const TrackReport& report);
+
+  /// The latest data time a record may carry (UTC s): a later one is refused at once
+  /// ("future_time"), held by nothing. kewd sets it to the wall clock plus
+  /// `[service] max_future_s` before each record; offline tools leave it unbounded.
+  void set_time_ceiling(double utc_s) { time_ceiling_ = utc_s; }
 
   /// The input ended: records still held ahead of the clock, which nothing contradicted,
   /// are applied.
@@ -158,6 +164,7 @@ class Pipeline {
   track::TrackTable tracks_;
   track::TimeGuard time_guard_;
   std::vector<TrackReport> guard_scratch_;
+  double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::Projection> projection_;
   kinetic::KineticDelaunay kdt_;
   alert::AlertManager alerts_;

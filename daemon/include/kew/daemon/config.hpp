@@ -70,6 +70,8 @@ struct ServiceConfig {
   int alert_log_keep = 5;
   std::string record_file;              ///< canonical NDJSON of every decoded record; "" = none
   bool tracks_stream = true;            ///< allow WATCH "tracks": true
+  /// A record dated more than this after the wall clock is refused ("future_time"), s.
+  double max_future_s = 10.0;
 };
 
 struct Cat004Config {

@@ -28,6 +28,20 @@
 
 namespace kew::protocol {
 
+/// Why kewd's picture cannot be trusted now (design §6.6); Healthy when it can.
+enum class HealthReason : std::uint8_t {
+  Healthy,         ///< records are arriving and being accepted
+  NoData,          ///< no record accepted since the start
+  FeedStale,       ///< no record accepted for a track timeout
+  RecordsRefused,  ///< most records of the last seconds were refused
+};
+inline constexpr util::NameTable<HealthReason, 4> kHealthReasonNames({{
+    {HealthReason::Healthy, "healthy"},
+    {HealthReason::NoData, "no_data"},
+    {HealthReason::FeedStale, "feed_stale"},
+    {HealthReason::RecordsRefused, "records_refused"},
+}});
+
 /// Figures of the once-a-second ALIVE object.
 struct AliveStatus {
   /// Data time of the latest record processed, UTC seconds; absent before the first one.
@@ -42,8 +56,9 @@ struct AliveStatus {
   double updates_per_s = 0.0;
   /// Seconds since the service started.
   std::uint64_t uptime_s = 0;
-  /// The feed is stale or the service is overloaded (Modbus discrete input 5).
-  bool degraded = false;
+  /// Why the picture cannot be trusted; degraded (Modbus discrete input 5) unless Healthy.
+  HealthReason health = HealthReason::Healthy;
+  bool degraded() const { return health != HealthReason::Healthy; }
 };
 
 /// {"class":"VERSION","seq":…,"release":"MAJOR.MINOR.PATCH","proto":1}

@@ -1,0 +1,31 @@
+#include "feed_health.hpp"
+
+namespace kew::daemon {
+
+void FeedHealth::sample(std::uint64_t offered, std::uint64_t accepted) {
+  history_[samples_ % history_.size()] = {offered, accepted};
+  ++samples_;
+}
+
+protocol::HealthReason FeedHealth::reason(Clock::time_point now) const {
+  using protocol::HealthReason;
+  const std::optional<double> age = seconds_since_accepted(now);
+  if (!age) return HealthReason::NoData;
+  if (*age > stale_after_s_) return HealthReason::FeedStale;
+  if (samples_ >= 2) {
+    const std::size_t span = samples_ - 1 < kWindow ? samples_ - 1 : kWindow;
+    const Totals& newest = history_[(samples_ - 1) % history_.size()];
+    const Totals& oldest = history_[(samples_ - 1 - span) % history_.size()];
+    const std::uint64_t offered = newest.offered - oldest.offered;
+    const std::uint64_t accepted = newest.accepted - oldest.accepted;
+    if (offered >= kMinOffered && 2 * accepted < offered) return HealthReason::RecordsRefused;
+  }
+  return HealthReason::Healthy;
+}
+
+std::optional<double> FeedHealth::seconds_since_accepted(Clock::time_point now) const {
+  if (!last_accepted_) return std::nullopt;
+  return std::chrono::duration<double>(now - *last_accepted_).count();
+}
+
+}  // namespace kew::daemon
