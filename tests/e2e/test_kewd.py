@@ -8,6 +8,7 @@ Run by ctest (tests/CMakeLists.txt) with the binaries in the environment; by han
 import json
 import os
 import random
+import resource
 import shutil
 import signal
 import socket
@@ -261,6 +262,34 @@ address = "{bad_file}"
         connection.close()
         self.assertEqual(kewd.terminate(), 0)
         server.close()
+
+
+def limited_memory():
+    """preexec_fn: a child that would read without bound fails instead of filling the machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+
+
+class InputFraming(E2eCase):
+    """Datagrams, noise, configurations that never end and the recording (issue 18,
+    README "Input framing")."""
+
+    def test_config_that_never_ends_is_refused(self):
+        fifo = self.path("fifo.toml")
+        os.mkfifo(fifo)
+        for path, why in (("/dev/zero", "not a regular file"), (fifo, "not a regular file")):
+            # The timeout and the memory limit only guard against a hang: kewd answers at once.
+            result = subprocess.run([KEWD, "--check-config", "-c", path], stderr=subprocess.PIPE, text=True,
+                                    timeout=30, preexec_fn=limited_memory)
+            self.assertEqual(result.returncode, 64, result.stderr)
+            self.assertIn(f"{path}: {why}", result.stderr)
+        # SIGHUP re-reads the path kewd was started with: made a link to the pipe, it is refused.
+        kewd = self.start(SERVICE.format(queue=100, workdir=self.workdir))
+        os.remove(kewd.config_path)
+        os.symlink(fifo, kewd.config_path)
+        kewd.process.send_signal(signal.SIGHUP)
+        self.assertIn("not a regular file", kewd.wait_log("configuration kept"))
+        self.assertTrue(kewd.running())
+        self.assertEqual(kewd.terminate(), 0)
 
 
 class Cat004(E2eCase):
