@@ -291,6 +291,19 @@ class InputFraming(E2eCase):
         self.assertTrue(kewd.running())
         self.assertEqual(kewd.terminate(), 0)
 
+    def test_record_file_replays_to_the_same_alerts(self):
+        recording = self.path("airways.ndjson")
+        generate(recording, "airways", aircraft=300, duration=120, seed=6)
+        recorded = self.path("recorded.ndjson")
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir) + f'record_file = "{recorded}"\n'
+                          + f'[[input]]\nname = "file"\nformat = "ndjson"\ntransport = "file"\naddress = "{recording}"\n')
+        kewd.wait_log("input file: " + recording + " read to the end", 60)
+        self.assertEqual(kewd.terminate(), 0)
+        self.assertEqual(count_lines(recorded), count_lines(recording), "one line per record")
+        expected = offline_alerts(kewd.config_path, recording)
+        self.assertGreater(len(expected), 10, "the scenario must have conflicts")
+        self.assertEqual(offline_alerts(kewd.config_path, recorded), expected)
+
 
 class Cat004(E2eCase):
     def test_cat004_datagrams_decoded_by_tshark(self):
