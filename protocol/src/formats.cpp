@@ -148,16 +148,22 @@ class AutoDecoder final : public Decoder {
     if (decided) inner_->feed(bytes.subspan(take), sink);
   }
 
-  void finish(const ReportSink& sink) override {
+  void finish(const ReportSink& sink) override { end(false, sink); }
+  void end_message(const ReportSink& sink) override { end(true, sink); }
+
+ private:
+  /// finish() (`message` false) or end_message(): a stream or a datagram is judged on
+  /// what arrived, and the next bytes are detected afresh.
+  void end(bool message, const ReportSink& sink) {
     if (!inner_ && !unknown_ && !head_.empty()) try_detect(head_.size(), true, sink);
-    if (inner_) inner_->finish(sink);
+    if (inner_ && message) inner_->end_message(sink);
+    else if (inner_) inner_->finish(sink);
     inner_.reset();
     unknown_ = false;
     tried_first_ = false;
     head_.clear();
   }
 
- private:
   /// Detects on the first `head_bytes` of the buffered head; on success makes the decoder
   /// and feeds it the whole head. When `last_try`, an unknown format is final (counted).
   bool try_detect(std::size_t head_bytes, bool last_try, const ReportSink& sink) {

@@ -273,6 +273,43 @@ class InputFraming(E2eCase):
     """Datagrams, noise, configurations that never end and the recording (issue 18,
     README "Input framing")."""
 
+    def test_udp_datagrams_never_contaminate_each_other(self):
+        good = self.path("good.ndjson")
+        generate(good, "random", aircraft=20, duration=20, seed=2)
+        with open(good, "rb") as f:
+            lines = [line for line in f if not line.startswith(b"#")]
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir)
+                          + UDP_INPUT.format(name="udp", format="ndjson"))
+        target = ("127.0.0.1", kewd.input_port("udp"))
+        sent = 0
+
+        def send(sender, payload):
+            nonlocal sent
+            sender.sendto(payload, target)
+            sent += len(payload)
+            # Nothing may be lost to a full receive buffer: wait until kewd has read it.
+            wait_until(lambda: by_name(kewd)["udp"]["bytes"] >= sent, 20, "kewd to read the datagram")
+
+        # Sender A sends a record per datagram with its newline, sender B one without it
+        # (still whole), a record cut short, random bytes, and 1.2 MB of one over-long line
+        # in datagrams without a newline, between each of A's.
+        rng = random.Random(5)
+        garbage = bytes(rng.getrandbits(8) for _ in range(600)).replace(b"\n", b" ")
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as a, \
+                socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as b:
+            for i, line in enumerate(lines):
+                if i % 2:
+                    send(b, line.rstrip(b"\n"))
+                else:
+                    send(a, line)
+                send(b, (b'{"t":1714400000,"id":"CUT"', garbage, b"x" * 40000)[i % 3])
+        stats = by_name(kewd)["udp"]
+        self.assertEqual(stats["reports"], len(lines), "every valid record decoded\n" + json.dumps(stats))
+        self.assertNotIn("truncated", stats["rejected"], "a datagram is whole: nothing in it is cut")
+        for reason in ("bad_json", "line_too_long"):
+            self.assertIn(reason, stats["rejected"])
+        self.assertEqual(kewd.terminate(), 0)
+
     def test_config_that_never_ends_is_refused(self):
         fifo = self.path("fifo.toml")
         os.mkfifo(fifo)
@@ -303,6 +340,11 @@ class InputFraming(E2eCase):
         expected = offline_alerts(kewd.config_path, recording)
         self.assertGreater(len(expected), 10, "the scenario must have conflicts")
         self.assertEqual(offline_alerts(kewd.config_path, recorded), expected)
+
+
+def by_name(kewd):
+    """The STATS figures of each input, by its name."""
+    return {i["name"]: i for i in kewd.stats()["inputs"]}
 
 
 class Cat004(E2eCase):

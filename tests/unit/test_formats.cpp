@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "kew/protocol/formats.hpp"
@@ -194,6 +195,30 @@ TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   auto short_decoder = make_decoder(Format::Auto);
   EXPECT_TRUE(decode_all(*short_decoder, "hello\n").empty());
   EXPECT_EQ(short_decoder->rejections().count("unknown_format"), 1u);
+}
+
+// Issue 18: end_message() closes a datagram. A last line without its newline is whole;
+// nothing (a partial line, an over-long line being skipped) reaches the next datagram.
+TEST(Decoder, EachDatagramIsDecodedAlone) {
+  const std::string record = R"({"t":1714400000,"id":"A1","lat":50,"lon":8,"alt_ft":30000})";
+  for (const Format format : {Format::Ndjson, Format::Auto}) {
+    auto decoder = make_decoder(format);
+    std::vector<TrackReport> reports;
+    const ReportSink sink = [&](const TrackReport& r) { reports.push_back(r); };
+    const auto datagram = [&](const std::string& text) {
+      decoder->feed_text(text, sink);
+      decoder->end_message(sink);
+    };
+    datagram(record);                        // without its newline: whole
+    datagram(R"({"t":1714400001,"id":"B)");  // cut: bad, and not joined to what follows
+    datagram(record + "\n");
+    datagram(std::string(10000, 'x'));      // over-long: skipped, but only in its datagram
+    datagram(record + "\n");
+    EXPECT_EQ(reports.size(), 3u) << to_string(format);
+    EXPECT_EQ(decoder->rejections().count("truncated"), 0u) << to_string(format);
+    EXPECT_EQ(decoder->rejections().count("line_too_long"), format == Format::Ndjson ? 1u : 0u);
+    EXPECT_EQ(decoder->rejections().total(), 2u) << decoder->rejections().by_reason().size();
+  }
 }
 
 }  // namespace
