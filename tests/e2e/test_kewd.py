@@ -310,6 +310,24 @@ class InputFraming(E2eCase):
             self.assertIn(reason, stats["rejected"])
         self.assertEqual(kewd.terminate(), 0)
 
+    def test_auto_detection_finds_ndjson_after_noise(self):
+        good = self.path("good.ndjson")
+        generate(good, "random", aircraft=20, duration=20, seed=2)
+        with open(good, "rb") as f:
+            text = f.read()
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir)
+                          + TCP_INPUT.format(name="tcp", format="auto"))
+        rng = random.Random(9)  # binary noise: text noise was always skipped as a bad line
+        noise = bytes(rng.getrandbits(8) for _ in range(4096)) + b"\n"
+        with socket.create_connection(("127.0.0.1", kewd.input_port("tcp"))) as s:
+            s.sendall(noise + text)
+        records = count_lines(good)
+        wait_until(lambda: by_name(kewd)["tcp"]["reports"] >= records, 20, "the records after the noise")
+        stats = by_name(kewd)["tcp"]
+        self.assertEqual(stats["reports"], records)
+        self.assertEqual(stats["rejected"].get("unknown_format"), 1, "the noise is counted once")
+        self.assertEqual(kewd.terminate(), 0)
+
     def test_config_that_never_ends_is_refused(self):
         fifo = self.path("fifo.toml")
         os.mkfifo(fifo)

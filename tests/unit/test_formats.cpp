@@ -197,6 +197,27 @@ TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   EXPECT_EQ(short_decoder->rejections().count("unknown_format"), 1u);
 }
 
+// Issue 18: a stream opening with noise (binary or text) is still detected, from the first
+// line after the noise; the noise is counted once, wherever the feed boundaries fall.
+TEST(AutoDecoder, FindsTheFormatAfterNoise) {
+  const std::string sample = test::read_file(test::bundled_path("canonical_sample.ndjson"));
+  auto explicit_decoder = make_decoder(Format::Ndjson);
+  const auto expected = decode_all(*explicit_decoder, sample);
+  ASSERT_FALSE(expected.empty());
+  std::mt19937 random(3);
+  std::string binary(4096, '\0');
+  for (char& c : binary) c = static_cast<char>(random() & 0xff);
+  std::string prose;
+  for (int i = 0; i < 40; ++i) prose += "not a record, line " + std::to_string(i) + "\n";
+  for (const std::string& noise : {binary + "\n", prose}) {
+    auto automatic = make_decoder(Format::Auto);
+    test::expect_same_reports(expected, test::decode_random_chunks(*automatic, noise + sample, 5));
+    EXPECT_EQ(automatic->rejections().count("unknown_format"), 1u);
+    auto whole = make_decoder(Format::Auto);
+    test::expect_same_reports(expected, decode_all(*whole, noise + sample));
+  }
+}
+
 // Issue 18: end_message() closes a datagram. A last line without its newline is whole;
 // nothing (a partial line, an over-long line being skipped) reaches the next datagram.
 TEST(Decoder, EachDatagramIsDecodedAlone) {
