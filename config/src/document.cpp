@@ -1,7 +1,11 @@
 #include "kew/config/document.hpp"
 
-#include <fstream>
-#include <sstream>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"
@@ -94,14 +98,47 @@ Document Document::parse(std::string_view text, std::string origin) {
   return Document(std::move(root), std::move(origin));
 }
 
-Document Document::load(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw ConfigError(fmt::format("{}: cannot open", path));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw ConfigError(fmt::format("{}: read error", path));
-  return parse(text.str(), path);
+namespace {
+
+/// The file's text, refused before anything large is read: a configuration is a small
+/// regular file, and a path to a device, a pipe or a huge file must fail at once rather
+/// than fill the memory of `--check-config` or of a daemon reloading on SIGHUP.
+std::string read_capped(const std::string& path) {
+  // O_NONBLOCK: opening a FIFO without a writer must not wait; it is refused just below.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw ConfigError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) throw ConfigError(fmt::format("{}: {}", path, std::strerror(errno)));
+  if (!S_ISREG(status.st_mode))
+    throw ConfigError(fmt::format("{}: not a regular file ({}), refused", path,
+                                  S_ISDIR(status.st_mode) ? "a directory" : "a device, pipe or socket"));
+  const auto too_large = [&] {
+    return ConfigError(fmt::format("{}: larger than {} bytes, refused (a configuration is a small file)", path,
+                                   kMaxConfigBytes));
+  };
+  if (static_cast<std::uint64_t>(status.st_size) > kMaxConfigBytes) throw too_large();
+  // The size may change under us: read at most one byte more than the cap.
+  std::string text(kMaxConfigBytes + 1, '\0');
+  std::size_t used = 0;
+  while (used < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + used, text.size() - used);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw ConfigError(fmt::format("{}: read error ({})", path, std::strerror(errno)));
+    if (n == 0) break;
+    used += static_cast<std::size_t>(n);
+  }
+  if (used > kMaxConfigBytes) throw too_large();
+  text.resize(used);
+  return text;
 }
+
+}  // namespace
+
+Document Document::load(const std::string& path) { return parse(read_capped(path), path); }
 
 void Document::refuse_unknown_sections(std::span<const std::string_view> known) const {
   for (const auto& [key, node] : root_) {

@@ -30,6 +30,9 @@ constexpr int kDetectMaxLines = 16;
 constexpr double kAsterixMinConfidence = 0.4;
 // Bytes looked at to tell text from binary.
 constexpr std::size_t kTextSampleBytes = 1024;
+// Line starts tried after leading noise (a stream opening with garbage, issue 18), within
+// the 64 KiB the auto decoder buffers: bounds the work of one detection.
+constexpr int kDetectMaxRestarts = 1024;
 
 std::string_view as_text(std::span<const std::byte> bytes) {
   return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
@@ -116,8 +119,32 @@ Format detect_binary(std::span<const std::byte> head) {
   return best_confidence >= kAsterixMinConfidence ? best : Format::Auto;
 }
 
-/// Buffers the start of a stream until its format is known, then hands everything to the
-/// decoder of that format.
+/// Where a stream's format shows: its first byte, or the first line after noise.
+struct Detection {
+  Format format = Format::Auto;
+  std::size_t start = 0;  // bytes of noise before the detected data
+};
+
+/// The format of `head`, else of the text after its first noise: the lines are tried from
+/// each line start in turn (at most kDetectMaxRestarts), as text only (the ASTERIX
+/// heuristics would find a "plausible block" somewhere in enough noise).
+Detection detect_after_noise(std::span<const std::byte> head) {
+  if (const Format format = detect_format(head); format != Format::Auto) return {format, 0};
+  const std::string_view text = as_text(head);
+  std::size_t start = 0;
+  for (int restart = 0; restart < kDetectMaxRestarts; ++restart) {
+    const std::size_t newline = text.find('\n', start);
+    if (newline == std::string_view::npos || newline + 1 == text.size()) break;
+    start = newline + 1;
+    const std::string_view rest = text.substr(start);
+    if (!looks_like_text(rest)) continue;
+    if (const Format format = detect_text(rest); format != Format::Auto) return {format, start};
+  }
+  return {};
+}
+
+/// Buffers the start of a stream until its format is known, then hands everything after
+/// any leading noise to the decoder of that format.
 class AutoDecoder final : public Decoder {
  public:
   explicit AutoDecoder(const DecoderOptions& options) : options_(options) {}
@@ -148,21 +175,28 @@ class AutoDecoder final : public Decoder {
     if (decided) inner_->feed(bytes.subspan(take), sink);
   }
 
-  void finish(const ReportSink& sink) override {
+  void finish(const ReportSink& sink) override { end(false, sink); }
+  void end_message(const ReportSink& sink) override { end(true, sink); }
+
+ private:
+  /// finish() (`message` false) or end_message(): a stream or a datagram is judged on
+  /// what arrived, and the next bytes are detected afresh.
+  void end(bool message, const ReportSink& sink) {
     if (!inner_ && !unknown_ && !head_.empty()) try_detect(head_.size(), true, sink);
-    if (inner_) inner_->finish(sink);
+    if (inner_ && message) inner_->end_message(sink);
+    else if (inner_) inner_->finish(sink);
     inner_.reset();
     unknown_ = false;
     tried_first_ = false;
     head_.clear();
   }
 
- private:
   /// Detects on the first `head_bytes` of the buffered head; on success makes the decoder
-  /// and feeds it the whole head. When `last_try`, an unknown format is final (counted).
+  /// and feeds it the head from the detected start on (noise before it is counted). When
+  /// `last_try`, an unknown format is final (counted).
   bool try_detect(std::size_t head_bytes, bool last_try, const ReportSink& sink) {
-    const Format format = detect_format(std::span<const std::byte>(head_).first(head_bytes));
-    if (format == Format::Auto) {
+    const Detection detection = detect_after_noise(std::span<const std::byte>(head_).first(head_bytes));
+    if (detection.format == Format::Auto) {
       if (last_try) {
         rejections().reject("unknown_format",
                             fmt::format("auto: the first {} bytes match no known format; "
@@ -172,9 +206,13 @@ class AutoDecoder final : public Decoder {
       }
       return false;
     }
-    inner_ = make_decoder(format, options_);
+    if (detection.start > 0)
+      rejections().reject("unknown_format",
+                          fmt::format("auto: the first {} bytes match no known format; skipped, {} after them",
+                                      detection.start, to_string(detection.format)));
+    inner_ = make_decoder(detection.format, options_);
     text::forward_rejections(*inner_, rejections());
-    inner_->feed(head_, sink);
+    inner_->feed(std::span<const std::byte>(head_).subspan(detection.start), sink);
     head_.clear();
     return true;
   }

@@ -8,6 +8,7 @@ Run by ctest (tests/CMakeLists.txt) with the binaries in the environment; by han
 import json
 import os
 import random
+import resource
 import shutil
 import signal
 import socket
@@ -261,6 +262,107 @@ address = "{bad_file}"
         connection.close()
         self.assertEqual(kewd.terminate(), 0)
         server.close()
+
+
+def limited_memory():
+    """preexec_fn: a child that would read without bound fails instead of filling the machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+
+
+class InputFraming(E2eCase):
+    """Datagrams, noise, configurations that never end and the recording (issue 18,
+    README "Input framing")."""
+
+    def test_udp_datagrams_never_contaminate_each_other(self):
+        good = self.path("good.ndjson")
+        generate(good, "random", aircraft=20, duration=20, seed=2)
+        with open(good, "rb") as f:
+            lines = [line for line in f if not line.startswith(b"#")]
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir)
+                          + UDP_INPUT.format(name="udp", format="ndjson"))
+        target = ("127.0.0.1", kewd.input_port("udp"))
+        sent = 0
+
+        def send(sender, payload):
+            nonlocal sent
+            sender.sendto(payload, target)
+            sent += len(payload)
+            # Nothing may be lost to a full receive buffer: wait until kewd has read it.
+            wait_until(lambda: by_name(kewd)["udp"]["bytes"] >= sent, 20, "kewd to read the datagram")
+
+        # Sender A sends a record per datagram with its newline, sender B one without it
+        # (still whole), a record cut short, random bytes, and 1.2 MB of one over-long line
+        # in datagrams without a newline, between each of A's.
+        rng = random.Random(5)
+        garbage = bytes(rng.getrandbits(8) for _ in range(600)).replace(b"\n", b" ")
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as a, \
+                socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as b:
+            for i, line in enumerate(lines):
+                if i % 2:
+                    send(b, line.rstrip(b"\n"))
+                else:
+                    send(a, line)
+                send(b, (b'{"t":1714400000,"id":"CUT"', garbage, b"x" * 40000)[i % 3])
+        stats = by_name(kewd)["udp"]
+        self.assertEqual(stats["reports"], len(lines), "every valid record decoded\n" + json.dumps(stats))
+        self.assertNotIn("truncated", stats["rejected"], "a datagram is whole: nothing in it is cut")
+        for reason in ("bad_json", "line_too_long"):
+            self.assertIn(reason, stats["rejected"])
+        self.assertEqual(kewd.terminate(), 0)
+
+    def test_auto_detection_finds_ndjson_after_noise(self):
+        good = self.path("good.ndjson")
+        generate(good, "random", aircraft=20, duration=20, seed=2)
+        with open(good, "rb") as f:
+            text = f.read()
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir)
+                          + TCP_INPUT.format(name="tcp", format="auto"))
+        rng = random.Random(9)  # binary noise: text noise was always skipped as a bad line
+        noise = bytes(rng.getrandbits(8) for _ in range(4096)) + b"\n"
+        with socket.create_connection(("127.0.0.1", kewd.input_port("tcp"))) as s:
+            s.sendall(noise + text)
+        records = count_lines(good)
+        wait_until(lambda: by_name(kewd)["tcp"]["reports"] >= records, 20, "the records after the noise")
+        stats = by_name(kewd)["tcp"]
+        self.assertEqual(stats["reports"], records)
+        self.assertEqual(stats["rejected"].get("unknown_format"), 1, "the noise is counted once")
+        self.assertEqual(kewd.terminate(), 0)
+
+    def test_config_that_never_ends_is_refused(self):
+        fifo = self.path("fifo.toml")
+        os.mkfifo(fifo)
+        for path, why in (("/dev/zero", "not a regular file"), (fifo, "not a regular file")):
+            # The timeout and the memory limit only guard against a hang: kewd answers at once.
+            result = subprocess.run([KEWD, "--check-config", "-c", path], stderr=subprocess.PIPE, text=True,
+                                    timeout=30, preexec_fn=limited_memory)
+            self.assertEqual(result.returncode, 64, result.stderr)
+            self.assertIn(f"{path}: {why}", result.stderr)
+        # SIGHUP re-reads the path kewd was started with: made a link to the pipe, it is refused.
+        kewd = self.start(SERVICE.format(queue=100, workdir=self.workdir))
+        os.remove(kewd.config_path)
+        os.symlink(fifo, kewd.config_path)
+        kewd.process.send_signal(signal.SIGHUP)
+        self.assertIn("not a regular file", kewd.wait_log("configuration kept"))
+        self.assertTrue(kewd.running())
+        self.assertEqual(kewd.terminate(), 0)
+
+    def test_record_file_replays_to_the_same_alerts(self):
+        recording = self.path("airways.ndjson")
+        generate(recording, "airways", aircraft=300, duration=120, seed=6)
+        recorded = self.path("recorded.ndjson")
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir) + f'record_file = "{recorded}"\n'
+                          + f'[[input]]\nname = "file"\nformat = "ndjson"\ntransport = "file"\naddress = "{recording}"\n')
+        kewd.wait_log("input file: " + recording + " read to the end", 60)
+        self.assertEqual(kewd.terminate(), 0)
+        self.assertEqual(count_lines(recorded), count_lines(recording), "one line per record")
+        expected = offline_alerts(kewd.config_path, recording)
+        self.assertGreater(len(expected), 10, "the scenario must have conflicts")
+        self.assertEqual(offline_alerts(kewd.config_path, recorded), expected)
+
+
+def by_name(kewd):
+    """The STATS figures of each input, by its name."""
+    return {i["name"]: i for i in kewd.stats()["inputs"]}
 
 
 class Cat004(E2eCase):

@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 #include "kew/config/address.hpp"
 #include "kew/config/document.hpp"
@@ -271,6 +275,36 @@ lon = 8
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("k.toml:3: unknown section or key \"servcie\""), std::string::npos) << e.what();
   }
+}
+
+// A configuration is read with a size cap (issue 18): a file over kMaxConfigBytes or a
+// directory is refused with a message naming it, and nothing past the cap is read
+// (`/dev/zero` and pipes: tests/e2e test_kewd.InputFraming.test_config_that_never_ends_is_refused).
+TEST(Config, FilesAreReadWithASizeCap) {
+  const auto dir = std::filesystem::temp_directory_path() / ("kew-config-cap-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string at_cap = (dir / "at-cap.toml").string();
+  const std::string over_cap = (dir / "over-cap.toml").string();
+  {
+    // A valid file of comments exactly at the cap, and one a byte over.
+    const std::string head = "[service]\n";
+    std::ofstream(at_cap) << head << '#' << std::string(config::kMaxConfigBytes - head.size() - 2, 'x') << '\n';
+    std::ofstream(over_cap) << head << '#' << std::string(config::kMaxConfigBytes - head.size() - 1, 'x') << '\n';
+  }
+  ASSERT_EQ(std::filesystem::file_size(at_cap), config::kMaxConfigBytes);
+  EXPECT_NO_THROW(load_config(at_cap));
+  const auto expect_refused = [](const std::string& path, const std::string& why) {
+    try {
+      load_config(path);
+      ADD_FAILURE() << path << " was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ": " + why), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(over_cap, "larger than 1048576 bytes, refused");
+  expect_refused(dir.string(), "not a regular file (a directory), refused");
+  expect_refused((dir / "absent.toml").string(), "cannot open");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

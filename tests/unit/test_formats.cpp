@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "kew/protocol/formats.hpp"
@@ -194,6 +195,51 @@ TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   auto short_decoder = make_decoder(Format::Auto);
   EXPECT_TRUE(decode_all(*short_decoder, "hello\n").empty());
   EXPECT_EQ(short_decoder->rejections().count("unknown_format"), 1u);
+}
+
+// Issue 18: a stream opening with noise (binary or text) is still detected, from the first
+// line after the noise; the noise is counted once, wherever the feed boundaries fall.
+TEST(AutoDecoder, FindsTheFormatAfterNoise) {
+  const std::string sample = test::read_file(test::bundled_path("canonical_sample.ndjson"));
+  auto explicit_decoder = make_decoder(Format::Ndjson);
+  const auto expected = decode_all(*explicit_decoder, sample);
+  ASSERT_FALSE(expected.empty());
+  std::mt19937 random(3);
+  std::string binary(4096, '\0');
+  for (char& c : binary) c = static_cast<char>(random() & 0xff);
+  std::string prose;
+  for (int i = 0; i < 40; ++i) prose += "not a record, line " + std::to_string(i) + "\n";
+  for (const std::string& noise : {binary + "\n", prose}) {
+    auto automatic = make_decoder(Format::Auto);
+    test::expect_same_reports(expected, test::decode_random_chunks(*automatic, noise + sample, 5));
+    EXPECT_EQ(automatic->rejections().count("unknown_format"), 1u);
+    auto whole = make_decoder(Format::Auto);
+    test::expect_same_reports(expected, decode_all(*whole, noise + sample));
+  }
+}
+
+// Issue 18: end_message() closes a datagram. A last line without its newline is whole;
+// nothing (a partial line, an over-long line being skipped) reaches the next datagram.
+TEST(Decoder, EachDatagramIsDecodedAlone) {
+  const std::string record = R"({"t":1714400000,"id":"A1","lat":50,"lon":8,"alt_ft":30000})";
+  for (const Format format : {Format::Ndjson, Format::Auto}) {
+    auto decoder = make_decoder(format);
+    std::vector<TrackReport> reports;
+    const ReportSink sink = [&](const TrackReport& r) { reports.push_back(r); };
+    const auto datagram = [&](const std::string& text) {
+      decoder->feed_text(text, sink);
+      decoder->end_message(sink);
+    };
+    datagram(record);                        // without its newline: whole
+    datagram(R"({"t":1714400001,"id":"B)");  // cut: bad, and not joined to what follows
+    datagram(record + "\n");
+    datagram(std::string(10000, 'x'));      // over-long: skipped, but only in its datagram
+    datagram(record + "\n");
+    EXPECT_EQ(reports.size(), 3u) << to_string(format);
+    EXPECT_EQ(decoder->rejections().count("truncated"), 0u) << to_string(format);
+    EXPECT_EQ(decoder->rejections().count("line_too_long"), format == Format::Ndjson ? 1u : 0u);
+    EXPECT_EQ(decoder->rejections().total(), 2u) << decoder->rejections().by_reason().size();
+  }
 }
 
 }  // namespace

@@ -91,9 +91,9 @@ class UdpInput final : public Input {
       if (ec == asio::error::message_size) {
         ++figures_.oversized_datagrams;
       } else if (!ec) {
-        // Each datagram is one message: a datagram framing decodes it alone; text
-        // formats get whole lines from a well-behaved sender.
-        feed(*decoder_, buffer_.data(), n);
+        // Each datagram is one message, decoded alone: one sender's garbage or missing
+        // final newline never joins another's next datagram.
+        feed_message(*decoder_, buffer_.data(), n);
       }
       if (socket_.is_open()) receive();
     });
@@ -352,19 +352,24 @@ std::unique_ptr<protocol::Decoder> Input::make_stream_decoder() {
   return decoder;
 }
 
+void Input::deliver(const TrackReport& report) {
+  ++figures_.reports;
+  handler_(report);
+}
+
 void Input::feed(protocol::Decoder& decoder, const void* data, std::size_t n) {
   figures_.bytes += n;
-  decoder.feed(std::span<const std::byte>(static_cast<const std::byte*>(data), n), [this](const TrackReport& r) {
-    ++figures_.reports;
-    handler_(r);
-  });
+  decoder.feed(std::span<const std::byte>(static_cast<const std::byte*>(data), n),
+               [this](const TrackReport& r) { deliver(r); });
+}
+
+void Input::feed_message(protocol::Decoder& decoder, const void* data, std::size_t n) {
+  feed(decoder, data, n);
+  decoder.end_message([this](const TrackReport& r) { deliver(r); });
 }
 
 void Input::retire(protocol::Decoder& decoder) {
-  decoder.finish([this](const TrackReport& r) {
-    ++figures_.reports;
-    handler_(r);
-  });
+  decoder.finish([this](const TrackReport& r) { deliver(r); });
   figures_.rejected.merge(decoder.rejections());
   decoder.rejections() = Rejections();
 }

@@ -49,9 +49,14 @@ class Input {
   std::unique_ptr<protocol::Decoder> make_stream_decoder();
   /// Feeds bytes to a stream's decoder and forwards its reports.
   void feed(protocol::Decoder& decoder, const void* data, std::size_t n);
+  /// Feeds one datagram, a whole message decoded alone: nothing of it (a line without its
+  /// newline, a skipped over-long line) reaches the next datagram or another sender.
+  void feed_message(protocol::Decoder& decoder, const void* data, std::size_t n);
   /// Ends a stream: flushes the decoder and keeps its rejection counts.
   void retire(protocol::Decoder& decoder);
   virtual void add_open_stream_rejections(Rejections&) const {}
+  /// Counts a decoded report and hands it to the service.
+  void deliver(const TrackReport& report);
 
   InputConfig config_;
   protocol::DecoderOptions options_;

@@ -154,6 +154,7 @@ void Service::on_report(const TrackReport& report) {
   if (record_file_) {
     line_.clear();
     protocol::append_ndjson(line_, report);
+    line_ += '\n';  // a recording is NDJSON: one record per line, as kew-replay reads it
     record_file_->append(line_);
   }
   if (subscribers_->anyone_wants_tracks()) subscribers_->broadcast_track(report);

@@ -66,7 +66,14 @@ class GzipDecoder final : public Decoder {
     stream_offset_ += bytes.size();
   }
 
-  void finish(const ReportSink& sink) override {
+  void finish(const ReportSink& sink) override { end(false, sink); }
+  void end_message(const ReportSink& sink) override { end(true, sink); }
+
+ private:
+  enum class State { Sniffing, PassThrough, Inflating, Stopped };
+
+  /// finish() (`message` false) or end_message(), passed on to the inner decoder.
+  void end(bool message, const ReportSink& sink) {
     if (state_ == State::Sniffing && sniffed_ > 0) {
       // Too short to carry the magic: whatever it is, it is not gzip.
       inner_->feed(std::span<const std::byte>(sniff_buffer_.data(), sniffed_), sink);
@@ -75,12 +82,10 @@ class GzipDecoder final : public Decoder {
                           fmt::format("gzip: stream ends inside a member ({} compressed bytes read)",
                                       stream_offset_));
     }
-    inner_->finish(sink);
+    if (message) inner_->end_message(sink);
+    else inner_->finish(sink);
     restart();
   }
-
- private:
-  enum class State { Sniffing, PassThrough, Inflating, Stopped };
 
   void restart() {
     state_ = mode_ == GzipMode::Always ? State::Inflating : State::Sniffing;

@@ -42,8 +42,12 @@ void LineDecoder::feed(std::span<const std::byte> bytes, const ReportSink& sink)
   }
 }
 
-void LineDecoder::finish(const ReportSink& sink) {
-  if (!skipping_ && !partial_.empty()) dispatch(partial_, false, sink);
+void LineDecoder::finish(const ReportSink& sink) { end(false, sink); }
+
+void LineDecoder::end_message(const ReportSink& sink) { end(true, sink); }
+
+void LineDecoder::end(bool complete, const ReportSink& sink) {
+  if (!skipping_ && !partial_.empty()) dispatch(partial_, complete, sink);
   partial_.clear();
   skipping_ = false;
   line_number_ = 1;

@@ -21,6 +21,8 @@ class LineDecoder : public Decoder {
 
   void feed(std::span<const std::byte> bytes, const ReportSink& sink) final;
   void finish(const ReportSink& sink) final;
+  /// A last line without '\n' is a whole line here, refused by its own reason if at all.
+  void end_message(const ReportSink& sink) final;
   std::size_t max_message_bytes() const final { return max_line_bytes_; }
 
  protected:
@@ -35,6 +37,9 @@ class LineDecoder : public Decoder {
   /// if it is refused, it is counted as "truncated" (the Decoder contract).
   void dispatch(std::string_view line, bool terminated, const ReportSink& sink);
   void reject_too_long();
+  /// finish() and end_message(): `complete` tells whether an unterminated last line is
+  /// whole (a datagram's) or cut by the end of a stream.
+  void end(bool complete, const ReportSink& sink);
 
   std::size_t max_line_bytes_;
   std::string partial_;          // the start of a line whose '\n' has not arrived yet

@@ -78,13 +78,18 @@ class TableReader {
   std::set<std::string, std::less<>> used_;
 };
 
+/// Largest configuration file read, bytes (1 MiB; the shipped kew.toml is a few KB).
+inline constexpr std::size_t kMaxConfigBytes = 1 << 20;
+
 /// A parsed configuration file.
 class Document {
  public:
   /// Parses TOML text; `origin` names it in messages. Throws ConfigError
   /// ("origin:line:column: ...") on a syntax error.
   static Document parse(std::string_view text, std::string origin);
-  /// Reads and parses the file at `path`. Throws ConfigError when it cannot be read.
+  /// Reads and parses the file at `path`. Throws ConfigError naming the file when it
+  /// cannot be read, is not a regular file (/dev/zero, a pipe) or is larger than
+  /// kMaxConfigBytes; nothing more than the cap is ever read.
   static Document load(const std::string& path);
 
   const std::string& origin() const { return origin_; }

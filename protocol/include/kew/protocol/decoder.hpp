@@ -5,6 +5,7 @@
 //  - bounded: no message larger than max_message_bytes() is buffered; a longer one is
 //    skipped and counted;
 //  - resynchronising: after garbage the decoder finds the next plausible message;
+//  - message-framed when asked: end_message() closes a datagram, nothing crosses it;
 //  - every refusal is counted by reason in rejections().
 // Decoders know nothing of sockets or files: the caller moves the bytes.
 
@@ -31,6 +32,13 @@ class Decoder {
   /// End of stream: a trailing partial message is counted ("truncated") and dropped;
   /// reports held back for merging (SBS) are emitted. The decoder may be fed again after.
   virtual void finish(const ReportSink& sink) = 0;
+
+  /// The bytes fed since the last finish() or end_message() were one whole message (a UDP
+  /// datagram): what they leave unfinished ends with them, as a complete message (a text
+  /// datagram without a final newline still holds a whole last line, not a truncated one),
+  /// and then, as after finish(), nothing is carried over to the next bytes. The default
+  /// is finish(); line framings and wrappers override it.
+  virtual void end_message(const ReportSink& sink) { finish(sink); }
 
   /// Short stable name of the format ("ndjson", "asterix", "sbs", ...).
   virtual std::string_view format_name() const = 0;
