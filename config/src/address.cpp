@@ -1,5 +1,11 @@
 #include "kew/config/address.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+
+#include <array>
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "kew/config/config_error.hpp"
@@ -47,6 +53,30 @@ HostPort require_host_port(std::string_view text) {
 std::string to_string(const HostPort& address) {
   if (address.host.find(':') != std::string::npos) return fmt::format("[{}]:{}", address.host, address.port);
   return fmt::format("{}:{}", address.host, address.port);
+}
+
+std::optional<std::string> canonical_ip(std::string_view text) {
+  const std::string host(text);
+  std::array<char, INET6_ADDRSTRLEN> buffer{};
+  in_addr v4{};
+  if (::inet_pton(AF_INET, host.c_str(), &v4) == 1)
+    return std::string(::inet_ntop(AF_INET, &v4, buffer.data(), buffer.size()));
+  in6_addr v6{};
+  if (::inet_pton(AF_INET6, host.c_str(), &v6) != 1) return std::nullopt;
+  if (IN6_IS_ADDR_V4MAPPED(&v6)) {
+    std::memcpy(&v4, &v6.s6_addr[12], sizeof v4);
+    return std::string(::inet_ntop(AF_INET, &v4, buffer.data(), buffer.size()));
+  }
+  return std::string(::inet_ntop(AF_INET6, &v6, buffer.data(), buffer.size()));
+}
+
+ListenScope listen_scope(std::string_view host) {
+  if (host == "localhost") return ListenScope::Loopback;
+  const std::optional<std::string> ip = canonical_ip(host);
+  if (!ip) return ListenScope::Other;
+  if (*ip == "0.0.0.0" || *ip == "::") return ListenScope::Wildcard;
+  if (*ip == "::1" || ip->starts_with("127.")) return ListenScope::Loopback;
+  return ListenScope::Other;
 }
 
 }  // namespace kew::config

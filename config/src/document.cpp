@@ -6,6 +6,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <optional>
 
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"
@@ -74,6 +76,28 @@ void TableReader::address(std::string_view key, std::string& out) {
   string(key, out);
   std::string error;
   if (node && !parse_host_port(out, &error)) fail(node, fmt::format("{} = {}", key, error));
+}
+
+void TableReader::ip_list(std::string_view key, std::vector<std::string>& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto* array = node->as_array();
+  if (!array) fail(node, fmt::format("{} must be an array of IP addresses (\"127.0.0.1\")", key));
+  std::vector<std::string> addresses;
+  for (const toml::node& element : *array) {
+    const auto* text = element.as_string();
+    const std::optional<std::string> ip = text ? canonical_ip(text->get()) : std::nullopt;
+    if (!ip)
+      fail(&element, fmt::format("{}: each entry is an IPv4 or IPv6 address without port or brackets "
+                                 "(\"127.0.0.1\", \"::1\")", key));
+    addresses.push_back(*ip);
+  }
+  out = std::move(addresses);
+}
+
+void TableReader::path(std::string_view key, std::string& out) {
+  string(key, out);
+  if (!out.empty()) out = std::filesystem::absolute(out).lexically_normal().string();
 }
 
 void TableReader::utc_day(std::string_view key, std::string& out) {

@@ -140,7 +140,9 @@ int main(int argc, char** argv) {
     } else if (kind == StreamObjectClass::Alert) {
       print_alert(reader.alert(), state_name(reader.alert()).c_str());
     } else if (kind == StreamObjectClass::Ack) {
-      std::printf("ACK    %zu alerts acknowledged through %s\n", reader.acknowledged().size(), reader.text().c_str());
+      std::printf("ACK    %zu alerts acknowledged through %s by %s\n", reader.acknowledged().size(),
+                  reader.text().c_str(),
+                  reader.acknowledging_client().empty() ? "?" : reader.acknowledging_client().c_str());
     } else if (kind == StreamObjectClass::Alive && flags.alive) {
       const auto& a = reader.alive();
       const std::string health =

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_flag("-N,--foreground", flags.foreground, "stay in the foreground and log to stderr (systemd, terminals)");
   app.add_flag("--listen-any", flags.listen_any,
-               "serve subscribers and loopback inputs on every interface, not only loopback");
+               "serve subscribers, Modbus and loopback inputs on every interface, and allow any listen address");
   app.add_flag("--check-config", flags.check_config, "validate the configuration, then exit 0, or 64 on error");
   app.add_option("-l,--log-level", flags.log_level,
                  "one of " + kew::daemon::kLogLevelNames.list() + " (overrides the file)")
@@ -100,13 +100,13 @@ int main(int argc, char** argv) {
 
   if (flags.config_path.empty() && std::filesystem::exists(kSystemConfig)) flags.config_path = kSystemConfig;
   kew::daemon::Config config;
-  if (!flags.config_path.empty()) {
-    try {
-      config = kew::daemon::load_config(flags.config_path);
-    } catch (const kew::config::ConfigError& e) {
-      std::fprintf(stderr, "kewd: %s\n", e.what());
-      return kUsageError;
-    }
+  try {
+    if (!flags.config_path.empty()) config = kew::daemon::load_config(flags.config_path);
+    // Before starting as well: a file that passes --check-config must not fail at start.
+    kew::daemon::check_config(config, flags.listen_any);
+  } catch (const kew::config::ConfigError& e) {
+    std::fprintf(stderr, "kewd: %s\n", e.what());
+    return kUsageError;
   }
   if (!flags.log_level.empty()) config.service.log_level = *kew::daemon::kLogLevelNames.parse(flags.log_level);
   if (flags.check_config) {
@@ -114,6 +114,12 @@ int main(int argc, char** argv) {
                 flags.config_path.empty() ? "the built-in configuration" : flags.config_path.c_str(),
                 config.inputs.size(), config.service.alert_listen.c_str(), config.cat004.enabled ? ", CAT004" : "",
                 config.modbus.enabled ? ", Modbus" : "");
+    // Relative paths as resolved (against the working directory).
+    if (!config.service.alert_log.empty()) std::printf("alert log: %s\n", config.service.alert_log.c_str());
+    if (!config.service.record_file.empty()) std::printf("record file: %s\n", config.service.record_file.c_str());
+    for (const auto& input : config.inputs)
+      if (input.transport == kew::daemon::Transport::File)
+        std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());
     return 0;
   }
 

@@ -578,11 +578,15 @@ class ModbusMap(E2eCase):
 
         # Coil 0 acknowledges every active alert: an ACK object in the stream, the count
         # of unacknowledged alerts drops to 0, the coil reads back 0.
-        self.assertTrue(self.modbus(port, "write-coil", "0", "1")["ok"])
+        written = self.modbus(port, "write-coil", "0", "1")
+        self.assertTrue(written["ok"])
         wait_until(lambda: watcher.objects("ACK"), 10, "the ACK object")
         ack = watcher.objects("ACK")[0]
         self.assertEqual(set(ack["ids"]), {a["id"] for a in active})
         self.assertEqual(ack["by"], "modbus")
+        # The ACK names the client: its address and port, as the client sees its socket.
+        self.assertTrue(written["client"].startswith("127.0.0.1:"), written)
+        self.assertEqual(ack["client"], written["client"])
         wait_until(lambda: self.modbus(port, "read-input-registers", "8", "1")["values"] == [0], 5,
                    "no unacknowledged alert")
         self.assertEqual(self.modbus(port, "read-coils", "0", "1")["values"], [0])
@@ -604,7 +608,9 @@ class ModbusMap(E2eCase):
         noisy.close()
         self.assertEqual(kewd.terminate(), 0)
         with open(self.path("alerts.jsonl")) as f:
-            self.assertIn('"class":"ACK"', f.read(), "the acknowledgement is in the alert log")
+            logged = [json.loads(line) for line in f if '"class":"ACK"' in line]
+        self.assertEqual(len(logged), 1, "the acknowledgement is in the alert log")
+        self.assertEqual(logged[0]["client"], written["client"])
 
     def test_read_only_map_refuses_writes(self):
         kewd, port = self.start_with_modbus("read_only = true\n")
@@ -613,6 +619,63 @@ class ModbusMap(E2eCase):
         self.assertTrue(self.modbus(port, "read-discrete-inputs", "0", "6")["ok"])
         self.assertEqual(kewd.stats()["modbus"]["acknowledgements"], 0)
         self.assertEqual(kewd.terminate(), 0)
+
+
+    def test_acknowledge_from_refuses_other_clients(self):
+        kewd, port = self.start_with_modbus('acknowledge_from = ["192.0.2.7"]\n')
+        self.assertEqual(self.modbus(port, "write-coil", "0", "1")["exception_code"], 1)  # ILLEGAL FUNCTION
+        self.assertTrue(self.modbus(port, "read-discrete-inputs", "0", "6")["ok"])
+        modbus = kewd.stats()["modbus"]
+        self.assertEqual(modbus["acknowledgements"], 0)
+        self.assertEqual(modbus["rejected"]["modbus_write_not_permitted"], 1)
+        kewd.wait_log("modbus: refused a request (modbus_write_not_permitted): a write from 127.0.0.1:")
+        self.assertEqual(kewd.terminate(), 0)
+
+
+class ListenAddresses(E2eCase):
+    """Listeners bind loopback unless allowed; --check-config catches what start would not survive (issue 18)."""
+
+    def check(self, config_text, *args):
+        path = self.path("check.toml")
+        with open(path, "w") as f:
+            f.write(with_free_ports(config_text))
+        return subprocess.run([KEWD, "--check-config", "-c", path, *args], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True, timeout=20, cwd=self.workdir)
+
+    def test_wildcard_refused_without_listen_any_or_allow_remote(self):
+        wildcard = '[service]\nalert_listen = "0.0.0.0:4747"\n'
+        result = self.check(wildcard)
+        self.assertEqual(result.returncode, 64)
+        self.assertIn('[service] alert_listen = "0.0.0.0:4747" listens on every interface', result.stderr)
+        self.assertEqual(self.check(wildcard, "--listen-any").returncode, 0)
+        self.assertEqual(self.check(wildcard + "allow_remote = true\n").returncode, 0)
+        udp = UDP_INPUT.format(name="radar", format="asterix-datagram").replace("127.0.0.1:0", "0.0.0.0:8600")
+        result = self.check(udp)
+        self.assertEqual(result.returncode, 64)
+        self.assertIn('[input 1] address = "0.0.0.0:8600" listens on every interface', result.stderr)
+        self.assertEqual(self.check(udp + "allow_remote = true\n").returncode, 0, result.stderr)
+        # Refused at start as well, before anything binds.
+        path = self.path("start.toml")
+        with open(path, "w") as f:
+            f.write('[service]\nalert_listen = "[::]:4747"\n')
+        started = subprocess.run([KEWD, "-N", "-c", path], stderr=subprocess.PIPE, text=True, timeout=20)
+        self.assertEqual(started.returncode, 64)
+        self.assertIn('alert_listen = "[::]:4747" listens on every interface', started.stderr)
+
+    def test_ports_and_paths_checked_before_start(self):
+        two = (TCP_INPUT.format(name="a", format="ndjson").replace("127.0.0.1:0", "127.0.0.1:4748")
+               + TCP_INPUT.format(name="b", format="ndjson").replace("127.0.0.1:0", "127.0.0.1:4748"))
+        result = self.check(two)
+        self.assertEqual(result.returncode, 64)
+        self.assertIn('[input 2] address = "127.0.0.1:4748" uses TCP port 4748 (IPv4), as [input 1]', result.stderr)
+        os.mkdir(self.path("logs"))
+        result = self.check('[service]\nalert_log = "logs"\n')
+        self.assertEqual(result.returncode, 64)
+        self.assertIn(f'alert_log = "{self.path("logs")}" is a directory', result.stderr)
+        # Relative paths: resolved against the working directory, reported resolved.
+        result = self.check('[service]\nalert_log = "logs/../logs/alerts.jsonl"\n')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn(f"alert log: {self.path('logs/alerts.jsonl')}", result.stdout)
 
 
 class Install(E2eCase):
@@ -626,10 +689,23 @@ class Install(E2eCase):
             self.assertTrue(os.access(os.path.join(prefix, "bin", binary), os.X_OK), binary)
         config = os.path.join(prefix, "etc", "kew", "kew.toml")
         result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", config],
-                                stdout=subprocess.PIPE, text=True)
-        self.assertEqual(result.returncode, 0, result.stdout)
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # --check-config checks that the alert log can be written: /var/log/kew is the
+        # unit's LogsDirectory, which systemd creates before ExecStartPre runs the check.
+        if os.path.isdir("/var/log/kew"):
+            self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        else:
+            self.assertEqual(result.returncode, 64, result.stdout)
+            self.assertIn("its directory /var/log/kew does not exist", result.stderr)
         with open(config) as f:
-            self.assertIn('alert_log = "/var/log/kew/alerts.jsonl"', f.read())
+            text = f.read()
+        self.assertIn('alert_log = "/var/log/kew/alerts.jsonl"', text)
+        elsewhere = self.path("installed.toml")
+        with open(elsewhere, "w") as f:
+            f.write(text.replace("/var/log/kew/alerts.jsonl", self.path("alerts.jsonl")))
+        result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", elsewhere],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         unit = os.path.join(prefix, "lib", "systemd", "system", "kewd.service")
         with open(unit) as f:
             text = f.read()

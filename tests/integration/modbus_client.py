@@ -6,6 +6,7 @@ A small command-line tool over pymodbus (written for Debian 12's python3-pymodbu
 integration tests of the Modbus server and by the kewd end-to-end tests. It prints one
 JSON object on stdout and exits with:
   0  the request succeeded          {"ok": true, "values": [...]}  (writes: no "values")
+                                    with "client": its own "HOST:PORT", as the server sees it
   2  the server answered an exception {"ok": false, "exception_code": N}
   1  no usable answer (connection refused or closed, timeout, pymodbus missing)
                                     {"ok": false, "error": "..."}
@@ -78,6 +79,11 @@ class Client:
     def close(self):
         self.client.close()
 
+    def local_address(self):
+        """The client's own "HOST:PORT" (IPv6 in brackets): what kewd names in an ACK."""
+        host, port = self.client.socket.getsockname()[:2]
+        return f"[{host}]:{port}" if ":" in host else f"{host}:{port}"
+
     def call(self, method, *args):
         try:
             return checked(getattr(self.client, method)(*args, slave=self.unit))
@@ -117,25 +123,30 @@ def read_map(client, entries):
 def run(args):
     client = Client(args.host, args.port, args.unit, args.timeout)
     try:
-        if args.command == "read-coils":
-            return {"values": client.bits("read_coils", args.start, args.count)}
-        if args.command in ("read-discrete-inputs", "read-inputs"):
-            return {"values": client.bits("read_discrete_inputs", args.start, args.count)}
-        if args.command in ("read-input-registers", "read-registers"):
-            return {"values": client.registers("read_input_registers", args.start, args.count)}
-        if args.command == "read-holding-registers":
-            return {"values": client.registers("read_holding_registers", args.start, args.count)}
-        if args.command == "write-coil":
-            client.call("write_coil", args.address, bool(args.value))
-            return {}
-        if args.command == "write-register":
-            client.call("write_register", args.address, args.value)
-            return {}
-        if args.command == "read-map":
-            return {"map": read_map(client, args.entries)}
-        raise ModbusFailure(f"unknown command {args.command}")
+        return {"client": client.local_address(), **request(client, args)}
     finally:
         client.close()
+
+
+def request(client, args):
+    """Sends the request of `args`; its result."""
+    if args.command == "read-coils":
+        return {"values": client.bits("read_coils", args.start, args.count)}
+    if args.command in ("read-discrete-inputs", "read-inputs"):
+        return {"values": client.bits("read_discrete_inputs", args.start, args.count)}
+    if args.command in ("read-input-registers", "read-registers"):
+        return {"values": client.registers("read_input_registers", args.start, args.count)}
+    if args.command == "read-holding-registers":
+        return {"values": client.registers("read_holding_registers", args.start, args.count)}
+    if args.command == "write-coil":
+        client.call("write_coil", args.address, bool(args.value))
+        return {}
+    if args.command == "write-register":
+        client.call("write_register", args.address, args.value)
+        return {}
+    if args.command == "read-map":
+        return {"map": read_map(client, args.entries)}
+    raise ModbusFailure(f"unknown command {args.command}")
 
 
 def parse_arguments(argv):

@@ -181,6 +181,39 @@ TEST_F(WithPymodbus, CoilZeroAcknowledges) {
   EXPECT_EQ(json_values(coil.output), (std::vector<long>{0}));
 }
 
+// Issue 18, item 7: an acknowledgement names the client's address and port, as the
+// client itself sees its socket.
+TEST_F(WithPymodbus, AcknowledgementNamesTheClientAddressAndPort) {
+  RunningServer s;
+  const CommandResult on = client(s, "write-coil 0 1");
+  ASSERT_EQ(on.exit_code, 0) << on.output;
+  const std::string me = json_client(on.output);
+  ASSERT_TRUE(me.starts_with("127.0.0.1:")) << on.output;
+  EXPECT_EQ(s.acknowledged_by->list(), std::vector<std::string>{me});
+}
+
+// acknowledge_from: a client at another address may read, but every write is refused
+// with ILLEGAL FUNCTION (as in read-only mode) and counted; a listed address writes.
+TEST_F(WithPymodbus, AcknowledgeFromRefusesWritesFromOtherAddresses) {
+  RunningServer s(false, 4, 1, {"192.0.2.7", "::1"});
+  for (const std::string request : {"write-coil 0 1", "write-coil 0 0", "write-register 0 5"}) {
+    const CommandResult r = client(s, request);
+    EXPECT_EQ(r.exit_code, 2) << request << ": " << r.output;
+    EXPECT_EQ(json_exception_code(r.output), 1) << request << ": " << r.output;
+  }
+  EXPECT_EQ(*s.acknowledgements, 0);
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_write_not_permitted"), 3u);
+  const CommandResult read = client(s, "read-input-registers 0 2");
+  ASSERT_EQ(read.exit_code, 0) << read.output;
+  EXPECT_EQ(json_values(read.output), (std::vector<long>{1, 3}));
+
+  RunningServer listed(false, 4, 1, {"127.0.0.1"});
+  const CommandResult on = client(listed, "write-coil 0 1");
+  ASSERT_EQ(on.exit_code, 0) << on.output;
+  EXPECT_EQ(*listed.acknowledgements, 1);
+  EXPECT_EQ(listed.server->stats().rejected.count("modbus_write_not_permitted"), 0u);
+}
+
 TEST_F(WithPymodbus, InvalidAddressesAreIllegalDataAddress) {
   RunningServer s;
   for (const std::string request : {"write-coil 1 1", "write-register 0 5", "read-input-registers 48 1",

@@ -80,7 +80,7 @@ TEST(ModbusSockets, OversizedLengthDropsTheConnection) {
 TEST(ModbusSockets, ThrowingCallbackDoesNotStopTheServer) {
   daemon::ModbusConfig config;
   config.listen = kew::testing::free_loopback_address();
-  daemon::ModbusServer server(config, [] { throw std::runtime_error("daemon gone"); });
+  daemon::ModbusServer server(config, [](const std::string&) { throw std::runtime_error("daemon gone"); });
   server.start();
   RawClient c(server.bound_port());
   const auto write = request(3, {0x05, 0x00, 0x00, 0xFF, 0x00});

@@ -68,7 +68,8 @@ std::vector<std::uint16_t> expected_registers() {
           0, 0, 0, 0, 0, 0, 0, 0};
 }
 
-RunningServer::RunningServer(bool read_only, int max_connections, int unit_id) {
+RunningServer::RunningServer(bool read_only, int max_connections, int unit_id,
+                             std::vector<std::string> acknowledge_from) {
   daemon::ModbusConfig config;
   config.enabled = true;
   config.listen = kew::testing::free_loopback_address();
@@ -76,7 +77,12 @@ RunningServer::RunningServer(bool read_only, int max_connections, int unit_id) {
   config.table_entries = kTableEntries;
   config.read_only = read_only;
   config.max_connections = max_connections;
-  server = std::make_unique<daemon::ModbusServer>(config, [count = acknowledgements] { ++*count; });
+  config.acknowledge_from = std::move(acknowledge_from);
+  server = std::make_unique<daemon::ModbusServer>(
+      config, [count = acknowledgements, by = acknowledged_by](const std::string& client) {
+        by->add(client);
+        ++*count;
+      });
   server->publish(known_snapshot());
   server->start();
 }
@@ -172,6 +178,14 @@ std::vector<long> json_values(const std::string& output) {
   std::istringstream list(output.substr(begin + key.size(), end - begin - key.size()));
   for (std::string item; std::getline(list, item, ',');) values.push_back(std::stol(item));
   return values;
+}
+
+std::string json_client(const std::string& output) {
+  const std::string key = "\"client\": \"";
+  const auto at = output.find(key);
+  if (at == std::string::npos) return {};
+  const auto start = at + key.size();
+  return output.substr(start, output.find('"', start) - start);
 }
 
 int json_exception_code(const std::string& output) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,13 +26,32 @@ protocol::AlarmSnapshot known_snapshot();
 std::vector<std::uint16_t> expected_registers();
 inline constexpr int kTableEntries = 4;
 
+/// The clients ("HOST:PORT") that acknowledged, in order; written on the server thread.
+class AcknowledgingClients {
+ public:
+  void add(const std::string& client) {
+    std::lock_guard lock(mutex_);
+    clients_.push_back(client);
+  }
+  std::vector<std::string> list() const {
+    std::lock_guard lock(mutex_);
+    return clients_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::string> clients_;
+};
+
 /// A ModbusServer on 127.0.0.1, ephemeral port, serving known_snapshot(), counting
-/// acknowledgements.
+/// acknowledgements and keeping who made them.
 struct RunningServer {
-  explicit RunningServer(bool read_only = false, int max_connections = 4, int unit_id = 1);
+  explicit RunningServer(bool read_only = false, int max_connections = 4, int unit_id = 1,
+                         std::vector<std::string> acknowledge_from = {});
   std::uint16_t port() const { return server->bound_port(); }
 
   std::shared_ptr<std::atomic<int>> acknowledgements = std::make_shared<std::atomic<int>>(0);
+  std::shared_ptr<AcknowledgingClients> acknowledged_by = std::make_shared<AcknowledgingClients>();
   std::unique_ptr<daemon::ModbusServer> server;
 };
 
@@ -73,6 +93,8 @@ bool have_mbpoll();
 CommandResult modbus_client(const std::string& python, std::uint16_t port, const std::string& arguments);
 /// The "values" array of the client's JSON output (empty when absent).
 std::vector<long> json_values(const std::string& output);
+/// The "client" of the client's JSON output (its own "HOST:PORT"), or "".
+std::string json_client(const std::string& output);
 /// The "exception_code" of the client's JSON output, or −1.
 int json_exception_code(const std::string& output);
 

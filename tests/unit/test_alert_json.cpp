@@ -185,18 +185,19 @@ std::string escaped(std::string_view text) {
 TEST(AlertJson, AckObjectIsByteExactAndReadsBack) {
   std::string out;
   const std::vector<std::string> ids = {"9f3c2a51d0e4b7c8", "0123456789abcdef"};
-  append_ack_json(out, ids, 1714400000.25, "modbus", 42);
-  EXPECT_EQ(out, R"({"class":"ACK","seq":42,"t":1714400000.250,"by":"modbus","ids":["9f3c2a51d0e4b7c8",)"
-                 R"("0123456789abcdef"]})" "\n");
+  append_ack_json(out, {ids, 1714400000.25, "modbus", "127.0.0.1:50312"}, 42);
+  EXPECT_EQ(out, R"({"class":"ACK","seq":42,"t":1714400000.250,"by":"modbus","client":"127.0.0.1:50312",)"
+                 R"("ids":["9f3c2a51d0e4b7c8","0123456789abcdef"]})" "\n");
   AlertStreamReader reader;
   ASSERT_TRUE(reader.read(out)) << reader.error();
   EXPECT_EQ(reader.object_class(), StreamObjectClass::Ack);
   EXPECT_EQ(reader.seq(), 42u);
   EXPECT_EQ(reader.text(), "modbus");
+  EXPECT_EQ(reader.acknowledging_client(), "127.0.0.1:50312");
   EXPECT_EQ(reader.acknowledged(), ids);
 
   out.clear();
-  append_ack_json(out, {}, 0.0, "modbus", 0);
+  append_ack_json(out, {{}, 0.0, "modbus", "[::1]:4000"}, 0);
   ASSERT_TRUE(reader.read(out)) << reader.error();
   EXPECT_TRUE(reader.acknowledged().empty());
   EXPECT_FALSE(reader.read(R"({"class":"ACK","seq":1,"t":0,"by":"modbus","ids":[1]})"));

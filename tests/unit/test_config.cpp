@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -93,6 +95,10 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.modbus.table_entries, defaults.modbus.table_entries);
   EXPECT_EQ(file.modbus.read_only, defaults.modbus.read_only);
   EXPECT_EQ(file.modbus.max_connections, defaults.modbus.max_connections);
+  EXPECT_EQ(file.modbus.allow_remote, defaults.modbus.allow_remote);
+  EXPECT_EQ(file.modbus.acknowledge_from, defaults.modbus.acknowledge_from);
+  EXPECT_EQ(file.service.allow_remote, defaults.service.allow_remote);
+  for (const InputConfig& input : file.inputs) EXPECT_EQ(input.allow_remote, InputConfig{}.allow_remote);
   EXPECT_EQ(file.decoding.sbs_utc_offset_s, defaults.decoding.sbs_utc_offset_s);
   EXPECT_EQ(file.decoding.max_line_bytes, defaults.decoding.max_line_bytes);
   EXPECT_TRUE(file.decoding.asterix.radars.empty());
@@ -226,8 +232,152 @@ TEST(Config, EveryAddressKeyUsesTheOneParser) {
   expect_error("[modbus]\nlisten = \"::1:1502\"\n", "brackets");
   expect_error("[cat004]\ndestination = \"10.0.0.1:65536\"\n", "above 65535");
   expect_error("[[input]]\ntransport = \"tcp-client\"\naddress = \"feed\"\n", "t.toml:3: [input 1] address = \"feed\"");
-  // A file input's address is a path, colons and all.
-  EXPECT_EQ(parse_config("[[input]]\ntransport = \"file\"\naddress = \"C:/x.ast\"\n").inputs[0].address, "C:/x.ast");
+  // A file input's address is a path, colons and all (resolved like every path).
+  EXPECT_EQ(parse_config("[[input]]\ntransport = \"file\"\naddress = \"C:/x.ast\"\n").inputs[0].address,
+            (std::filesystem::current_path() / "C:/x.ast").string());
+}
+
+// Listen addresses (issue 18, item 6): loopback unless the listener's table says
+// allow_remote = true or kewd runs with --listen-any; the error names the listener.
+void expect_check_error(const std::string& text, const std::string& needle, bool listen_any = false) {
+  try {
+    check_config(parse_config(text, "t.toml"), listen_any);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(ConfigChecks, ListenersBindLoopbackUnlessAllowed) {
+  expect_check_error("[service]\nalert_listen = \"0.0.0.0:4747\"\n",
+                     "t.toml: [service] alert_listen = \"0.0.0.0:4747\" listens on every interface");
+  expect_check_error("[service]\nalert_listen = \"[::]:4747\"\n", "alert_listen = \"[::]:4747\" listens on every");
+  expect_check_error("[modbus]\nenabled = true\nlisten = \"192.0.2.1:1502\"\n",
+                     "[modbus] listen = \"192.0.2.1:1502\" is not a loopback address");
+  expect_check_error("[[input]]\ntransport = \"udp\"\naddress = \"0.0.0.0:8600\"\n",
+                     "[input 1] address = \"0.0.0.0:8600\" listens on every interface");
+  expect_check_error("[[input]]\ntransport = \"udp\"\naddress = \"239.1.2.3:8600\"\n",
+                     "[input 1] address = \"239.1.2.3:8600\" is not a loopback address");
+  expect_check_error("[[input]]\ntransport = \"tcp-server\"\naddress = \"radar.example:4748\"\n",
+                     "[input 1] address = \"radar.example:4748\" is not a loopback address");
+  expect_check_error("[[input]]\ntransport = \"tcp-server\"\naddress = \"0.0.0.0:4748\"\nallow_remote = false\n",
+                     "allow_remote = true");
+  // Allowed: by the listener's own table, or by --listen-any for every listener.
+  const char* remote = R"(
+[service]
+alert_listen = "0.0.0.0:4747"
+allow_remote = true
+[modbus]
+enabled = true
+listen = "[::]:1502"
+allow_remote = true
+[[input]]
+transport = "udp"
+address = "239.1.2.3:8600"
+allow_remote = true
+)";
+  EXPECT_NO_THROW(check_config(parse_config(remote), false));
+  EXPECT_NO_THROW(check_config(parse_config("[service]\nalert_listen = \"0.0.0.0:4747\"\n"), true));
+  // Loopback in every spelling; listeners that are not enabled, and tcp-client, are not listeners.
+  EXPECT_NO_THROW(check_config(parse_config(R"(
+[service]
+alert_listen = "localhost:4747"
+[modbus]
+listen = "0.0.0.0:1502"
+[[input]]
+transport = "tcp-server"
+address = "[::1]:4748"
+[[input]]
+transport = "udp"
+address = "127.1.2.3:8600"
+[[input]]
+transport = "tcp-client"
+address = "192.0.2.1:30003"
+)"), false));
+  expect_error("[[input]]\ntransport = \"tcp-client\"\naddress = \"192.0.2.1:1\"\nallow_remote = true\n",
+               "allow_remote is for inputs that listen");
+  // The built-in configuration passes.
+  EXPECT_NO_THROW(check_config(Config{}, false));
+  EXPECT_NO_THROW(check_config(load_config(std::string(KEW_DEPLOY_DIR) + "/kew.toml"), false));
+}
+
+TEST(ConfigChecks, ListeningPortsAreDistinctPerProtocolAndFamily) {
+  expect_check_error("[service]\nalert_listen = \"127.0.0.1:4748\"\n[[input]]\ntransport = \"tcp-server\"\n"
+                     "address = \"127.0.0.1:4748\"\n",
+                     "[input 1] address = \"127.0.0.1:4748\" uses TCP port 4748 (IPv4), as [service] alert_listen = "
+                     "\"127.0.0.1:4748\" does");
+  expect_check_error("[[input]]\ntransport = \"udp\"\naddress = \"127.0.0.1:8600\"\n"
+                     "[[input]]\ntransport = \"udp\"\naddress = \"localhost:8600\"\n",
+                     "[input 2] address = \"localhost:8600\" uses UDP port 8600 (IPv4), as [input 1]");
+  expect_check_error("[modbus]\nenabled = true\nlisten = \"127.0.0.1:4747\"\n", "uses TCP port 4747");
+  // TCP and UDP ports are distinct; so are IPv4 and IPv6; a disabled Modbus listens nowhere.
+  EXPECT_NO_THROW(check_config(parse_config(R"(
+[modbus]
+listen = "127.0.0.1:4747"
+[[input]]
+transport = "udp"
+address = "127.0.0.1:4747"
+[[input]]
+transport = "tcp-server"
+address = "[::1]:4747"
+)"), false));
+}
+
+TEST(ConfigChecks, OutputFilesMustBeWritable) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("kew-config-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "logs");
+  std::ofstream(dir / "plain") << "x";
+  const std::string d = dir.string();
+  expect_check_error("[service]\nalert_log = \"" + d + "/logs\"\n",
+                     "[service] alert_log = \"" + d + "/logs\" is a directory");
+  expect_check_error("[service]\nrecord_file = \"" + d + "/missing/r.ndjson\"\n",
+                     "[service] record_file = \"" + d + "/missing/r.ndjson\" cannot be created: its directory " + d +
+                         "/missing does not exist");
+  expect_check_error("[service]\nalert_log = \"" + d + "/plain/a.jsonl\"\n", d + "/plain is not a directory");
+  expect_check_error("[service]\nalert_log = \"" + d + "/a.jsonl\"\nrecord_file = \"" + d + "/logs/../a.jsonl\"\n",
+                     "is the alert log too");
+  EXPECT_NO_THROW(check_config(parse_config("[service]\nalert_log = \"" + d + "/logs/a.jsonl\"\nrecord_file = \"" +
+                                            d + "/plain\"\n"),
+                               false));
+  std::filesystem::remove_all(dir);
+}
+
+// Relative paths are resolved against the working directory kewd starts in (as the
+// alert log always was) and kept absolute, so "../" is resolved where it is read.
+TEST(Config, RelativePathsAreResolvedAgainstTheWorkingDirectory) {
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  const Config c = parse_config(R"(
+[service]
+alert_log = "logs/../alerts.jsonl"
+record_file = "../records.ndjson"
+[[input]]
+transport = "file"
+address = "./data/x.ast"
+)");
+  EXPECT_EQ(c.service.alert_log, (cwd / "alerts.jsonl").string());
+  EXPECT_EQ(c.service.record_file, (cwd.parent_path() / "records.ndjson").string());
+  EXPECT_EQ(c.inputs[0].address, (cwd / "data/x.ast").string());
+  EXPECT_EQ(parse_config("[service]\nalert_log = \"/var/log/kew/a.jsonl\"\n").service.alert_log,
+            "/var/log/kew/a.jsonl");
+  EXPECT_EQ(parse_config("[service]\nalert_log = \"\"\n").service.alert_log, "");
+}
+
+// [modbus] acknowledge_from (issue 18, item 7): addresses, kept in canonical form.
+TEST(Config, AcknowledgeFromIsAListOfAddresses) {
+  const Config c = parse_config("[modbus]\nacknowledge_from = [\"127.0.0.1\", \"::0001\", \"::ffff:10.0.0.7\"]\n");
+  EXPECT_EQ(c.modbus.acknowledge_from, (std::vector<std::string>{"127.0.0.1", "::1", "10.0.0.7"}));
+  expect_error("[modbus]\nacknowledge_from = [\"127.0.0.1:502\"]\n", "without port or brackets");
+  expect_error("[modbus]\nacknowledge_from = [\"panel.example\"]\n", "t.toml:2: [modbus] acknowledge_from");
+  expect_error("[modbus]\nacknowledge_from = \"127.0.0.1\"\n", "must be an array of IP addresses");
+}
+
+TEST(Address, ListenScopes) {
+  using config::ListenScope;
+  for (const char* host : {"127.0.0.1", "127.255.0.9", "::1", "localhost", "::ffff:127.0.0.1"})
+    EXPECT_EQ(config::listen_scope(host), ListenScope::Loopback) << host;
+  for (const char* host : {"0.0.0.0", "::", "0:0::0"}) EXPECT_EQ(config::listen_scope(host), ListenScope::Wildcard) << host;
+  for (const char* host : {"192.0.2.1", "239.1.2.3", "ff02::1", "radar.example", "128.0.0.1"})
+    EXPECT_EQ(config::listen_scope(host), ListenScope::Other) << host;
 }
 
 // Choices are checked against the enum's name table, and the error lists that table.

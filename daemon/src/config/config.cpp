@@ -15,12 +15,13 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.number("alive_interval_s", s.alive_interval_s, 0.1, 3600.0);
   r.number("tick_interval_s", s.tick_interval_s, 0.05, 60.0);
   r.choice("log_level", s.log_level, kLogLevelNames);
-  r.string("alert_log", s.alert_log);
+  r.path("alert_log", s.alert_log);
   r.integer("alert_log_max_bytes", s.alert_log_max_bytes, 4096, std::int64_t{1} << 40);
   r.integer("alert_log_keep", s.alert_log_keep, 0, 1000);
-  r.string("record_file", s.record_file);
+  r.path("record_file", s.record_file);
   r.boolean("tracks_stream", s.tracks_stream);
   r.number("max_future_s", s.max_future_s, 0.0, 86400.0);
+  r.boolean("allow_remote", s.allow_remote);
 }
 
 void read_cat004(TableReader& r, Cat004Config& c) {
@@ -40,13 +41,15 @@ void read_modbus(TableReader& r, ModbusConfig& m) {
   r.integer("table_entries", m.table_entries, 0, 64);
   r.boolean("read_only", m.read_only);
   r.integer("max_connections", m.max_connections, 1, 256);
+  r.boolean("allow_remote", m.allow_remote);
+  r.ip_list("acknowledge_from", m.acknowledge_from);
 }
 
 void read_input(TableReader& r, InputConfig& in) {
   r.string("name", in.name);
   r.choice("format", in.format, protocol::kFormatNames);
   r.choice("transport", in.transport, kTransportNames);
-  if (in.transport == Transport::File) r.string("address", in.address);
+  if (in.transport == Transport::File) r.path("address", in.address);
   else r.address("address", in.address);
   r.string("interface", in.interface);
   r.number("reconnect_min_s", in.reconnect_min_s, 0.01, 3600.0);
@@ -55,6 +58,9 @@ void read_input(TableReader& r, InputConfig& in) {
   r.boolean("pace", in.pace);
   r.number("speed", in.speed, 0.001, 1000.0);
   r.utc_day("asterix_day", in.asterix_day);
+  r.boolean("allow_remote", in.allow_remote);
+  if (in.allow_remote && in.transport != Transport::Udp && in.transport != Transport::TcpServer)
+    r.fail(nullptr, "allow_remote is for inputs that listen (transport udp or tcp-server)");
   if (in.address.empty()) r.fail(nullptr, "an input needs an address (HOST:PORT or a file path)");
   if (in.format == protocol::Format::AsterixDatagram && in.transport != Transport::Udp)
     r.fail(nullptr, "format asterix-datagram needs transport udp");
@@ -62,6 +68,7 @@ void read_input(TableReader& r, InputConfig& in) {
 
 Config read_config(const config::Document& document) {
   Config c;
+  c.origin = document.origin();
   static_cast<config::SharedConfig&>(c) = config::read_shared_config(document);
   document.section("service", [&](TableReader& r) { read_service(r, c.service); });
   document.section("cat004", [&](TableReader& r) { read_cat004(r, c.cat004); });

@@ -1,5 +1,7 @@
 #include "kew/daemon/modbus_server.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -90,7 +92,28 @@ struct Client {
   UniqueFd socket;
   protocol::MbapFramer framer;
   Clock::time_point last_request;
+  std::string peer;          ///< "HOST:PORT", for acknowledgements and logs
+  bool may_write = true;     ///< in acknowledge_from, or that list is empty
 };
+
+/// The peer of a connected socket as "HOST:PORT" (canonical_ip form), or "?".
+config::HostPort peer_of(int fd) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof address;
+  if (::getpeername(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) return {"?", 0};
+  std::array<char, INET6_ADDRSTRLEN> text{};
+  std::uint16_t port = 0;
+  if (address.ss_family == AF_INET) {
+    const auto* v4 = reinterpret_cast<const sockaddr_in*>(&address);
+    ::inet_ntop(AF_INET, &v4->sin_addr, text.data(), text.size());
+    port = ntohs(v4->sin_port);
+  } else if (address.ss_family == AF_INET6) {
+    const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&address);
+    ::inet_ntop(AF_INET6, &v6->sin6_addr, text.data(), text.size());
+    port = ntohs(v6->sin6_port);
+  }
+  return {config::canonical_ip(text.data()).value_or("?"), port};
+}
 
 LibmodbusContext open_context(const ModbusConfig& config) {
   std::string error;
@@ -113,7 +136,7 @@ LibmodbusContext open_context(const ModbusConfig& config) {
 
 class ModbusServer::Impl {
  public:
-  Impl(const ModbusConfig& config, std::function<void()> on_acknowledge)
+  Impl(const ModbusConfig& config, AcknowledgeHandler on_acknowledge)
       : config_(config), on_acknowledge_(std::move(on_acknowledge)), modbus_(open_context(config)) {
     shape_.registers = protocol::modbus_register_count(config.table_entries);
     shape_.read_only = config.read_only;
@@ -141,6 +164,11 @@ class ModbusServer::Impl {
   }
 
   std::uint16_t bound_port() const { return modbus_.bound_port(); }
+
+  void set_reporter(Rejections::Reporter reporter) {
+    std::lock_guard lock(stats_mutex_);
+    stats_.rejected.set_reporter(std::move(reporter));
+  }
 
   protocol::ModbusStatistics stats() const {
     std::lock_guard lock(stats_mutex_);
@@ -213,7 +241,10 @@ class ModbusServer::Impl {
         continue;
       }
       ++stats_.connections_accepted;
-      clients_.push_back(Client{UniqueFd(fd), {}, Clock::now()});
+      const config::HostPort peer = peer_of(fd);
+      const auto& allowed = config_.acknowledge_from;
+      const bool may_write = allowed.empty() || std::find(allowed.begin(), allowed.end(), peer.host) != allowed.end();
+      clients_.push_back(Client{UniqueFd(fd), {}, Clock::now(), config::to_string(peer), may_write});
     }
   }
 
@@ -257,13 +288,19 @@ class ModbusServer::Impl {
     const std::uint8_t unit = adu[protocol::MbapFramer::kHeaderBytes - 1];
     const auto pdu = adu.subspan(protocol::MbapFramer::kHeaderBytes);
     protocol::ModbusVerdict verdict;
+    std::string message;
     if (!protocol::modbus_unit_is_ours(unit, config_.unit_id)) {
       verdict.exception = protocol::ModbusException::GatewayTargetFailedToRespond;
       verdict.reason = "modbus_unit_id_mismatch";
+    } else if (!client.may_write && !pdu.empty() && protocol::modbus_function_writes(pdu[0])) {
+      // Refused like a write to a read-only map (the function is not available to it).
+      verdict.exception = protocol::ModbusException::IllegalFunction;
+      verdict.reason = "modbus_write_not_permitted";
+      message = "a write from " + client.peer + ", which is not in acknowledge_from";
     } else {
       verdict = protocol::check_modbus_request(pdu, shape_);
     }
-    count_request(verdict);
+    count_request(verdict, message);
     if (verdict.drop_connection) {
       drop(client, {});
       return false;
@@ -271,31 +308,31 @@ class ModbusServer::Impl {
     if (verdict.exception != protocol::ModbusException::None) {
       return modbus_.reply_exception(client.socket.get(), adu, verdict.exception);
     }
-    if (verdict.acknowledge) acknowledge();
+    if (verdict.acknowledge) acknowledge(client.peer);
     return modbus_.reply(client.socket.get(), adu);
   }
 
-  void acknowledge() {
+  void acknowledge(const std::string& client) {
     {
       std::lock_guard lock(stats_mutex_);
       ++stats_.acknowledgements;
     }
     // The callback belongs to the daemon; whatever it throws must not end this thread.
     try {
-      if (on_acknowledge_) on_acknowledge_();
+      if (on_acknowledge_) on_acknowledge_(client);
     } catch (...) {
       std::lock_guard lock(stats_mutex_);
       stats_.rejected.reject("modbus_acknowledge_callback_failed");
     }
   }
 
-  void count_request(const protocol::ModbusVerdict& verdict) {
+  void count_request(const protocol::ModbusVerdict& verdict, std::string_view message) {
     std::lock_guard lock(stats_mutex_);
     ++stats_.requests;
     if (verdict.exception != protocol::ModbusException::None && !verdict.drop_connection) {
       ++stats_.exceptions;
     }
-    if (!verdict.reason.empty()) stats_.rejected.reject(verdict.reason);
+    if (!verdict.reason.empty()) stats_.rejected.reject(verdict.reason, message);
   }
 
   /// Closes a client kew gives up on, counting `reason` unless it was counted already.
@@ -312,7 +349,7 @@ class ModbusServer::Impl {
   }
 
   const ModbusConfig config_;
-  const std::function<void()> on_acknowledge_;
+  const AcknowledgeHandler on_acknowledge_;
   LibmodbusContext modbus_;
   protocol::ModbusMapShape shape_;
   WakePipe wake_;
@@ -335,11 +372,12 @@ class ModbusServer::Impl {
   protocol::ModbusStatistics stats_;
 };
 
-ModbusServer::ModbusServer(const ModbusConfig& config, std::function<void()> on_acknowledge)
+ModbusServer::ModbusServer(const ModbusConfig& config, AcknowledgeHandler on_acknowledge)
     : impl_(std::make_unique<Impl>(config, std::move(on_acknowledge))) {}
 
 ModbusServer::~ModbusServer() = default;
 
+void ModbusServer::set_reporter(Rejections::Reporter reporter) { impl_->set_reporter(std::move(reporter)); }
 void ModbusServer::start() { impl_->start(); }
 void ModbusServer::stop() { impl_->stop(); }
 void ModbusServer::publish(const protocol::AlarmSnapshot& snapshot) { impl_->publish(snapshot); }

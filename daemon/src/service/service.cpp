@@ -47,6 +47,17 @@ std::string widen_if_loopback(const std::string& address) {
   return address;
 }
 
+/// Runs `open` (which binds `address`), naming the listener and its address in what it
+/// throws: a bare "bind: Address already in use" does not say which port.
+template <class Open>
+auto open_listener(std::string_view name, std::string_view address, Open&& open) {
+  try {
+    return open();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{} = \"{}\": {}", name, address, e.what()));
+  }
+}
+
 tcp::endpoint resolve_listen(asio::io_context& io, const std::string& address) {
   const config::HostPort listen = config::require_host_port(address);
   tcp::resolver resolver(io);
@@ -92,8 +103,13 @@ Service::Service(Config config, ServiceOptions options)
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
     if (options_.listen_any) modbus.listen = widen_if_loopback(modbus.listen);
-    modbus_ = std::make_unique<ModbusServer>(modbus, [this] {
-      asio::post(io_, [this] { acknowledge("modbus"); });
+    modbus_ = open_listener("[modbus] listen", modbus.listen, [&] {
+      return std::make_unique<ModbusServer>(modbus, [this](const std::string& client) {
+        asio::post(io_, [this, client] { acknowledge("modbus", client); });
+      });
+    });
+    modbus_->set_reporter([](std::string_view reason, std::string_view message) {
+      spdlog::warn("modbus: refused a request ({}){}{}", reason, message.empty() ? "" : ": ", message);
     });
   }
 
@@ -103,14 +119,19 @@ Service::Service(Config config, ServiceOptions options)
   source.snapshot = [this] { return pipeline_.alerts().snapshot(); };
   source.seq = [this] { return last_alert_seq_; };
   source.stats = [this] { return stats_json(); };
-  subscribers_ = std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), config_.service.max_subscribers,
-                                                    config_.service.subscriber_queue, config_.service.tracks_stream,
-                                                    std::move(source));
+  subscribers_ = open_listener("[service] alert_listen", listen, [&] {
+    return std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), config_.service.max_subscribers,
+                                              config_.service.subscriber_queue, config_.service.tracks_stream,
+                                              std::move(source));
+  });
 
-  for (InputConfig input : config_.inputs) {
+  for (std::size_t i = 0; i < config_.inputs.size(); ++i) {
+    InputConfig input = config_.inputs[i];
     if (options_.listen_any && (input.transport == Transport::TcpServer || input.transport == Transport::Udp))
       input.address = widen_if_loopback(input.address);
-    inputs_.push_back(make_input(io_, input, config_.decoding, [this](const TrackReport& r) { on_report(r); }));
+    inputs_.push_back(open_listener(fmt::format("[input {}] address", i + 1), input.address, [&] {
+      return make_input(io_, input, config_.decoding, [this](const TrackReport& r) { on_report(r); });
+    }));
   }
 }
 
@@ -121,6 +142,9 @@ int Service::run() {
   for (auto& input : inputs_) input->start();
   spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
                inputs_.size());
+  // Paths as resolved (design §5.7: relative to the working directory kewd started in).
+  if (alert_log_) spdlog::info("alert log: {}", alert_log_->path());
+  if (record_file_) spdlog::info("record file: {}", record_file_->path());
   for (const auto& input : inputs_) {
     const std::uint16_t port = input->bound_port();
     spdlog::info("input {}: {} {} {}{}", input->config().name, protocol::to_string(input->config().format),
@@ -208,19 +232,19 @@ void Service::publish_modbus() {
   last_modbus_publish_ = now;
 }
 
-void Service::acknowledge(std::string_view by) {
+void Service::acknowledge(std::string_view by, std::string_view client) {
   if (stopping_) return;
   const std::vector<std::string> ids = pipeline_.alerts().acknowledge_all();
-  spdlog::info("{} acknowledged {} alerts", by, ids.size());
+  spdlog::info("{} client {} acknowledged {} alerts", by, client, ids.size());
   if (ids.empty()) return;
-  const double t = pipeline_.statistics().last_data_time;
+  const protocol::Acknowledgement ack{ids, pipeline_.statistics().last_data_time, by, client};
   if (alert_log_) {
     line_.clear();
-    protocol::append_ack_json(line_, ids, t, by, last_alert_seq_);
+    protocol::append_ack_json(line_, ack, last_alert_seq_);
     alert_log_->append(line_);
     alert_log_->flush();
   }
-  subscribers_->broadcast_ack(ids, t, by);
+  subscribers_->broadcast_ack(ack);
   modbus_dirty_ = true;
   publish_modbus();
 }

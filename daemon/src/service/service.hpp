@@ -27,7 +27,9 @@ class ModbusServer;
 
 struct ServiceOptions {
   std::string config_path;  ///< re-read on SIGHUP; empty: built-in defaults
-  bool listen_any = false;  ///< serve subscribers (and Modbus) on every interface
+  /// Serve subscribers, Modbus and loopback inputs on every interface (check_config has
+  /// allowed any listen address).
+  bool listen_any = false;
 };
 
 class Service {
@@ -48,8 +50,9 @@ class Service {
   void alive();
   void schedule_modbus_publish();
   void publish_modbus();
-  /// Coil 0 written 1 (posted from the Modbus thread).
-  void acknowledge(std::string_view by);
+  /// Coil 0 written 1 (posted from the Modbus thread) through interface `by` by `client`
+  /// ("HOST:PORT" of its socket).
+  void acknowledge(std::string_view by, std::string_view client);
   void wait_for_signal();
   void reload();
   void shutdown();

@@ -253,13 +253,13 @@ void SubscriberServer::broadcast_alive(const protocol::AliveStatus& status) {
   }
 }
 
-void SubscriberServer::broadcast_ack(std::span<const std::string> ids, double t, std::string_view by) {
+void SubscriberServer::broadcast_ack(const protocol::Acknowledgement& ack) {
   Line line;
   for (const auto& s : sessions_) {
     if (!s->watching()) continue;
     if (!line) {
       std::string text;
-      protocol::append_ack_json(text, ids, t, by, source_.seq());
+      protocol::append_ack_json(text, ack, source_.seq());
       line = std::make_shared<const std::string>(std::move(text));
     }
     s->enqueue(line);

@@ -88,7 +88,7 @@ class SubscriberServer {
   void broadcast_alert(const AlertEvent& event);
   void broadcast_alive(const protocol::AliveStatus& status);
   /// Sends an ACK object (operator acknowledgement) to every watching session.
-  void broadcast_ack(std::span<const std::string> ids, double t, std::string_view by);
+  void broadcast_ack(const protocol::Acknowledgement& ack);
   /// Sends a TRACK object to the sessions that asked for tracks.
   void broadcast_track(const TrackReport& report);
   bool anyone_wants_tracks() const;

@@ -199,18 +199,18 @@ void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_
   out.push_back('\n');
 }
 
-void append_ack_json(std::string& out, std::span<const std::string> ids, double t, std::string_view by,
-                     std::uint64_t seq) {
+void append_ack_json(std::string& out, const Acknowledgement& ack, std::uint64_t seq) {
   ObjectWriter o(out);
   o.text("class", "ACK");
   o.integer("seq", seq);
-  o.fixed("t", t, 3);
-  o.text("by", by);
+  o.fixed("t", ack.t, 3);
+  o.text("by", ack.by);
+  o.text("client", ack.client);
   o.key("ids");
   out.push_back('[');
-  for (std::size_t i = 0; i < ids.size(); ++i) {
+  for (std::size_t i = 0; i < ack.ids.size(); ++i) {
     if (i) out.push_back(',');
-    append_json_string(out, ids[i]);
+    append_json_string(out, ack.ids[i]);
   }
   out.push_back(']');
   o.close();

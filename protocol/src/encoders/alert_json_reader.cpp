@@ -299,7 +299,8 @@ bool AlertStreamReader::read(std::string_view line) {
   } else if (cls == "ACK") {
     parsed_class = StreamObjectClass::Ack;
     dom::array ids;
-    ok = m.required("by", text_) && m.required("ids", ids);
+    acknowledging_client_.clear();  // absent from servers before the client was named
+    ok = m.required("by", text_) && m.optional("client", acknowledging_client_) && m.required("ids", ids);
     acknowledged_.clear();
     if (!ok) return false;
     for (dom::element element : ids) {

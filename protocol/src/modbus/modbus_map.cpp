@@ -6,6 +6,21 @@
 #include <tuple>
 
 namespace kew::protocol {
+
+bool modbus_function_writes(std::uint8_t function) {
+  switch (static_cast<ModbusFunction>(function)) {
+    case ModbusFunction::WriteSingleCoil:
+    case ModbusFunction::WriteMultipleCoils:
+    case ModbusFunction::WriteSingleRegister:
+    case ModbusFunction::WriteMultipleRegisters:
+    case ModbusFunction::MaskWriteRegister:
+    case ModbusFunction::ReadWriteMultipleRegisters:
+      return true;
+    default:
+      return false;
+  }
+}
+
 namespace {
 
 constexpr std::uint16_t kRegisterMax = std::numeric_limits<std::uint16_t>::max();
@@ -131,22 +146,8 @@ ModbusVerdict refuse(ModbusException exception, std::string_view reason) {
   return ModbusVerdict{exception, false, false, reason};
 }
 
-bool is_write(std::uint8_t function) {
-  switch (static_cast<ModbusFunction>(function)) {
-    case ModbusFunction::WriteSingleCoil:
-    case ModbusFunction::WriteMultipleCoils:
-    case ModbusFunction::WriteSingleRegister:
-    case ModbusFunction::WriteMultipleRegisters:
-    case ModbusFunction::MaskWriteRegister:
-    case ModbusFunction::ReadWriteMultipleRegisters:
-      return true;
-    default:
-      return false;
-  }
-}
-
 bool is_register_write(std::uint8_t function) {
-  return is_write(function) &&
+  return modbus_function_writes(function) &&
          function != static_cast<std::uint8_t>(ModbusFunction::WriteSingleCoil) &&
          function != static_cast<std::uint8_t>(ModbusFunction::WriteMultipleCoils);
 }
@@ -207,7 +208,7 @@ ModbusVerdict check_modbus_request(std::span<const std::uint8_t> pdu, const Modb
     verdict.drop_connection = true;
     return verdict;
   }
-  if (shape.read_only && is_write(function)) {
+  if (shape.read_only && modbus_function_writes(function)) {
     return refuse(ModbusException::IllegalFunction, "modbus_write_read_only");
   }
   if (is_register_write(function)) {

@@ -31,4 +31,18 @@ HostPort require_host_port(std::string_view text);
 /// "host:port", or "[host]:port" when host is an IPv6 address: what parse_host_port reads.
 std::string to_string(const HostPort& address);
 
+/// An IPv4 or IPv6 address (no brackets, no port) in its canonical text ("::0001" →
+/// "::1"; an IPv4-mapped IPv6 address → its IPv4 form, as a dual-stack socket reports an
+/// IPv4 peer), or nullopt when `text` is no address. Names are not resolved.
+std::optional<std::string> canonical_ip(std::string_view text);
+
+/// Where a listener bound to `host` can be reached from. Only literal addresses and
+/// "localhost" count as loopback: any other name may resolve to an external address.
+enum class ListenScope {
+  Loopback,  ///< 127.0.0.0/8, ::1, "localhost": this machine only
+  Wildcard,  ///< 0.0.0.0 or ::: every interface
+  Other,     ///< an interface address, a multicast group or a name: reachable from outside
+};
+ListenScope listen_scope(std::string_view host);
+
 }  // namespace kew::config

@@ -63,6 +63,14 @@ class TableReader {
   void mode3a_list(std::string_view key, std::vector<std::uint16_t>& out);
   /// A "HOST:PORT" string, checked with parse_host_port (address.hpp) and kept as text.
   void address(std::string_view key, std::string& out);
+  /// A list of IPv4 or IPv6 addresses without ports (["127.0.0.1", "::1"]), each checked
+  /// and kept in canonical_ip form (address.hpp), so that they compare as text.
+  void ip_list(std::string_view key, std::vector<std::string>& out);
+  /// A file path. A relative path is resolved against the working directory kewd was
+  /// started in and kept absolute and normalised ("../log/a" → "/srv/log/a"), so that
+  /// what is checked, reported and opened is one file even after the daemon changes
+  /// directory to /. "" stays "" (the file is disabled).
+  void path(std::string_view key, std::string& out);
   /// A "YYYY-MM-DD" string, checked with parse_utc_day (utc_day.hpp) and kept as text.
   void utc_day(std::string_view key, std::string& out);
 

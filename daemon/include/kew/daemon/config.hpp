@@ -56,6 +56,9 @@ struct InputConfig {
   /// Data day for ASTERIX time of day (UTC midnight, "YYYY-MM-DD"); empty: today (live)
   /// or the pcap timestamps (files).
   std::string asterix_day;
+  /// udp, tcp-server: `address` may be a wildcard, an interface or a multicast group
+  /// (a real radar's feed); otherwise it must be loopback unless kewd runs --listen-any.
+  bool allow_remote = false;
 };
 
 struct ServiceConfig {
@@ -72,6 +75,7 @@ struct ServiceConfig {
   bool tracks_stream = true;            ///< allow WATCH "tracks": true
   /// A record dated more than this after the wall clock is refused ("future_time"), s.
   double max_future_s = 10.0;
+  bool allow_remote = false;            ///< alert_listen may be other than loopback
 };
 
 struct Cat004Config {
@@ -90,6 +94,9 @@ struct ModbusConfig {
   int table_entries = 8;
   bool read_only = false;
   int max_connections = 8;
+  bool allow_remote = false;  ///< `listen` may be other than loopback
+  /// Client addresses (canonical_ip form) whose writes are served; empty: every client.
+  std::vector<std::string> acknowledge_from;
 };
 
 /// A kewd file: the shared tables (pipeline, decoding) and kewd's own.
@@ -98,11 +105,34 @@ struct Config : config::SharedConfig {
   Cat004Config cat004;
   ModbusConfig modbus;
   std::vector<InputConfig> inputs;
+  std::string origin;  ///< the file's name in messages ("" for the built-in defaults)
 };
 
 /// Parses TOML text; `origin` names it in error messages. Throws config::ConfigError.
 Config parse_config(std::string_view toml_text, std::string_view origin = "config");
 /// Reads and parses a file. Throws config::ConfigError.
 Config load_config(const std::string& path);
+
+/// One socket kewd listens on, as configured.
+struct Listener {
+  std::string name;     ///< "[service] alert_listen", "[modbus] listen", "[input 2] address"
+  std::string address;  ///< HOST:PORT as configured
+  bool udp = false;
+  bool allow_remote = false;
+};
+/// Every listening socket of `config`: the subscriber port, Modbus when enabled, and the
+/// udp and tcp-server inputs.
+std::vector<Listener> listeners(const Config& config);
+
+/// What the file alone cannot tell, checked by `kewd --check-config` and again before
+/// kewd starts, so that a file that passes the check does not fail at start. Throws
+/// config::ConfigError naming the key and its value:
+/// - every listener binds a loopback address unless its table says allow_remote = true
+///   or `listen_any` (kewd --listen-any);
+/// - no two listeners share a port (per protocol, TCP or UDP, and address family);
+/// - alert_log and record_file are distinct, are not directories, and can be written:
+///   an existing file writable, its directory existing and writable (the alert log
+///   rotates by renaming in it; a new file is created in it).
+void check_config(const Config& config, bool listen_any);
 
 }  // namespace kew::daemon

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/modbus_map.hpp"
@@ -22,17 +23,28 @@ class ModbusServer {
   /// connections cannot hold the `max_connections` slots for ever.
   static constexpr std::chrono::seconds kIdleTimeout{120};
 
+  /// Called with the client's "HOST:PORT" (its socket's peer; IPv6 in brackets, an
+  /// IPv4-mapped address as IPv4).
+  using AcknowledgeHandler = std::function<void(const std::string& client)>;
+
   /// Binds and listens on `config.listen` ("HOST:PORT"; port 0 binds an ephemeral port,
   /// see bound_port()). `on_acknowledge` is called on the server thread each time a client
   /// writes 1 to coil 0; it must be cheap and must not call back into this object (the
-  /// daemon posts it to its own thread). Throws std::runtime_error when the address is
-  /// malformed, the configuration is out of range (unit_id 0–247, table_entries 0–64,
-  /// max_connections ≥ 1) or the socket cannot be bound.
-  ModbusServer(const ModbusConfig& config, std::function<void()> on_acknowledge);
+  /// daemon posts it to its own thread). A client whose address is not in a non-empty
+  /// `config.acknowledge_from` may read but not write: every write is answered ILLEGAL
+  /// FUNCTION, as in read-only mode, and counted ("modbus_write_not_permitted"). Throws
+  /// std::runtime_error when the address is malformed, the configuration is out of range
+  /// (unit_id 0–247, table_entries 0–64, max_connections ≥ 1) or the socket cannot be
+  /// bound.
+  ModbusServer(const ModbusConfig& config, AcknowledgeHandler on_acknowledge);
   /// Stops (see stop()).
   ~ModbusServer();
   ModbusServer(const ModbusServer&) = delete;
   ModbusServer& operator=(const ModbusServer&) = delete;
+
+  /// Where the messages of refusals go (rate-limited as kew::Rejections does); called on
+  /// the server thread. Set it before start().
+  void set_reporter(Rejections::Reporter reporter);
 
   /// Spawns the server thread; the heartbeat starts at 0. A second call does nothing.
   void start();

@@ -132,6 +132,10 @@ enum class ModbusFunction : std::uint8_t {
   ReadWriteMultipleRegisters = 0x17,
 };
 
+/// True for the function codes that write (05, 06, 15, 16, 22, 23): the ones refused when
+/// the map is read-only, or to a client that may not write.
+bool modbus_function_writes(std::uint8_t function);
+
 /// What the server must do with one request PDU.
 struct ModbusVerdict {
   /// None: answer the request normally from the map (reads) or by echoing it (writes).

@@ -81,11 +81,18 @@ void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent* c
 ///  "rates":{"records_per_s":…,"updates_per_s":…},"uptime_s":…,"degraded":…}
 void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq);
 
-/// {"class":"ACK","seq":…,"t":…,"by":"modbus","ids":["…",…]}: an operator acknowledged
-/// these active alerts (their later events carry "ack":true) at data time `t`; `by`
-/// names the interface it came through.
-void append_ack_json(std::string& out, std::span<const std::string> ids, double t, std::string_view by,
-                     std::uint64_t seq);
+/// An operator acknowledged these active alerts (their later events carry "ack":true).
+struct Acknowledgement {
+  std::span<const std::string> ids;
+  double t = 0.0;               ///< data time
+  std::string_view by;          ///< the interface it came through: "modbus"
+  /// Who: the client's "HOST:PORT" (IPv6 in brackets) as its socket's peer; "web" is
+  /// reserved for the HTTP interface.
+  std::string_view client;
+};
+
+/// {"class":"ACK","seq":…,"t":…,"by":"modbus","client":"127.0.0.1:50312","ids":["…",…]}
+void append_ack_json(std::string& out, const Acknowledgement& ack, std::uint64_t seq);
 
 /// {"class":"ERROR","seq":…,"message":"…"}; `message` may hold any bytes.
 void append_error_json(std::string& out, std::string_view message, std::uint64_t seq);

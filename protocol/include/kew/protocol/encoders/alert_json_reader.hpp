@@ -75,6 +75,8 @@ class AlertStreamReader {
   const TrackReport& track() const { return track_; }
   /// ACK: the acknowledged alert ids; text() names the interface ("modbus").
   const std::vector<std::string>& acknowledged() const { return acknowledged_; }
+  /// ACK: the client that acknowledged ("HOST:PORT"; "" when the object names none).
+  const std::string& acknowledging_client() const { return acknowledging_client_; }
   /// ERROR: the message. VERSION: the release.
   const std::string& text() const { return text_; }
   /// VERSION: the protocol version.
@@ -94,6 +96,7 @@ class AlertStreamReader {
   TrackReport track_;
   std::string text_;
   std::vector<std::string> acknowledged_;
+  std::string acknowledging_client_;
   int proto_ = 0;
   std::string error_;
 };
