@@ -125,6 +125,19 @@ SharedConfig read_shared_config(const Document& document) {
     read_radar(r, site);
     config.decoding.asterix.radars.push_back(site);
   });
+  // Without a configured reference the radars' mean position is a better centre than
+  // whatever record comes first (design §4.2). Longitudes are averaged as given: radars
+  // of one feed do not straddle ±180°.
+  const auto& radars = config.decoding.asterix.radars;
+  if (!config.pipeline.reference && !radars.empty()) {
+    double lat = 0.0, lon = 0.0;
+    for (const protocol::RadarSite& site : radars) {
+      lat += site.lat_deg;
+      lon += site.lon_deg;
+    }
+    const double n = static_cast<double>(radars.size());
+    config.pipeline.reference = geo::GeodeticPosition{lat / n, lon / n};
+  }
   return config;
 }
 

@@ -149,6 +149,27 @@ asterix_day = "2023-05-02"
   EXPECT_EQ(parse_utc_day(c.inputs[0].asterix_day), 1682985600.0);  // 2023-05-02T00:00:00Z
 }
 
+TEST(Config, TheRadarsCentreTheProjectionUnlessAReferenceIsConfigured) {
+  // Issue 18: the projection reference is never taken from a single record when the
+  // configuration knows better. Two radars: their mean position.
+  const Config c = parse_config(R"(
+[[radar]]
+sac = 20
+sic = 129
+lat = 41.0
+lon = 2.0
+[[radar]]
+sac = 20
+sic = 130
+lat = 42.0
+lon = 3.0
+)");
+  ASSERT_TRUE(c.pipeline.reference.has_value());
+  EXPECT_DOUBLE_EQ(c.pipeline.reference->lat_deg, 41.5);
+  EXPECT_DOUBLE_EQ(c.pipeline.reference->lon_deg, 2.5);
+  EXPECT_FALSE(parse_config("").pipeline.reference.has_value());
+}
+
 void expect_error(const char* text, const char* needle) {
   try {
     parse_config(text, "t.toml");

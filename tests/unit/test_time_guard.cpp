@@ -1,5 +1,6 @@
-// Time you can trust (design §4.1, issue 18): one record dated in the future never
-// moves the data clock, and a real jump of the data (a gap in a recording) loses nothing.
+// Time and place you can trust (design §4.1–4.2, issue 18): one record dated in the
+// future never moves the data clock, a real jump of the data (a gap in a recording) loses
+// nothing, and a stray first record does not fix the clock or the projection for good.
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/track/time_guard.hpp"
 
@@ -97,6 +98,53 @@ TEST(TimeGuard, HeldRecordsAreAppliedOnceTheClockReachesThemOrTheInputEnds) {
   run.pipeline.end_of_input();
   EXPECT_EQ(run.pipeline.statistics().accepted, 8u);
   EXPECT_EQ(run.pipeline.rejections().total(), 0u);
+}
+
+TEST(RunStart, AStrayFirstPositionDoesNotFixTheProjection) {
+  // The reliability finding: with no reference configured, a first record at −45°, 170°
+  // made every later record of a European feed outside_coverage. Five refused in a row
+  // restart the young run from them.
+  Feed run;
+  TrackReport stray = head_on("C", kT0, 0.0);
+  stray.lat_deg = -45.0;
+  stray.lon_deg = 170.0;
+  run.pipeline.process(stray);
+  run.fly(0.0, 80.0, 0.0);
+  EXPECT_EQ(run.opened, 1u);
+  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 1u);
+  EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 5u);  // before the restart
+  EXPECT_NEAR(run.pipeline.projection()->reference().lat_deg, 50.0, 0.05);
+  EXPECT_EQ(run.pipeline.tracks().size(), 2u);
+}
+
+TEST(RunStart, AStrayFirstTimeDoesNotFixTheClock) {
+  // A first record dated 2099 started the clock there: every later record was too late.
+  for (const double stray_t : {4070908800.0, kT0 - 3600.0}) {
+    SCOPED_TRACE(stray_t);
+    Feed run;
+    TrackReport stray = head_on("C", kT0, 0.0);
+    stray.t = stray_t;
+    run.pipeline.process(stray);
+    run.fly(0.0, 80.0, 0.0);
+    EXPECT_EQ(run.opened, 1u);
+    EXPECT_EQ(run.pipeline.statistics().runs_restarted, stray_t > kT0 ? 1u : 0u);
+    EXPECT_LT(run.pipeline.now(), kT0 + 80.0);
+    EXPECT_GT(run.pipeline.now(), kT0 + 70.0);
+  }
+}
+
+TEST(RunStart, AnEstablishedRunIsNeverRestarted) {
+  // Once five records were accepted, records elsewhere are only refused.
+  Feed run;
+  run.fly(0.0, 12.0, 0.0);
+  for (int i = 0; i < 20; ++i) {
+    TrackReport far = head_on("F" + std::to_string(i), kT0 + 12.0, 0.0);
+    far.lat_deg = -45.0;
+    run.pipeline.process(far);
+  }
+  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 0u);
+  EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 20u);
+  EXPECT_EQ(run.pipeline.tracks().size(), 2u);
 }
 
 TEST(TimeGuard, RulesOnTheirOwn) {

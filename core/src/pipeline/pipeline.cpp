@@ -41,7 +41,7 @@ Pipeline::Pipeline(const PipelineConfig& config)
     : config_(config),
       tracks_(config.tracks),
       time_guard_(config.tracks.max_time_jump_s, config.tracks.max_lateness_s, track::kTimeJumpConfirm),
-      kdt_(config.kinetic, 0.0),
+      kdt_(std::in_place, config.kinetic, 0.0),
       alerts_(config.alerts, [this](track::TrackSlot slot) {
         const track::Track& track = tracks_[slot];
         return alert::PartyName{track.source, track.id};
@@ -76,6 +76,30 @@ void Pipeline::process(const TrackReport& report) {
     refuse_future(report);
     return;
   }
+  process_plausible(report);
+  if (young_refused_.size() >= kYoungRun) restart_young_run();
+}
+
+void Pipeline::restart_young_run() {
+  // Without a configured reference the first record fixed the plane, and it always
+  // started the clock: a stray one (a position at −45°, 170° in a European feed, a date
+  // in 2100) would refuse every record after it. The run has shown nothing yet; start it
+  // again from the records it refused, which agree with one another.
+  std::vector<TrackReport> refused = std::move(young_refused_);
+  young_refused_.clear();
+  drop_all();
+  guard_scratch_.clear();
+  time_guard_.release(guard_scratch_);  // held ahead of a clock that is being discarded
+  if (!config_.reference) projection_.reset();
+  kdt_.emplace(config_.kinetic, 0.0);
+  started_ = false;
+  accepted_in_run_ = 0;
+  ++stats_.runs_restarted;
+  for (const TrackReport& r : refused) process_plausible(r);
+  for (const TrackReport& r : guard_scratch_) process_plausible(r);
+}
+
+void Pipeline::process_plausible(const TrackReport& report) {
   if (!started_) {
     apply_record(report);
     return;
@@ -133,6 +157,10 @@ void Pipeline::apply_record(const TrackReport& report) {
 
   const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
   if (admitted.admission == track::Admission::Rejected) {
+    if (accepted_in_run_ < kYoungRun &&
+        (admitted.refusal == "too_late" || admitted.refusal == "outside_coverage")) {
+      young_refused_.push_back(report);
+    }
     // The source ended the track: so it is, even when this last record is refused
     // (a repeated time, say); otherwise it would linger until the timeout.
     if (report.track_end) {
@@ -142,6 +170,8 @@ void Pipeline::apply_record(const TrackReport& report) {
     return;
   }
   ++stats_.accepted;
+  ++accepted_in_run_;
+  young_refused_.clear();
   stats_.last_data_time = clock_;
   track::Track& track = tracks_[admitted.slot];
   if (admitted.admission == track::Admission::AwaitingVelocity) {
@@ -185,11 +215,11 @@ void Pipeline::move_clock(double t) {
   if (t <= clock_) return;
   tracks_.expire(t, [&](track::TrackSlot slot, const track::Track& track) {
     const double at = std::max(clock_, track.t + tracks_.config().track_timeout_s);
-    kdt_.advance(engine_time(at));
+    kdt_->advance(engine_time(at));
     clock_ = at;
     drop_track(slot);
   });
-  kdt_.advance(engine_time(t));
+  kdt_->advance(engine_time(t));
   clock_ = t;
 }
 
@@ -201,7 +231,7 @@ void Pipeline::advance_to(double t) {
 void Pipeline::leave_engine(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
   if (track.point != kinetic::kNoPoint) {
-    kdt_.remove(track.point, engine_time(clock_));
+    kdt_->remove(track.point, engine_time(clock_));
     slot_of_point_[track.point] = track::kNoTrack;
     track.point = kinetic::kNoPoint;
   }
@@ -224,17 +254,17 @@ void Pipeline::drop_all() {
   }
 }
 
-kinetic::KineticAudit Pipeline::audit() { return kdt_.audit_and_repair(); }
+kinetic::KineticAudit Pipeline::audit() { return kdt_->audit_and_repair(); }
 
 void Pipeline::apply(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
   const probe::Kinematics now = track.at(clock_);
   if (track.point == kinetic::kNoPoint) {
-    track.point = kdt_.insert(engine_time(clock_), now.position, now.velocity);
+    track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
     util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
     slot_of_point_[track.point] = slot;
   } else {
-    kdt_.update(track.point, engine_time(clock_), now.position, now.velocity);
+    kdt_->update(track.point, engine_time(clock_), now.position, now.velocity);
   }
   speeds_.set(slot, geometry::norm(now.velocity));
   util::grow_to(probe_state_, slot + 1);
@@ -265,10 +295,10 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
   points_scratch_.clear();
   switch (config_.probe_mode) {
     case probe::ProbeMode::Exact:
-      search_.within(kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
+      search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
       break;
     case probe::ProbeMode::Edges:
-      search_.neighbours(kdt_, track.point, points_scratch_);
+      search_.neighbours(*kdt_, track.point, points_scratch_);
       // A few points; within() gives each once by construction, this makes sure here.
       std::sort(points_scratch_.begin(), points_scratch_.end());
       points_scratch_.erase(std::unique(points_scratch_.begin(), points_scratch_.end()), points_scratch_.end());

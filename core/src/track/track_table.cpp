@@ -74,6 +74,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   AdmitResult result;
   const auto reject = [&](std::string_view reason) {
     rejections_.reject(reason, r.id);
+    result.refusal = reason;
     return result;
   };
   if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);

@@ -83,6 +83,7 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("tracks_dropped", p.tracks_dropped);
   m.integer("tracks_ended", p.tracks_ended);
   m.integer("tracks_restarted", p.tracks_restarted);
+  m.integer("runs_restarted", p.runs_restarted);
   m.integer("updates", k.updates);
   m.integer("insertions", k.insertions);
   m.integer("reinsertions", k.reinsertions);

@@ -47,7 +47,8 @@ struct PipelineStatistics {
   std::uint64_t accepted = 0;           ///< records the track table accepted
   std::uint64_t awaiting_velocity = 0;  ///< accepted records of tracks without velocity yet
   std::uint64_t tracks_dropped = 0;     ///< tracks dropped (timeout, end of track, restart)
-  std::uint64_t tracks_ended = 0;       ///< tracks the source ended (TrackReport::track_end)
+  std::uint64_t tracks_ended = 0;
+  std::uint64_t runs_restarted = 0;     ///< young runs restarted elsewhere in time or space       ///< tracks the source ended (TrackReport::track_end)
   /// Tracks restarted because a record of the same id carried another 24-bit address (a
   /// reused track number: two addresses are never one aircraft).
   std::uint64_t tracks_restarted = 0;
@@ -102,7 +103,7 @@ class Pipeline {
 
   double now() const { return clock_; }
   const PipelineStatistics& statistics() const { return stats_; }
-  const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_.statistics(); }
+  const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_->statistics(); }
   const Rejections& rejections() const { return tracks_.rejections(); }
   Rejections& rejections() { return tracks_.rejections(); }
   /// Optional fields dropped from records that passed the record-level checks (design
@@ -114,10 +115,10 @@ class Pipeline {
   const Rejections& suppressed() const { return suppressed_; }
   const track::TrackTable& tracks() const { return tracks_; }
   /// Tracks in the kinetic engine (accepted with a velocity).
-  std::size_t live_tracks() const { return kdt_.size(); }
+  std::size_t live_tracks() const { return kdt_->size(); }
   const alert::AlertManager& alerts() const { return alerts_; }
   alert::AlertManager& alerts() { return alerts_; }
-  const kinetic::KineticDelaunay& kinetic() const { return kdt_; }
+  const kinetic::KineticDelaunay& kinetic() const { return *kdt_; }
   const PipelineConfig& config() const { return config_; }
   /// The projection in use (empty until the first plausible record fixes the reference).
   const std::optional<geo::Projection>& projection() const { return projection_; }
@@ -127,6 +128,13 @@ class Pipeline {
   double search_radius(double speed_mps) const;
 
  private:
+  /// A young run (fewer than kYoungRun records accepted) restarts from the records it
+  /// refused when this many in a row were too late or outside coverage: its first record
+  /// set the clock or the projection for a feed that is elsewhere (design §4.1–4.2).
+  static constexpr std::size_t kYoungRun = 5;
+  void restart_young_run();
+  /// process() after the plausibility and wall-clock checks.
+  void process_plausible(const TrackReport& report);
   /// process() for a record the time guard lets through.
   void apply_record(const TrackReport& report);
   void refuse_future(const TrackReport& r);
@@ -164,9 +172,12 @@ class Pipeline {
   track::TrackTable tracks_;
   track::TimeGuard time_guard_;
   std::vector<TrackReport> guard_scratch_;
+  std::vector<TrackReport> young_refused_;
+  std::uint64_t accepted_in_run_ = 0;
   double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::Projection> projection_;
-  kinetic::KineticDelaunay kdt_;
+  // Optional only so that a restarted run (restart_young_run) can build a fresh engine.
+  std::optional<kinetic::KineticDelaunay> kdt_;
   alert::AlertManager alerts_;
   probe::ProximitySearch search_;
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track

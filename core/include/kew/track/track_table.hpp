@@ -103,6 +103,7 @@ struct AdmitResult {
   TrackSlot slot = kNoTrack;
   bool new_track = false;       ///< the record opened a new track
   bool velocity_reset = false;  ///< derived speed was implausible: velocity forgotten
+  std::string_view refusal;     ///< the reason counted, when the record was rejected
 };
 
 class TrackTable {
