@@ -177,6 +177,10 @@ class AutoDecoder final : public Decoder {
 
   void finish(const ReportSink& sink) override { end(false, sink); }
   void end_message(const ReportSink& sink) override { end(true, sink); }
+  void set_receive_time(std::optional<double> utc_s) override {
+    receive_time_ = utc_s;
+    if (inner_) inner_->set_receive_time(utc_s);
+  }
 
  private:
   /// finish() (`message` false) or end_message(): a stream or a datagram is judged on
@@ -212,12 +216,14 @@ class AutoDecoder final : public Decoder {
                                       detection.start, to_string(detection.format)));
     inner_ = make_decoder(detection.format, options_);
     text::forward_rejections(*inner_, rejections());
+    inner_->set_receive_time(receive_time_);
     inner_->feed(std::span<const std::byte>(head_).subspan(detection.start), sink);
     head_.clear();
     return true;
   }
 
   DecoderOptions options_;
+  std::optional<double> receive_time_;
   std::unique_ptr<Decoder> inner_;
   std::vector<std::byte> head_;
   bool tried_first_ = false;

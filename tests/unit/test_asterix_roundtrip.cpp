@@ -505,6 +505,35 @@ TEST(AsterixRoundTrip, TimeOfDayRollsOverToTheNextDay) {
   EXPECT_DOUBLE_EQ(reports[4].t, day + 86400 + 3);
 }
 
+TEST(AsterixRoundTrip, ALiveStreamIsDatedByWhenItsBytesArrived) {
+  // Issue 18: a live feed started at 00:00:05 (kewd takes today's date) whose first record
+  // is a late one stamped 23:59:58 was dated 23:59:58 *today*, a day ahead. Live inputs
+  // now tell the decoder when the bytes arrived; each time of day takes the day within
+  // 12 h of that, across midnight in both directions, for every framing.
+  std::mt19937 random(11);
+  const double today = 1714348800 + 86400;  // 2024-04-30T00:00:00Z
+  AsterixOptions options;
+  options.day_start_utc_s = today;
+  for (const AsterixFraming framing : {AsterixFraming::Datagram, AsterixFraming::RawBlocks}) {
+    SCOPED_TRACE(static_cast<int>(framing));
+    auto decoder = make_asterix_decoder(framing, options);
+    std::vector<TrackReport> reports;
+    const auto sink = [&](const TrackReport& r) { reports.push_back(r); };
+    for (const auto& [received, tod] : {std::pair{today + 5, 86398.0}, std::pair{today + 6, 1.0},
+                                        std::pair{today + 86400 - 3, 86396.0}, std::pair{today + 86400 + 2, 1.0}}) {
+      decoder->set_receive_time(received);
+      const Bytes block = data_block(62, {random_cat062_record(random, random_cat062_truth(random, tod))});
+      decoder->feed(std::as_bytes(std::span<const std::uint8_t>(block)), sink);
+      decoder->end_message(sink);
+    }
+    ASSERT_EQ(reports.size(), 4U);
+    EXPECT_DOUBLE_EQ(reports[0].t, today - 86400 + 86398);  // yesterday 23:59:58
+    EXPECT_DOUBLE_EQ(reports[1].t, today + 1);
+    EXPECT_DOUBLE_EQ(reports[2].t, today + 86396);
+    EXPECT_DOUBLE_EQ(reports[3].t, today + 86400 + 1);  // tomorrow 00:00:01
+  }
+}
+
 TEST(AsterixDayClock, StreamRuleAndCaptureTimeRule) {
   const double day = 86400.0 * 10;
   asterix::DayClock clock(day);

@@ -359,6 +359,12 @@ void Input::deliver(const TrackReport& report) {
 
 void Input::feed(protocol::Decoder& decoder, const void* data, std::size_t n) {
   figures_.bytes += n;
+  // A socket's bytes are live: ASTERIX times of day are dated by when they arrived,
+  // unless the input names its day (asterix_day: a recorded stream played into kewd).
+  if (config_.asterix_day.empty()) {
+    decoder.set_receive_time(
+        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+  }
   decoder.feed(std::span<const std::byte>(static_cast<const std::byte*>(data), n),
                [this](const TrackReport& r) { deliver(r); });
 }

@@ -17,6 +17,7 @@ class DatagramDecoder final : public Decoder {
     blocks_.decode_blocks(asterix::as_uint8(bytes), bytes.size(), sink);
   }
   void finish(const ReportSink&) override {}
+  void set_receive_time(std::optional<double> utc_s) override { blocks_.set_capture_time(utc_s); }
   std::string_view format_name() const override { return "asterix-datagram"; }
   std::size_t max_message_bytes() const override { return asterix::kMaxBlockBytes; }
 

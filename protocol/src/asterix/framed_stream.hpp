@@ -19,6 +19,8 @@ class FramedStreamDecoder : public Decoder {
  public:
   void feed(std::span<const std::byte> bytes, const ReportSink& sink) final;
   void finish(const ReportSink& sink) final;
+  /// Pcap's own capture times, set per packet, take precedence over this.
+  void set_receive_time(std::optional<double> utc_s) final { blocks_.set_capture_time(utc_s); }
 
  protected:
   /// `resync_reason`: the rejection counted once per run of skipped garbage bytes.

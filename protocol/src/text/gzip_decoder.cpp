@@ -68,6 +68,7 @@ class GzipDecoder final : public Decoder {
 
   void finish(const ReportSink& sink) override { end(false, sink); }
   void end_message(const ReportSink& sink) override { end(true, sink); }
+  void set_receive_time(std::optional<double> utc_s) override { inner_->set_receive_time(utc_s); }
 
  private:
   enum class State { Sniffing, PassThrough, Inflating, Stopped };

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -39,6 +40,13 @@ class Decoder {
   /// and then, as after finish(), nothing is carried over to the next bytes. The default
   /// is finish(); line framings and wrappers override it.
   virtual void end_message(const ReportSink& sink) { finish(sink); }
+
+  /// Live inputs: when the bytes about to be fed were received (UTC s). Formats that carry
+  /// only a time of day (ASTERIX) then date each record by the day that puts it within
+  /// 12 h of that time, as they do for a pcap capture, instead of counting days from the
+  /// first record (a stream that starts with a record from just before midnight would be
+  /// dated a day ahead). nullopt, the default, keeps the stream rule. Wrappers pass it on.
+  virtual void set_receive_time(std::optional<double> utc_s) { (void)utc_s; }
 
   /// Short stable name of the format ("ndjson", "asterix", "sbs", ...).
   virtual std::string_view format_name() const = 0;
