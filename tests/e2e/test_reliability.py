@@ -3,12 +3,14 @@
 """
 import json
 import math
+import os
+import resource
 import socket
 import subprocess
 import time
 import unittest
 
-from kewd_harness import Subscriber, wait_until
+from kewd_harness import (Subscriber, count_lines, generate, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase, MODBUS_CLIENT, pymodbus_python
 
 KNOT = 1852.0 / 3600.0
@@ -118,6 +120,228 @@ class Health(E2eCase):
         self.assertGreaterEqual(second["registers"]["seconds_since_last_record"],
                                 first["registers"]["seconds_since_last_record"] + 2)
         self.assertGreater(kewd.stats()["rejected"]["future_time"], 10)
+
+
+def feed_with(service="", feed="", rest=""):
+    """FEED with extra [service] keys, extra keys of its input, then more tables."""
+    head, table = FEED.split("[[input]]")
+    return head + service + "\n[[input]]" + table + feed + rest
+
+
+def cpu_seconds(pid):
+    """User plus system CPU time of process `pid` so far, s (from /proc/PID/stat)."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def memory_kib(pid, key):
+    """A figure of /proc/PID/status (VmRSS, VmHWM), KiB."""
+    with open(f"/proc/{pid}/status") as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return int(line.split()[1])
+    raise AssertionError(f"no {key} in /proc/{pid}/status")
+
+
+def parked_pairs(count, t):
+    """`count` head-on pairs, each far from the others, 6 NM apart and closing: every pair
+    alerts at once and stays in conflict while no later record comes."""
+    records = []
+    for i in range(count):
+        lat = 40.0 + (i // 40) * 0.5
+        lon = 0.0 + (i % 40) * 0.5
+        for side in (-1, 1):
+            records.append({"t": t, "id": f"P{i}{'AB'[side > 0]}", "src": "e2e", "lat": lat,
+                            "lon": round(lon + side * 3 * 1852.0 / (111320.0 * math.cos(math.radians(lat))), 7),
+                            "alt_ft": 30000 + 10 * (i % 50), "gs_kt": 450, "trk_deg": 270.0 if side > 0 else 90.0,
+                            "vr_fpm": 0})
+    return records
+
+
+class Connections(E2eCase):
+    """Silent, slow and greedy clients neither lock others out nor exhaust kewd (issue 18
+    item 2, README "Reliability", "Connections")."""
+
+    def try_watch(self, port):
+        """A subscriber that got its snapshot, or None when kewd refused it."""
+        try:
+            s = Subscriber(port)
+        except (OSError, ValueError):
+            return None
+        wait_until(lambda: s.objects("ALERTS") or s.closed, 10, "a snapshot or a refusal")
+        return s if s.objects("ALERTS") else None
+
+    def test_silent_subscribers_neither_lock_out_watchers_nor_stats(self):
+        kewd = self.start(feed_with("max_subscribers = 4\nrequest_timeout_s = 1\n"))
+        # Connected before the attack, reading: never timed out.
+        early = Subscriber(kewd.alert_port)
+        wait_until(lambda: early.objects("ALERTS"), 10, "the early subscriber's snapshot")
+        self.silent(kewd.alert_port, 2)
+        slow = self.silent(kewd.alert_port, 1)[0]
+        slow.sendall(b"?WAT")  # a request line begun, never finished
+        wait_until(lambda: kewd.stats()["subscribers"]["now"] >= 4, 10, "every slot taken")
+        # Every slot is taken: ?STATS is still answered (the reserved slot) ...
+        stats = kewd.stats()
+        self.assertEqual(stats["subscribers"]["refused"], 0)
+        # ... and the silent ones leave, so a watcher gets in.
+        watcher = wait_until(lambda: self.try_watch(kewd.alert_port), 30, "a watcher to get a slot")
+        self.assertTrue(watcher.objects("ALERTS"))
+        stats = kewd.stats()
+        self.assertEqual(stats["subscribers"]["timed_out"], 3, stats["subscribers"])
+        self.assertFalse(early.closed, "a watching subscriber is never idle")
+        self.assertIn("no complete request line in time", kewd.log())
+
+    def test_reserved_slot_answers_stats_and_refuses_watch(self):
+        kewd = self.start(feed_with("max_subscribers = 1\n"))
+        first = Subscriber(kewd.alert_port)
+        wait_until(lambda: first.objects("ALERTS"), 10, "the first subscriber's snapshot")
+        second = Subscriber(kewd.alert_port)  # over max_subscribers: ?WATCH refused
+        second.wait_closed()
+        self.assertEqual(second.objects()[-1]["class"], "ERROR")
+        stats = kewd.stats()
+        self.assertEqual(stats["subscribers"]["refused"], 1, kewd.log())
+        self.assertGreaterEqual(stats["subscribers"]["admin"], 2)
+        self.assertFalse(first.closed)
+
+    def test_silent_feed_connections_do_not_lock_out_a_feed(self):
+        kewd = self.start(FEED + "max_connections = 4\nidle_timeout_s = 1\n")
+        port = kewd.input_port("feed")
+        self.silent(port, 4)
+        wait_until(lambda: kewd.stats()["inputs"][0].get("connections_idle", 0) >= 4, 30,
+                   "the silent feed connections to be closed")
+        t0 = time.time() - 600
+        records = [head_on(a, t0 + dt, t0) for dt in range(0, 40, 4) for a in "AB"]
+        with socket.create_connection(("127.0.0.1", port)) as feed:
+            feed.sendall(lines(records))
+        kewd.wait_records(len(records))
+        stats = kewd.stats()["inputs"][0]
+        self.assertEqual(stats["connections"], 5)
+        self.assertEqual(stats["connections_refused"], 0)
+        self.assertIn("no byte for 1 s", kewd.log())
+
+    def silent(self, port, count):
+        """`count` connections to `port` that send nothing (closed at the end of the test)."""
+        sockets = [socket.create_connection(("127.0.0.1", port)) for _ in range(count)]
+        for s in sockets:
+            self.addCleanup(s.close)
+        return sockets
+
+    def start_with_modbus(self, modbus_keys=""):
+        """kewd with the Modbus map, and the map's port."""
+        kewd = self.start(FEED + '\n[modbus]\nenabled = true\nlisten = "127.0.0.1:0"\n' + modbus_keys)
+        return kewd, int(kewd.wait_log("Modbus TCP alarm map on port").split("on port ")[1].split()[0])
+
+    def modbus(self, python, port, *command):
+        result = subprocess.run([python, MODBUS_CLIENT, "--port", str(port), "--timeout", "2", *command],
+                                stdout=subprocess.PIPE, text=True, timeout=30)
+        return json.loads(result.stdout)
+
+    def test_silent_modbus_clients_do_not_lock_out_the_panel(self):
+        python = pymodbus_python()
+        if python is None:
+            self.skipTest("python3-pymodbus is not installed: the Modbus connections were NOT checked")
+        kewd, port = self.start_with_modbus()
+        self.silent(port, 8)
+        wait_until(lambda: kewd.stats()["modbus"]["connections_open"] == 8, 10, "every Modbus slot taken")
+        # The panel replaces the client quiet longest (at least 1 s): it retries until then.
+        wait_until(lambda: self.modbus(python, port, "read-input-registers", "0", "1")["ok"], 30,
+                   "the panel to be served")
+        stats = kewd.stats()["modbus"]
+        self.assertGreaterEqual(stats["rejected"].get("modbus_evicted", 0), 1, stats)
+
+    def test_idle_modbus_clients_are_closed(self):
+        kewd, port = self.start_with_modbus("idle_timeout_s = 1\n")
+        self.silent(port, 3)
+        wait_until(lambda: kewd.stats()["modbus"]["rejected"].get("modbus_idle_timeout", 0) == 3, 30,
+                   "the silent Modbus clients to be closed")
+        self.assertEqual(kewd.stats()["modbus"]["connections_open"], 0)
+
+    def test_memory_stays_bounded_while_clients_repeat_watch_without_reading(self):
+        kewd = self.start(feed_with("tick_interval_s = 60\n"))
+        pairs = parked_pairs(640, time.time() - 600)
+        with socket.create_connection(("127.0.0.1", kewd.input_port("feed"))) as feed:
+            feed.sendall(lines(pairs))
+        kewd.wait_records(len(pairs))
+        # A second round of records confirms every conflict (alerts open after two).
+        for r in pairs:
+            r["t"] += 4
+        with socket.create_connection(("127.0.0.1", kewd.input_port("feed"))) as feed:
+            feed.sendall(lines(pairs))
+        kewd.wait_records(2 * len(pairs))
+        active = wait_until(lambda: kewd.stats()["alerts_active"] >= 600 and kewd.stats()["alerts_active"], 20,
+                            "the alerts to open")
+        pid = kewd.process.pid
+        before_kib = memory_kib(pid, "VmRSS")
+        attackers = []
+        for _ in range(31):
+            s = socket.socket()
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+            s.connect(("127.0.0.1", kewd.alert_port))
+            s.setblocking(False)
+            attackers.append(s)
+        # Each asks for the snapshot (~530 bytes an alert) 60 times and never reads: ~650 MB
+        # of snapshots if kewd queued every answer.
+        request = b'?WATCH={"enable":true}\n'
+        for _ in range(60):
+            for s in attackers:
+                try:
+                    s.send(request)
+                except (BlockingIOError, ConnectionError):
+                    pass
+        # Until kewd has dealt with them: it answered a ?STATS after all of them.
+        stats = kewd.stats()
+        peak_mib = memory_kib(pid, "VmHWM") / 1024
+        bound_mib = before_kib / 1024 + 160
+        self.assertLess(peak_mib, bound_mib, f"{active} alerts, {stats['subscribers']}")
+        for s in attackers:
+            s.close()
+        wait_until(lambda: kewd.stats()["subscribers"]["now"] <= 1, 30, "the attackers to be gone")
+        self.assertLess(memory_kib(pid, "VmRSS") / 1024, before_kib / 1024 + 64, "memory returned after they left")
+
+    def test_reading_subscriber_receives_every_event_at_max_speed(self):
+        recording = self.path("tma.ndjson")
+        generate(recording, "tma", aircraft=1000, duration=100, seed=11)
+        # The defaults of kewd's subscriber limits; only the live tick is held back, so
+        # that the stream equals the offline run.
+        kewd = self.start(feed_with("tick_interval_s = 60\n"))
+        expected = offline_alerts(kewd.config_path, recording)
+        self.assertGreater(len(expected), 20000, "the burst must be long")
+        reader = Subscriber(kewd.alert_port)
+        wait_until(lambda: reader.objects("ALERTS"), 10, "the snapshot")
+        replay_to(f"127.0.0.1:{kewd.input_port('feed')}", recording, "--max-speed")
+        kewd.wait_records(count_lines(recording), timeout_s=300)
+        wait_until(lambda: len(reader.alert_lines()) >= len(expected) or reader.closed, 120,
+                   "the reader to receive every alert")
+        stats = kewd.stats()["subscribers"]
+        self.assertEqual(stats["cut_off"], 0, stats)
+        self.assertFalse(reader.closed)
+        self.assertEqual(reader.alert_lines(), expected)
+
+    def test_full_descriptor_table_backs_off_and_recovers(self):
+        kewd = self.start(FEED)
+        pid = kewd.process.pid
+        open_fds = len(os.listdir(f"/proc/{pid}/fd"))
+        resource.prlimit(pid, resource.RLIMIT_NOFILE, (open_fds + 4, open_fds + 4))
+        clients = []
+        for _ in range(12):  # more than the table holds: the rest wait in the backlog
+            clients.append(socket.create_connection(("127.0.0.1", kewd.alert_port)))
+        wait_until(lambda: "cannot accept connections" in kewd.log(), 10, "kewd to say it is out of descriptors")
+        # A resource check, not a timing one: kewd uses little CPU while it cannot accept.
+        used = cpu_seconds(pid)
+        time.sleep(2)
+        used = cpu_seconds(pid) - used
+        self.assertLess(used, 0.5, "kewd spins while out of descriptors")
+        self.assertEqual(kewd.log().count("cannot accept connections"), 1, "logged once per episode")
+        for c in clients:
+            c.close()
+        t0 = time.time() - 600
+        records = [head_on(a, t0 + dt, t0) for dt in range(0, 40, 4) for a in "AB"]
+        with socket.create_connection(("127.0.0.1", kewd.input_port("feed"))) as feed:
+            feed.sendall(lines(records))
+        kewd.wait_records(len(records))
+        self.assertGreater(kewd.stats()["subscribers"]["accept_failures"], 0)
+        kewd.wait_log("accepting connections again")
 
 
 if __name__ == "__main__":

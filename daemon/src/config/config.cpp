@@ -12,6 +12,10 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.address("alert_listen", s.alert_listen);
   r.integer("max_subscribers", s.max_subscribers, 1, 10000);
   r.integer("subscriber_queue", s.subscriber_queue, 16, 10'000'000);
+  r.integer("subscriber_queue_bytes", s.subscriber_queue_bytes, 65536, std::int64_t{1} << 36);
+  r.number("request_timeout_s", s.request_timeout_s, 0.1, 3600.0);
+  r.number("idle_timeout_s", s.idle_timeout_s, 0.1, 86400.0);
+  r.number("write_timeout_s", s.write_timeout_s, 0.1, 3600.0);
   r.number("alive_interval_s", s.alive_interval_s, 0.1, 3600.0);
   r.number("tick_interval_s", s.tick_interval_s, 0.05, 60.0);
   r.choice("log_level", s.log_level, kLogLevelNames);
@@ -41,6 +45,7 @@ void read_modbus(TableReader& r, ModbusConfig& m) {
   r.integer("table_entries", m.table_entries, 0, 64);
   r.boolean("read_only", m.read_only);
   r.integer("max_connections", m.max_connections, 1, 256);
+  r.number("idle_timeout_s", m.idle_timeout_s, 0.1, 3600.0);
   r.boolean("allow_remote", m.allow_remote);
   r.ip_list("acknowledge_from", m.acknowledge_from);
 }
@@ -55,6 +60,7 @@ void read_input(TableReader& r, InputConfig& in) {
   r.number("reconnect_min_s", in.reconnect_min_s, 0.01, 3600.0);
   r.number("reconnect_max_s", in.reconnect_max_s, 0.01, 86400.0);
   r.integer("max_connections", in.max_connections, 1, 1024);
+  r.number("idle_timeout_s", in.idle_timeout_s, 0.0, 86400.0);
   r.boolean("pace", in.pace);
   r.number("speed", in.speed, 0.001, 1000.0);
   r.utc_day("asterix_day", in.asterix_day);

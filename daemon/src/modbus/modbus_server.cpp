@@ -187,9 +187,13 @@ class ModbusServer::Impl {
 
       fds.clear();
       fds.push_back({wake_.read_fd(), POLLIN, 0});
-      fds.push_back({modbus_.listen_fd(), POLLIN, 0});
+      // While accepting is paused (no descriptors) the listener is not watched: it would
+      // stay readable and spin the loop.
+      const bool accepting = now >= accept_resume_;
+      fds.push_back({accepting ? modbus_.listen_fd() : -1, POLLIN, 0});
       for (const Client& c : clients_) fds.push_back({c.socket.get(), POLLIN, 0});
-      const auto wait = std::chrono::ceil<std::chrono::milliseconds>(next_heartbeat_ - now);
+      const Clock::time_point wake_at = accepting ? next_heartbeat_ : std::min(next_heartbeat_, accept_resume_);
+      const auto wait = std::chrono::ceil<std::chrono::milliseconds>(wake_at - now);
       const int ready = ::poll(fds.data(), fds.size(), static_cast<int>(std::max<long>(wait.count(), 0)));
       if (ready <= 0) continue;  // heartbeat due, or EINTR
       if (fds[0].revents != 0) wake_.drain();
@@ -233,26 +237,50 @@ class ModbusServer::Impl {
   }
 
   void accept_clients() {
-    for (int fd = modbus_.accept_client(); fd >= 0; fd = modbus_.accept_client()) {
+    for (;;) {
+      errno = 0;
+      const int fd = modbus_.accept_client();
+      if (fd < 0) break;
+      accept_backoff_ = kAcceptBackoff;
+      const Clock::time_point now = Clock::now();
+      if (clients_.size() >= static_cast<std::size_t>(config_.max_connections)) evict_oldest_idle(now);
+      std::erase_if(clients_, [](const Client& c) { return !c.socket.valid(); });
       std::lock_guard lock(stats_mutex_);
       if (clients_.size() >= static_cast<std::size_t>(config_.max_connections)) {
         ::close(fd);
         ++stats_.connections_refused;
+        stats_.rejected.reject("modbus_connection_refused", "max_connections reached, every client active");
         continue;
       }
       ++stats_.connections_accepted;
       const config::HostPort peer = peer_of(fd);
       const auto& allowed = config_.acknowledge_from;
       const bool may_write = allowed.empty() || std::find(allowed.begin(), allowed.end(), peer.host) != allowed.end();
-      clients_.push_back(Client{UniqueFd(fd), {}, Clock::now(), config::to_string(peer), may_write});
+      clients_.push_back(Client{UniqueFd(fd), {}, now, config::to_string(peer), may_write});
     }
+    if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+      // The connection stays in the backlog; try again later, not at once.
+      accept_resume_ = Clock::now() + accept_backoff_;
+      accept_backoff_ = std::min<std::chrono::milliseconds>(accept_backoff_ * 2, std::chrono::seconds(1));
+      std::lock_guard lock(stats_mutex_);
+      stats_.rejected.reject("modbus_accept_failed", "cannot accept a client: out of file descriptors");
+    }
+  }
+
+  /// Makes room for a new client: drops the one quiet longest, if quiet long enough.
+  void evict_oldest_idle(Clock::time_point now) {
+    auto oldest = std::min_element(clients_.begin(), clients_.end(), [](const Client& a, const Client& b) {
+      return a.last_request < b.last_request;
+    });
+    if (oldest != clients_.end() && now - oldest->last_request >= kEvictableAfter) drop(*oldest, "modbus_evicted");
   }
 
   void drop_idle_clients(Clock::time_point now) {
     for (Client& c : clients_) {
-      if (now - c.last_request >= kIdleTimeout) drop(c, "modbus_idle_timeout");
+      if (now - c.last_request >= idle_timeout_) drop(c, "modbus_idle_timeout");
     }
     std::erase_if(clients_, [](const Client& c) { return !c.socket.valid(); });
+    set_open_connections();
   }
 
   /// Reads what the client sent and answers every complete request in it.
@@ -367,6 +395,10 @@ class ModbusServer::Impl {
   std::uint16_t heartbeat_ = 0;
   Clock::time_point next_heartbeat_;
   std::vector<Client> clients_;
+  const Clock::duration idle_timeout_ = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(config_.idle_timeout_s));
+  Clock::time_point accept_resume_{};  // accepting paused until then (out of descriptors)
+  std::chrono::milliseconds accept_backoff_ = kAcceptBackoff;
 
   mutable std::mutex stats_mutex_;
   protocol::ModbusStatistics stats_;

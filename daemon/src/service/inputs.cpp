@@ -10,8 +10,10 @@
 #include <boost/asio/ip/udp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "accept_guard.hpp"
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"
 #include "kew/replay/pacer.hpp"
@@ -105,17 +107,20 @@ class UdpInput final : public Input {
   std::unique_ptr<protocol::Decoder> decoder_;
 };
 
-// One TCP byte stream with its decoder, reading until EOF or error.
+// One TCP byte stream with its decoder, reading until EOF, error or, when `idle` is not
+// zero, that long without a byte (then on_idle is called and the stream ends).
 class TcpStream : public std::enable_shared_from_this<TcpStream> {
  public:
   TcpStream(tcp::socket socket, std::unique_ptr<protocol::Decoder> decoder,
             std::function<void(protocol::Decoder&, const void*, std::size_t)> feed,
-            std::function<void(TcpStream&)> on_end)
+            std::function<void(TcpStream&)> on_end, std::chrono::steady_clock::duration idle = {},
+            std::function<void(TcpStream&)> on_idle = {})
       : socket_(std::move(socket)), decoder_(std::move(decoder)), feed_(std::move(feed)), on_end_(std::move(on_end)),
-        buffer_(kReadBytes) {}
+        idle_(idle), on_idle_(std::move(on_idle)), idle_timer_(socket_.get_executor()), buffer_(kReadBytes) {}
   void start() { read(); }
   void close() {
     boost::system::error_code ignored;
+    idle_timer_.cancel();
     socket_.close(ignored);
   }
   protocol::Decoder& decoder() { return *decoder_; }
@@ -128,10 +133,21 @@ class TcpStream : public std::enable_shared_from_this<TcpStream> {
 
  private:
   void read() {
+    if (idle_ > std::chrono::steady_clock::duration::zero()) {
+      // Re-armed at every read: only a connection that sends nothing at all times out.
+      idle_timer_.expires_after(idle_);
+      idle_timer_.async_wait([weak = weak_from_this()](const boost::system::error_code& ec) {
+        const auto self = weak.lock();
+        if (ec || !self || self->ended_) return;
+        if (self->on_idle_) self->on_idle_(*self);
+        self->close();
+      });
+    }
     socket_.async_read_some(asio::buffer(buffer_), [self = shared_from_this()](const boost::system::error_code& ec,
                                                                                std::size_t n) {
       if (n > 0) self->feed_(*self->decoder_, self->buffer_.data(), n);
       if (ec) {
+        self->idle_timer_.cancel();
         if (!self->ended_) {
           self->ended_ = true;
           self->on_end_(*self);
@@ -146,6 +162,9 @@ class TcpStream : public std::enable_shared_from_this<TcpStream> {
   std::unique_ptr<protocol::Decoder> decoder_;
   std::function<void(protocol::Decoder&, const void*, std::size_t)> feed_;
   std::function<void(TcpStream&)> on_end_;
+  std::chrono::steady_clock::duration idle_;
+  std::function<void(TcpStream&)> on_idle_;
+  asio::steady_timer idle_timer_;
   std::vector<char> buffer_;
   bool ended_ = false;
 };
@@ -154,11 +173,15 @@ class TcpServerInput final : public Input {
  public:
   TcpServerInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
       : Input(std::move(config), std::move(options), std::move(handler)),
-        acceptor_(io, resolve_endpoint<tcp::endpoint>(io, config_.address)) {}
+        acceptor_(io, resolve_endpoint<tcp::endpoint>(io, config_.address)),
+        accept_guard_(acceptor_.get_executor(), "input " + config_.name) {
+    log_.set_reporter([](std::string_view, std::string_view message) { spdlog::warn("{}", message); });
+  }
   void start() override { accept(); }
   void stop() override {
     stopped_ = true;
     boost::system::error_code ignored;
+    accept_guard_.cancel();
     acceptor_.close(ignored);
     const auto streams = streams_;
     for (const auto& s : streams) s->close();
@@ -172,11 +195,15 @@ class TcpServerInput final : public Input {
   void accept() {
     acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
       if (stopped_ || ec == asio::error::operation_aborted) return;
-      if (!ec) {
+      if (!accept_guard_.accepted(ec, figures_.accept_failures, [this] {
+            if (!stopped_) accept();
+          }))
+        return;
+      {
         if (streams_.size() >= config_.max_connections) {
           ++figures_.connections_refused;
-          spdlog::warn("input {}: refusing a feed connection (max_connections = {})", config_.name,
-                       config_.max_connections);
+          log_.reject("refused", fmt::format("input {}: refusing a feed connection (max_connections = {})",
+                                             config_.name, config_.max_connections));
           boost::system::error_code ignored;
           socket.close(ignored);
         } else {
@@ -184,7 +211,14 @@ class TcpServerInput final : public Input {
           auto stream = std::make_shared<TcpStream>(
               std::move(socket), make_stream_decoder(),
               [this](protocol::Decoder& d, const void* data, std::size_t n) { feed(d, data, n); },
-              [this](TcpStream& s) { end(s); });
+              [this](TcpStream& s) { end(s); },
+              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(config_.idle_timeout_s)),
+              [this](TcpStream& s) {
+                ++figures_.connections_idle;
+                log_.reject("idle", fmt::format("input {}: closing the feed connection from {}: no byte for {} s",
+                                                config_.name, s.peer(), config_.idle_timeout_s));
+              });
           streams_.push_back(stream);
           spdlog::info("input {}: feed connected from {}", config_.name, stream->peer());
           stream->start();
@@ -200,6 +234,8 @@ class TcpServerInput final : public Input {
   }
 
   tcp::acceptor acceptor_;
+  AcceptGuard accept_guard_;
+  Rejections log_;  // refusals and idle closes to the log, rate-limited (figures_ counts them)
   std::vector<std::shared_ptr<TcpStream>> streams_;
   bool stopped_ = false;
 };

@@ -120,9 +120,8 @@ Service::Service(Config config, ServiceOptions options)
   source.seq = [this] { return last_alert_seq_; };
   source.stats = [this] { return stats_json(); };
   subscribers_ = open_listener("[service] alert_listen", listen, [&] {
-    return std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), config_.service.max_subscribers,
-                                              config_.service.subscriber_queue, config_.service.tracks_stream,
-                                              std::move(source));
+    return std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), subscriber_limits(config_.service),
+                                              config_.service.tracks_stream, std::move(source));
   });
 
   for (std::size_t i = 0; i < config_.inputs.size(); ++i) {
@@ -349,14 +348,15 @@ void Service::reload() {
     // pipeline parameters would change results mid-stream: they need a restart.
     set_log_level(fresh.service.log_level);
     config_.service.log_level = fresh.service.log_level;
-    subscribers_->set_limits(fresh.service.max_subscribers, fresh.service.subscriber_queue);
+    subscribers_->set_limits(subscriber_limits(fresh.service));
     config_.service.max_subscribers = fresh.service.max_subscribers;
     config_.service.subscriber_queue = fresh.service.subscriber_queue;
+    config_.service.subscriber_queue_bytes = fresh.service.subscriber_queue_bytes;
     config_.service.alive_interval_s = fresh.service.alive_interval_s;
     config_.service.tick_interval_s = fresh.service.tick_interval_s;
-    spdlog::info("SIGHUP: reloaded {} (log level {}, {} subscribers of {} queued objects at most)",
+    spdlog::info("SIGHUP: reloaded {} (log level {}, {} subscribers of {} queued objects and {} bytes at most)",
                  options_.config_path, to_string(fresh.service.log_level), fresh.service.max_subscribers,
-                 fresh.service.subscriber_queue);
+                 fresh.service.subscriber_queue, fresh.service.subscriber_queue_bytes);
     spdlog::info("SIGHUP: inputs, outputs and pipeline settings apply at the next restart");
   } catch (const std::exception& e) {
     spdlog::error("SIGHUP: {} (configuration kept)", e.what());

@@ -1,10 +1,13 @@
 #include "subscribers.hpp"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <chrono>
 
 #include <boost/asio/read_until.hpp>
 #include <boost/asio/write.hpp>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 namespace kew::daemon {
@@ -15,33 +18,89 @@ using asio::ip::tcp;
 namespace {
 constexpr auto kCloseGrace = std::chrono::seconds(5);  // a stuck client gets this long for its ERROR
 constexpr std::size_t kMaxLinesPerWrite = 512;          // iovecs per gathered write (IOV_MAX is 1024)
+// Requests are read only while less than this is waiting to be written: a client that
+// repeats ?WATCH without reading gets no second snapshot queued behind the first.
+constexpr std::size_t kPauseRequestsBytes = 64 * 1024;
+// A session that held this much when it closed makes the server return freed memory.
+constexpr std::size_t kTrimAfterBytes = 1 << 20;
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+}  // namespace
+
+SubscriberLimits subscriber_limits(const ServiceConfig& service) {
+  SubscriberLimits l;
+  l.max_subscribers = service.max_subscribers;
+  l.queue_objects = service.subscriber_queue;
+  l.queue_bytes = service.subscriber_queue_bytes;
+  l.request_timeout = seconds(service.request_timeout_s);
+  l.idle_timeout = seconds(service.idle_timeout_s);
+  l.write_timeout = seconds(service.write_timeout_s);
+  return l;
 }
 
-SubscriberSession::SubscriberSession(tcp::socket socket, SubscriberServer& server)
+SubscriberSession::SubscriberSession(tcp::socket socket, SubscriberServer& server, bool admin)
     : socket_(std::move(socket)),
       server_(server),
       input_(protocol::kMaxWatchRequestBytes),
       grace_(socket_.get_executor()),
+      request_deadline_(socket_.get_executor()),
+      write_deadline_(socket_.get_executor()),
+      admin_(admin),
       id_(server.next_id_++) {}
 
 void SubscriberSession::start() {
   std::string version;
   protocol::append_version_json(version, server_.source().seq());
   enqueue(std::make_shared<const std::string>(std::move(version)));
+  arm_request_deadline();
   read_request();
+}
+
+void SubscriberSession::arm_request_deadline() {
+  // A watching session is fed, and judged by how it reads (byte budget, write timeout);
+  // the others must keep asking. The reserved slot is for a quick ?STATS only.
+  if (watching_ && !admin_) {
+    request_deadline_.cancel();
+    return;
+  }
+  const SubscriberLimits& limits = server_.limits();
+  const bool first = !answered_;
+  request_deadline_.expires_after(first || admin_ ? limits.request_timeout : limits.idle_timeout);
+  request_deadline_.async_wait([self = shared_from_this(), first](const boost::system::error_code& ec) {
+    if (ec || self->closing_) return;
+    ++self->server_.figures_.timed_out;
+    self->server_.log_.reject("timed_out", fmt::format("subscriber {}: {}; disconnecting it", self->id_,
+                                                       first ? "no complete request line in time" : "idle, not watching"));
+    self->close_with_error(first ? "request timeout" : "idle timeout");
+  });
 }
 
 bool SubscriberSession::enqueue(Line line) {
   if (closing_) return false;
-  if (queue_.size() - in_flight_ >= server_.queue_limit()) {
-    ++server_.figures_.cut_off;
-    spdlog::warn("subscriber {} fell {} objects behind; disconnecting it", id_, queue_.size());
-    close_with_error("too slow: the subscriber queue overflowed");
+  const SubscriberLimits& limits = server_.limits();
+  if (queue_.size() - in_flight_ >= limits.queue_objects) {
+    cut_off(fmt::format("fell {} objects behind", queue_.size()), "too slow: the subscriber queue overflowed");
     return false;
   }
+  if (queued_bytes_ + line->size() > limits.queue_bytes) {
+    cut_off(fmt::format("fell {} bytes behind", queued_bytes_ + line->size()),
+            "too slow: the subscriber's byte budget overflowed");
+    return false;
+  }
+  queued_bytes_ += line->size();
+  auto& peak = server_.figures_.backlog_bytes_max;
+  peak = std::max<std::uint64_t>(peak, queued_bytes_);
   queue_.push_back(std::move(line));
   if (!writing_) write_next();
   return true;
+}
+
+void SubscriberSession::cut_off(std::string_view why, std::string_view message) {
+  ++server_.figures_.cut_off;
+  server_.log_.reject("cut_off", fmt::format("subscriber {} {}; disconnecting it", id_, why));
+  close_with_error(message);
 }
 
 void SubscriberSession::close_with_error(std::string_view message) {
@@ -49,6 +108,9 @@ void SubscriberSession::close_with_error(std::string_view message) {
   // What the client has not yet read is dropped; the ERROR goes right after the line
   // being written, if any.
   queue_.erase(queue_.begin() + static_cast<std::ptrdiff_t>(in_flight_), queue_.end());
+  queued_bytes_ = 0;
+  for (const Line& l : queue_) queued_bytes_ += l->size();
+  request_deadline_.cancel();
   std::string error;
   protocol::append_error_json(error, message, server_.source().seq());
   queue_.push_back(std::make_shared<const std::string>(std::move(error)));
@@ -100,7 +162,14 @@ void SubscriberSession::read_request() {
                                             asio::buffers_begin(self->input_.data()) + static_cast<std::ptrdiff_t>(n));
                            self->input_.consume(n);
                            self->handle_request(line);
-                           if (!self->closing_) self->read_request();
+                           if (self->closing_) return;
+                           self->answered_ = true;
+                           self->arm_request_deadline();
+                           if (self->queued_bytes_ >= kPauseRequestsBytes) {
+                             self->reading_paused_ = true;  // resumed by write_next()
+                             return;
+                           }
+                           self->read_request();
                          });
 }
 
@@ -109,6 +178,13 @@ void SubscriberSession::handle_request(std::string_view line) {
   if (line.empty()) return;
   if (line == "?STATS" || line == "?STATS;") {
     enqueue(std::make_shared<const std::string>(server_.source().stats()));
+    return;
+  }
+  if (admin_) {
+    ++server_.figures_.refused;
+    server_.log_.reject("refused", fmt::format("subscriber {}: ?WATCH refused (max_subscribers = {}; only ?STATS "
+                                               "is served beyond it)", id_, server_.limits().max_subscribers));
+    close_with_error("too many subscribers");
     return;
   }
   const protocol::WatchParseResult parsed = protocol::parse_watch_request(line);
@@ -142,8 +218,13 @@ void SubscriberSession::handle_request(std::string_view line) {
 
 void SubscriberSession::write_next() {
   if (closed_) return;
+  if (reading_paused_ && queued_bytes_ < kPauseRequestsBytes && !closing_) {
+    reading_paused_ = false;
+    read_request();
+  }
   if (queue_.empty()) {
     writing_ = false;
+    write_deadline_.cancel();
     if (closing_) close();
     return;
   }
@@ -153,6 +234,15 @@ void SubscriberSession::write_next() {
   in_flight_ = std::min(queue_.size(), kMaxLinesPerWrite);
   gather_.clear();
   for (std::size_t i = 0; i < in_flight_; ++i) gather_.push_back(asio::buffer(*queue_[i]));
+  // A write that does not finish in time means the client stopped reading (its kernel
+  // buffers are full): it would hold its slot for as long as its byte budget lasts.
+  if (!closing_) {
+    write_deadline_.expires_after(server_.limits().write_timeout);
+    write_deadline_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+      if (ec || self->closing_) return;
+      self->cut_off("stopped reading (a write stalled)", "too slow: a write stalled");
+    });
+  }
   asio::async_write(socket_, gather_,
                     [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                       if (self->closed_) return;
@@ -160,6 +250,7 @@ void SubscriberSession::write_next() {
                         self->close();
                         return;
                       }
+                      for (std::size_t i = 0; i < self->in_flight_; ++i) self->queued_bytes_ -= self->queue_[i]->size();
                       self->queue_.erase(self->queue_.begin(),
                                          self->queue_.begin() + static_cast<std::ptrdiff_t>(self->in_flight_));
                       self->in_flight_ = 0;
@@ -171,42 +262,64 @@ void SubscriberSession::close() {
   if (closed_) return;
   closed_ = true;
   closing_ = true;
+  const std::size_t backlog = queued_bytes_;
   queue_.clear();
+  queue_.shrink_to_fit();
+  queued_bytes_ = 0;
   boost::system::error_code ignored;
   grace_.cancel();
+  request_deadline_.cancel();
+  write_deadline_.cancel();
   socket_.shutdown(tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
   server_.forget(shared_from_this());
+  server_.release_memory(backlog);
 }
 
-SubscriberServer::SubscriberServer(asio::io_context& io, const tcp::endpoint& endpoint, std::size_t max_subscribers,
-                                   std::size_t queue_limit, bool tracks_allowed, Source source)
+SubscriberServer::SubscriberServer(asio::io_context& io, const tcp::endpoint& endpoint,
+                                   const SubscriberLimits& limits, bool tracks_allowed, Source source)
     : acceptor_(io, endpoint),
-      max_subscribers_(max_subscribers),
-      queue_limit_(queue_limit),
+      accept_guard_(acceptor_.get_executor(), "subscribers"),
+      limits_(limits),
       tracks_allowed_(tracks_allowed),
-      source_(std::move(source)) {}
+      source_(std::move(source)) {
+  log_.set_reporter([](std::string_view, std::string_view message) { spdlog::warn("{}", message); });
+}
+
+void SubscriberServer::release_memory(std::size_t backlog_bytes) {
+  // Large snapshots and long queues leave freed heap that glibc keeps by default; a
+  // client that was cut off must not leave the daemon's resident size grown for good.
+  if (backlog_bytes >= kTrimAfterBytes) malloc_trim(0);
+}
 
 void SubscriberServer::start() { accept(); }
 
 void SubscriberServer::accept() {
   acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
-    if (stopped_) return;
-    if (!ec) {
-      // Alerts are small lines that must leave at once: no Nagle delay.
-      boost::system::error_code ignored;
-      socket.set_option(tcp::no_delay(true), ignored);
-      auto session = std::make_shared<SubscriberSession>(std::move(socket), *this);
-      if (sessions_.size() >= max_subscribers_) {
-        ++figures_.refused;
-        sessions_.push_back(session);
-        session->close_with_error("too many subscribers");
-      } else {
-        ++figures_.accepted;
-        sessions_.push_back(session);
-        session->start();
-        spdlog::debug("subscriber {} connected ({} now)", session->id(), sessions_.size());
-      }
+    if (stopped_ || ec == asio::error::operation_aborted) return;
+    if (!accept_guard_.accepted(ec, figures_.accept_failures, [this] {
+          if (!stopped_) accept();
+        }))
+      return;
+    // Alerts are small lines that must leave at once: no Nagle delay.
+    boost::system::error_code ignored;
+    socket.set_option(tcp::no_delay(true), ignored);
+    const std::size_t admins = static_cast<std::size_t>(
+        std::count_if(sessions_.begin(), sessions_.end(), [](const auto& s) { return s->admin(); }));
+    const std::size_t subscribers = sessions_.size() - admins;
+    const bool admin = subscribers >= limits_.max_subscribers;
+    auto session = std::make_shared<SubscriberSession>(std::move(socket), *this, admin);
+    sessions_.push_back(session);
+    if (admin && admins >= kAdminSlots) {
+      ++figures_.refused;
+      log_.reject("refused", fmt::format("subscriber {}: refused (max_subscribers = {} and the reserved slots are "
+                                         "taken)", session->id(), limits_.max_subscribers));
+      session->close_with_error("too many subscribers");
+    } else {
+      ++(admin ? figures_.admin : figures_.accepted);
+      session->start();
+      spdlog::debug("subscriber {} connected ({} now{})", session->id(), sessions_.size(),
+                    admin ? ", reserved slot: ?STATS only" : "");
     }
     accept();
   });
@@ -216,6 +329,7 @@ void SubscriberServer::shutdown() {
   stopped_ = true;
   boost::system::error_code ignored;
   acceptor_.close(ignored);
+  accept_guard_.cancel();
   const auto sessions = sessions_;  // sessions remove themselves as they close
   for (const auto& s : sessions) s->drain_and_close();
 }
@@ -283,11 +397,6 @@ void SubscriberServer::broadcast_track(const TrackReport& report) {
     }
     s->enqueue(line);
   }
-}
-
-void SubscriberServer::set_limits(std::size_t max_subscribers, std::size_t queue_limit) {
-  max_subscribers_ = max_subscribers;
-  queue_limit_ = queue_limit;
 }
 
 }  // namespace kew::daemon

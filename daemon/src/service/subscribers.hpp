@@ -1,9 +1,13 @@
 #pragma once
 // The subscriber stream of design §5.3 (gpsd-style JSON lines over TCP). Every session
-// has a bounded queue of shared, already encoded lines; a session whose queue overflows
-// is sent a final ERROR object and closed, so a slow client never slows ingestion.
+// has a queue of shared, already encoded lines bounded in objects and in bytes; a session
+// that falls that far behind, or whose write stalls, is sent a final ERROR object and
+// closed, so a slow client never slows ingestion. A connection must complete its request
+// lines in time, so silent sockets cannot hold the slots; a reserved slot beyond
+// max_subscribers answers ?STATS when every slot is taken (design §6.6).
 // Everything runs on the service's single I/O thread.
 
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -17,7 +21,9 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/streambuf.hpp>
 
+#include "accept_guard.hpp"
 #include "kew/alert/alert_event.hpp"
+#include "kew/daemon/config.hpp"
 #include "kew/protocol/encoders/alert_json.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
@@ -28,9 +34,21 @@ using Line = std::shared_ptr<const std::string>;
 
 class SubscriberServer;
 
+/// The limits of the subscriber port, from [service] (deploy/kew.toml says why each).
+struct SubscriberLimits {
+  std::size_t max_subscribers = 32;
+  std::size_t queue_objects = 262144;
+  std::size_t queue_bytes = 64u << 20;
+  std::chrono::steady_clock::duration request_timeout = std::chrono::seconds(10);
+  std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);
+  std::chrono::steady_clock::duration write_timeout = std::chrono::seconds(30);
+};
+SubscriberLimits subscriber_limits(const ServiceConfig& service);
+
 class SubscriberSession : public std::enable_shared_from_this<SubscriberSession> {
  public:
-  SubscriberSession(boost::asio::ip::tcp::socket socket, SubscriberServer& server);
+  /// `admin`: in the reserved slot, where only ?STATS is served.
+  SubscriberSession(boost::asio::ip::tcp::socket socket, SubscriberServer& server, bool admin);
   void start();
   /// Queues a line; false when the queue was full (the session is then being closed).
   bool enqueue(Line line);
@@ -45,21 +63,32 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   /// that the End of an alert the client saw is always sent.
   bool wants(const AlertEvent& event);
   std::uint64_t id() const { return id_; }
+  bool admin() const { return admin_; }
 
  private:
   void read_request();
   void handle_request(std::string_view line);
+  /// Arms the request deadline: a connection not watching must complete a request line
+  /// within request_timeout of connecting (idle_timeout after a request it was answered).
+  void arm_request_deadline();
   void write_next();
+  void cut_off(std::string_view why, std::string_view message);
   void close();
 
   boost::asio::ip::tcp::socket socket_;
   SubscriberServer& server_;
   boost::asio::streambuf input_;
   boost::asio::steady_timer grace_;
+  boost::asio::steady_timer request_deadline_;
+  boost::asio::steady_timer write_deadline_;
   std::deque<Line> queue_;               // front in_flight_ lines are being written
   std::size_t in_flight_ = 0;
+  std::size_t queued_bytes_ = 0;         // of every line in queue_, in flight included
   std::vector<boost::asio::const_buffer> gather_;
   bool writing_ = false;
+  bool reading_paused_ = false;          // requests wait while the answers are unread
+  bool answered_ = false;                // a complete request line was handled
+  bool admin_;
   bool closing_ = false;
   bool closed_ = false;
   bool watching_ = false;
@@ -79,8 +108,11 @@ class SubscriberServer {
     std::function<std::string()> stats;
   };
 
+  /// Connections beyond max_subscribers that may still ask ?STATS (and nothing else).
+  static constexpr std::size_t kAdminSlots = 2;
+
   SubscriberServer(boost::asio::io_context& io, const boost::asio::ip::tcp::endpoint& endpoint,
-                   std::size_t max_subscribers, std::size_t queue_limit, bool tracks_allowed, Source source);
+                   const SubscriberLimits& limits, bool tracks_allowed, Source source);
   void start();
   /// Stops accepting; every session writes what it has queued and closes.
   void shutdown();
@@ -93,8 +125,8 @@ class SubscriberServer {
   void broadcast_track(const TrackReport& report);
   bool anyone_wants_tracks() const;
 
-  void set_limits(std::size_t max_subscribers, std::size_t queue_limit);
-  std::size_t queue_limit() const { return queue_limit_; }
+  void set_limits(const SubscriberLimits& limits) { limits_ = limits; }
+  const SubscriberLimits& limits() const { return limits_; }
   bool tracks_allowed() const { return tracks_allowed_; }
   std::size_t sessions() const { return sessions_.size(); }
   const protocol::SubscriberStatistics& figures() const { return figures_; }
@@ -108,14 +140,19 @@ class SubscriberServer {
 
  private:
   void accept();
+  /// After a session with a large backlog closed: hands freed memory back to the system.
+  void release_memory(std::size_t backlog_bytes);
 
   boost::asio::ip::tcp::acceptor acceptor_;
-  std::size_t max_subscribers_;
-  std::size_t queue_limit_;
+  AcceptGuard accept_guard_;
+  SubscriberLimits limits_;
   bool tracks_allowed_;
   Source source_;
   std::vector<std::shared_ptr<SubscriberSession>> sessions_;
   protocol::SubscriberStatistics figures_;
+  /// Refusals, time-outs and cut-offs go to the log through this, rate-limited per kind
+  /// (its counts are not reported: figures_ has them).
+  Rejections log_;
   std::uint64_t next_id_ = 1;
   bool stopped_ = false;
   std::function<void()> on_empty_;

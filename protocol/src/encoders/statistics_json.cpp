@@ -125,8 +125,12 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
   subscribers.integer("now", service.subscribers_now);
   subscribers.integer("accepted", service.subscribers.accepted);
   subscribers.integer("refused", service.subscribers.refused);
+  subscribers.integer("admin", service.subscribers.admin);
   subscribers.integer("cut_off", service.subscribers.cut_off);
+  subscribers.integer("timed_out", service.subscribers.timed_out);
   subscribers.integer("bad_requests", service.subscribers.bad_requests);
+  subscribers.integer("accept_failures", service.subscribers.accept_failures);
+  subscribers.integer("backlog_bytes_max", service.subscribers.backlog_bytes_max);
   subscribers.close();
   m.array("inputs");
   for (const InputStatistics& input : service.inputs) {
@@ -136,6 +140,8 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     i.integer("reports", input.reports);
     i.integer("connections", input.connections);
     i.integer("connections_refused", input.connections_refused);
+    i.integer("connections_idle", input.connections_idle);
+    i.integer("accept_failures", input.accept_failures);
     i.integer("oversized_datagrams", input.oversized_datagrams);
     i.rejections("rejected", input.rejected);
     i.close();

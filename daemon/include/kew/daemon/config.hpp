@@ -51,6 +51,8 @@ struct InputConfig {
   double reconnect_min_s = 1.0;       ///< tcp-client backoff, doubling up to max
   double reconnect_max_s = 30.0;
   std::size_t max_connections = 4;    ///< tcp-server
+  /// tcp-server: a feed connection that sends no byte for this long is closed (0: never).
+  double idle_timeout_s = 60.0;
   bool pace = false;                  ///< file: replay paced like the recording
   double speed = 1.0;                 ///< file with pace: multiple of recorded speed
   /// Data day for ASTERIX time of day (UTC midnight, "YYYY-MM-DD"); empty: today (live)
@@ -64,7 +66,11 @@ struct InputConfig {
 struct ServiceConfig {
   std::string alert_listen = "127.0.0.1:4747";
   std::size_t max_subscribers = 32;
-  std::size_t subscriber_queue = 8192;  ///< objects queued per subscriber before it is cut off
+  std::size_t subscriber_queue = 262144;  ///< objects queued per subscriber before it is cut off
+  std::size_t subscriber_queue_bytes = 64u << 20;  ///< bytes queued per subscriber before it is cut off
+  double request_timeout_s = 10.0;  ///< a connection must complete its first request line in this time
+  double idle_timeout_s = 60.0;     ///< a connection not watching must complete a request this often
+  double write_timeout_s = 30.0;    ///< a write to a subscriber that takes longer cuts it off
   double alive_interval_s = 1.0;
   double tick_interval_s = 1.0;         ///< live clock tick (timeouts, kinetic events)
   LogLevel log_level = LogLevel::Info;
@@ -94,6 +100,8 @@ struct ModbusConfig {
   int table_entries = 8;
   bool read_only = false;
   int max_connections = 8;
+  /// A client that completes no request for this long is disconnected, s.
+  double idle_timeout_s = 10.0;
   bool allow_remote = false;  ///< `listen` may be other than loopback
   /// Client addresses (canonical_ip form) whose writes are served; empty: every client.
   std::vector<std::string> acknowledge_from;

@@ -19,9 +19,13 @@ namespace kew::daemon {
 
 class ModbusServer {
  public:
-  /// A client that completes no request for this long is disconnected, so that silent
-  /// connections cannot hold the `max_connections` slots for ever.
-  static constexpr std::chrono::seconds kIdleTimeout{120};
+  /// When every slot is taken, a new client replaces the one that has completed no
+  /// request for the longest time, if that is at least this long (an HMI polls more
+  /// often); silent connections then cannot lock the panel out even for
+  /// `config.idle_timeout_s`, after which a client that completes no request is closed.
+  static constexpr std::chrono::seconds kEvictableAfter{1};
+  /// Out of descriptors, accepting pauses this long at first, doubling up to 1 s.
+  static constexpr std::chrono::milliseconds kAcceptBackoff{100};
 
   /// Called with the client's "HOST:PORT" (its socket's peer; IPv6 in brackets, an
   /// IPv4-mapped address as IPv4).

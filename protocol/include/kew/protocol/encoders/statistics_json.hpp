@@ -23,15 +23,21 @@ struct InputStatistics {
   std::uint64_t reports = 0;              ///< records its decoders produced
   std::uint64_t connections = 0;          ///< accepted (server) or established (client)
   std::uint64_t connections_refused = 0;  ///< over max_connections
+  std::uint64_t connections_idle = 0;     ///< closed: no byte for idle_timeout_s
+  std::uint64_t accept_failures = 0;      ///< accept() failed (out of descriptors, ...)
   std::uint64_t oversized_datagrams = 0;
   Rejections rejected;                    ///< its decoders' rejections
 };
 
 struct SubscriberStatistics {
   std::uint64_t accepted = 0;
-  std::uint64_t refused = 0;      ///< over max_subscribers
-  std::uint64_t cut_off = 0;      ///< disconnected for falling behind
+  std::uint64_t refused = 0;      ///< over max_subscribers and the reserved slots, or ?WATCH in one
+  std::uint64_t admin = 0;        ///< accepted into a reserved (?STATS only) slot
+  std::uint64_t cut_off = 0;      ///< disconnected for falling behind (bytes, objects) or a stalled write
+  std::uint64_t timed_out = 0;    ///< closed for not completing a request line in time
   std::uint64_t bad_requests = 0;
+  std::uint64_t accept_failures = 0;   ///< accept() failed (out of descriptors, ...)
+  std::uint64_t backlog_bytes_max = 0; ///< the most bytes one session had queued
 };
 
 struct Cat004Statistics {
