@@ -70,6 +70,22 @@ class FutureTime(E2eCase):
 class Health(E2eCase):
     """kewd says it is degraded, and why, when the records it receives are refused."""
 
+    def test_targets_on_the_ground_do_not_make_kewd_degraded(self):
+        # A receiver beside an airport: most records are aircraft on the ground, left out
+        # by configuration. That is not a fault.
+        kewd = self.start(FEED)
+        watcher = Subscriber(kewd.alert_port)
+        feed = socket.create_connection(("127.0.0.1", kewd.input_port("feed")))
+        self.addCleanup(feed.close)
+        start = time.time()
+        for i in range(16):
+            taxiing = [dict(head_on("A", time.time(), start), id=f"G{k}", gnd=True, gs_kt=10) for k in range(6)]
+            feed.sendall(lines([head_on("A", time.time(), start)] + taxiing))
+            time.sleep(0.25)
+        wait_until(lambda: len(watcher.objects("ALIVE")) >= 3, 10, "three ALIVE objects")
+        self.assertGreater(kewd.stats()["rejected"]["on_ground"], 50)
+        self.assertEqual(watcher.objects("ALIVE")[-1]["health"], "healthy")
+
     def test_refused_records_make_alive_and_modbus_say_degraded(self):
         python = pymodbus_python()
         if python is None:
