@@ -2,7 +2,13 @@
 # Smoke run of every libFuzzer target built in a KEW_BUILD_FUZZERS build:
 #   bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz [SECONDS_EACH]
 # Each fuzz_* executable runs for SECONDS_EACH (default 20) from a seed corpus cut from
-# tests/data, two at a time on two cores. Any crash, sanitizer report, leak, timeout
+# tests/data, plus the kept corpus tests/fuzz/corpus/TARGET when it exists, two at a time
+# on two cores. A long run that grows the kept corpus (README "Tests"):
+#   KEW_FUZZ_KEEP=1 KEW_FUZZ_TARGETS="fuzz_ndjson fuzz_asterix_datagram" \
+#     bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz 3600
+# KEW_FUZZ_TARGETS limits the run to those targets; KEW_FUZZ_KEEP=1 merges what the run
+# found into tests/fuzz/corpus/TARGET (libFuzzer -merge=1 keeps only inputs that add
+# coverage), to be committed. Any crash, sanitizer report, leak, timeout
 # or out-of-memory fails the script (exit 1) after printing the end of that target's log;
 # the input that triggered it is left in BUILD_DIR/tests/fuzz/artifacts/.
 set -euo pipefail
@@ -79,16 +85,24 @@ run_one() {  # TARGET: exit status of the fuzzer
   local max_len=4096
   case "$target" in fuzz_asterix*|fuzz_cat004*) max_len=65536 ;; esac
   mkdir -p "$work/corpus/$target"
-  "$bin_dir/$target" "$work/corpus/$target" "$work/seeds/$target" \
+  local kept=()
+  [ -d "$here/tests/fuzz/corpus/$target" ] && kept=("$here/tests/fuzz/corpus/$target")
+  "$bin_dir/$target" "$work/corpus/$target" "$work/seeds/$target" "${kept[@]}" \
     -max_total_time="$seconds" -rss_limit_mb=2048 -max_len="$max_len" -timeout=20 \
     -print_final_stats=1 -artifact_prefix="$bin_dir/artifacts/$target-" \
-    >"$work/$target.log" 2>&1
+    >"$work/$target.log" 2>&1 || return
+  if [ "${KEW_FUZZ_KEEP:-0}" = 1 ]; then
+    mkdir -p "$here/tests/fuzz/corpus/$target"
+    "$bin_dir/$target" -merge=1 -max_len="$max_len" "$here/tests/fuzz/corpus/$target" "$work/corpus/$target" \
+      >>"$work/$target.log" 2>&1
+  fi
 }
 
 targets=()
 for exe in "$bin_dir"/fuzz_*; do
   [ -f "$exe" ] && [ -x "$exe" ] || continue
   target=$(basename "$exe")
+  if [ -n "${KEW_FUZZ_TARGETS:-}" ] && [[ " $KEW_FUZZ_TARGETS " != *" $target "* ]]; then continue; fi
   seed
   targets+=("$target")
 done
