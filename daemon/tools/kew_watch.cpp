@@ -134,6 +134,10 @@ int main(int argc, char** argv) {
     } else if (kind == StreamObjectClass::Version) {
       std::printf("connected to kewd %s (protocol %d) at %s\n", reader.text().c_str(), reader.proto(),
                   flags.address.c_str());
+    } else if (kind == StreamObjectClass::Start) {
+      // kewd (re)started: a new run id; alerts open before it ended with reason "restart".
+      std::printf("START  kewd %s run %s started %s\n", reader.text().c_str(), reader.run().c_str(),
+                  utc(reader.start_t()).c_str());
     } else if (kind == StreamObjectClass::Alerts) {
       std::printf("%zu active alerts\n", reader.alerts().size());
       for (const kew::AlertEvent& e : reader.alerts()) print_alert(e, "ACTIVE");

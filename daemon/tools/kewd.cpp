@@ -117,6 +117,8 @@ int main(int argc, char** argv) {
     // Relative paths as resolved (against the working directory).
     if (!config.service.alert_log.empty()) std::printf("alert log: %s\n", config.service.alert_log.c_str());
     if (!config.service.record_file.empty()) std::printf("record file: %s\n", config.service.record_file.c_str());
+    if (const std::string state = kew::daemon::state_directory(config.service); !state.empty())
+      std::printf("state directory: %s\n", state.c_str());
     for (const auto& input : config.inputs)
       if (input.transport == kew::daemon::Transport::File)
         std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());

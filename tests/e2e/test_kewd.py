@@ -124,7 +124,9 @@ class AlertStream(E2eCase):
         reader.wait_closed()
         late.wait_closed()
         with open(self.path("alerts.jsonl")) as f:
-            self.assertEqual(f.readlines(), expected, "the alert log holds every alert")
+            logged = f.readlines()
+        self.assertTrue(logged[0].startswith('{"class":"START",'), logged[0])  # the run's START first
+        self.assertEqual(logged[1:], expected, "the alert log holds every alert")
         self.assertIn("SIGTERM received", kewd.log())
 
     def test_file_input_reads_like_kew_replay_and_reports_the_same_statistics(self):
@@ -148,7 +150,9 @@ class AlertStream(E2eCase):
             replay = json.load(f)
         kewd.terminate()
         with open(self.path("alerts.jsonl")) as f:
-            self.assertEqual(f.read(), offline, "the file input gives kew-replay's alerts")
+            start, _, logged = f.read().partition("\n")
+        self.assertTrue(start.startswith('{"class":"START",'), start)  # the run's START first
+        self.assertEqual(logged, offline, "the file input gives kew-replay's alerts")
         self.assertGreater(replay["alerts_new"], 0, "the scenario must have conflicts")
         only_replay = {"audits", "audit_violations_found", "audit_violations_unrepaired", "wall_s"}
         for key, value in replay.items():
@@ -700,16 +704,18 @@ class Install(E2eCase):
         with open(config) as f:
             text = f.read()
         self.assertIn('alert_log = "/var/log/kew/alerts.jsonl"', text)
+        self.assertIn('state_directory = "/var/lib/kew"', text)
         elsewhere = self.path("installed.toml")
         with open(elsewhere, "w") as f:
-            f.write(text.replace("/var/log/kew/alerts.jsonl", self.path("alerts.jsonl")))
+            f.write(text.replace("/var/log/kew/alerts.jsonl", self.path("alerts.jsonl"))
+                    .replace("/var/lib/kew", self.path("state")))
         result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", elsewhere],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         unit = os.path.join(prefix, "lib", "systemd", "system", "kewd.service")
         with open(unit) as f:
             text = f.read()
-        for setting in ("Type=notify", "DynamicUser=yes", "NoNewPrivileges=yes", "ProtectSystem=strict",
+        for setting in ("Type=notify", "DynamicUser=yes", "StateDirectory=kew", "NoNewPrivileges=yes", "ProtectSystem=strict",
                         "RestrictAddressFamilies=AF_INET AF_INET6 AF_UNIX", "WatchdogSec="):
             self.assertIn(setting, text)
         if shutil.which("systemd-analyze") is None:

@@ -321,6 +321,17 @@ TEST(AlertStreamReader, ReadsEveryObjectClassBack) {
   EXPECT_EQ(reader.proto(), kAlertStreamProtocol);
 
   line.clear();
+  append_start_json(line, StartInfo{"00112233445566778899aabbccddeeff", 1714400000.25}, 41);
+  EXPECT_EQ(line, std::string(R"({"class":"START","seq":41,"run":"00112233445566778899aabbccddeeff","release":")") +
+                      std::string(release()) + R"(","t":1714400000.250})" + "\n");
+  ASSERT_TRUE(reader.read(line)) << reader.error();
+  EXPECT_EQ(reader.object_class(), StreamObjectClass::Start);
+  EXPECT_EQ(reader.seq(), 41u);
+  EXPECT_EQ(reader.run(), "00112233445566778899aabbccddeeff");
+  EXPECT_EQ(reader.text(), release());
+  EXPECT_EQ(reader.start_t(), 1714400000.25);
+
+  line.clear();
   append_alert_json(line, update_event(), 17);
   ASSERT_TRUE(reader.read(line)) << reader.error();
   EXPECT_EQ(reader.object_class(), StreamObjectClass::Alert);

@@ -98,6 +98,24 @@ TEST_F(Lifecycle, OpensOnlyAfterConfirmConsecutiveConflicts) {
   EXPECT_EQ(manager.counters().opened, 1u);
 }
 
+TEST_F(Lifecycle, ResumeContinuesSeqAndNumberFromTheGivenValues) {
+  // kewd after a restart (design §4.7): the last run's numbering goes on.
+  manager.resume(41, 65535);
+  EXPECT_EQ(manager.last_seq(), 41u);
+  evaluate(1, 2, 100.0, true);
+  evaluate(1, 2, 104.0, true);
+  evaluate(3, 4, 100.0, true);
+  evaluate(3, 4, 104.0, true);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].seq, 42u);
+  EXPECT_EQ(events[0].number, 65535u);
+  EXPECT_EQ(events[1].seq, 43u);
+  EXPECT_EQ(events[1].number, 1u);  // cycles, never 0
+  EXPECT_EQ(manager.next_number(), 2u);
+  manager.resume(7, 0);  // 0 is no alert number: read as 1
+  EXPECT_EQ(manager.next_number(), 1u);
+}
+
 TEST_F(Lifecycle, UpdatesOnlyWhenSeverityOrFiguresChange) {
   evaluate(1, 2, 100.0, true, {90.0});
   evaluate(1, 2, 104.0, true, {86.0});  // opens

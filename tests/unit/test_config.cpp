@@ -41,6 +41,8 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.alert_log, defaults.service.alert_log);
   EXPECT_EQ(file.service.alert_log_max_bytes, defaults.service.alert_log_max_bytes);
   EXPECT_EQ(file.service.alert_log_keep, defaults.service.alert_log_keep);
+  EXPECT_EQ(file.service.alert_log_sync, defaults.service.alert_log_sync);
+  EXPECT_EQ(file.service.state_directory, defaults.service.state_directory);
   EXPECT_EQ(file.service.record_file, defaults.service.record_file);
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
   EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
@@ -360,6 +362,27 @@ TEST(ConfigChecks, OutputFilesMustBeWritable) {
   EXPECT_NO_THROW(check_config(parse_config("[service]\nalert_log = \"" + d + "/logs/a.jsonl\"\nrecord_file = \"" +
                                             d + "/plain\"\n"),
                                false));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ConfigChecks, StateDirectoryDefaultsToTheAlertLogsAndMustBeCreatable) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("kew-state-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "logs");
+  std::ofstream(dir / "plain") << "x";
+  const std::string d = dir.string();
+  const Config logged = parse_config("[service]\nalert_log = \"" + d + "/logs/a.jsonl\"\n");
+  EXPECT_EQ(logged.service.alert_log_sync, AlertLogSync::Interval);
+  EXPECT_EQ(state_directory(logged.service), d + "/logs");
+  EXPECT_EQ(state_directory(Config{}.service), "");  // no alert log, no state: numbering from 1
+  const Config chosen = parse_config("[service]\nstate_directory = \"" + d + "/state\"\nalert_log_sync = \"every\"\n");
+  EXPECT_EQ(state_directory(chosen.service), d + "/state");
+  EXPECT_EQ(chosen.service.alert_log_sync, AlertLogSync::Every);
+  EXPECT_NO_THROW(check_config(chosen, false));  // created at start
+  expect_check_error("[service]\nstate_directory = \"" + d + "/plain\"\n",
+                     "[service] state_directory = \"" + d + "/plain\" is not a directory");
+  expect_check_error("[service]\nstate_directory = \"" + d + "/missing/state\"\n",
+                     "cannot be created: " + d + "/missing does not exist");
+  EXPECT_THROW(parse_config("[service]\nalert_log_sync = \"sometimes\"\n"), config::ConfigError);
   std::filesystem::remove_all(dir);
 }
 

@@ -70,6 +70,24 @@ void check_writable(const Config& c, std::string_view key, const std::string& pa
                      std::strerror(errno)));
 }
 
+/// kewd creates the state directory when it is missing (a plain run; systemd creates
+/// StateDirectory=kew), so its parent must exist then.
+void check_state_directory(const Config& c) {
+  const std::string directory = state_directory(c.service);
+  if (directory.empty()) return;
+  const auto fail = [&](std::string_view why) {
+    refuse(c, fmt::format("[service] state_directory = \"{}\" {}", directory, why));
+  };
+  std::error_code ec;
+  const fs::file_status status = fs::status(directory, ec);
+  if (fs::exists(status) && !fs::is_directory(status)) fail("is not a directory");
+  const fs::path existing = fs::exists(status) ? fs::path(directory) : fs::path(directory).parent_path();
+  if (!fs::is_directory(existing, ec))
+    fail(fmt::format("cannot be created: {} does not exist", existing.string()));
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    fail(fmt::format("cannot be {}: {}", fs::exists(status) ? "written" : "created", std::strerror(errno)));
+}
+
 }  // namespace
 
 std::vector<Listener> listeners(const Config& c) {
@@ -91,6 +109,7 @@ void check_config(const Config& c, bool listen_any) {
   check_distinct_ports(c, all);
   check_writable(c, "[service] alert_log", c.service.alert_log, true);
   check_writable(c, "[service] record_file", c.service.record_file, false);
+  check_state_directory(c);
   if (!c.service.alert_log.empty() && c.service.alert_log == c.service.record_file)
     refuse(c, fmt::format("[service] record_file = \"{}\" is the alert log too: give each its own file",
                           c.service.record_file));

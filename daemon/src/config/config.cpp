@@ -1,5 +1,7 @@
 #include "kew/daemon/config.hpp"
 
+#include <filesystem>
+
 #include "kew/config/document.hpp"
 
 namespace kew::daemon {
@@ -22,6 +24,8 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.path("alert_log", s.alert_log);
   r.integer("alert_log_max_bytes", s.alert_log_max_bytes, 4096, std::int64_t{1} << 40);
   r.integer("alert_log_keep", s.alert_log_keep, 0, 1000);
+  r.choice("alert_log_sync", s.alert_log_sync, kAlertLogSyncNames);
+  r.path("state_directory", s.state_directory);
   r.path("record_file", s.record_file);
   r.boolean("tracks_stream", s.tracks_stream);
   r.number("max_future_s", s.max_future_s, 0.0, 86400.0);
@@ -95,5 +99,14 @@ Config parse_config(std::string_view toml_text, std::string_view origin) {
 }
 
 Config load_config(const std::string& path) { return read_config(config::Document::load(path)); }
+
+std::string state_directory(const ServiceConfig& service) {
+  if (!service.state_directory.empty()) return service.state_directory;
+  // Next to the alert log: a plain run keeps its numbering with its log, and a log
+  // moved elsewhere starts afresh with it.
+  if (!service.alert_log.empty())
+    return std::filesystem::absolute(service.alert_log).parent_path().string();
+  return {};
+}
 
 }  // namespace kew::daemon

@@ -1,5 +1,10 @@
 #include "line_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -9,28 +14,79 @@
 
 namespace kew::daemon {
 
-LineFile::LineFile(std::string path, std::uint64_t max_bytes, int keep)
+namespace {
+
+// Queued this much without a flush (the recording between ticks), the file is written.
+constexpr std::size_t kWriteAtBytes = 64 * 1024;
+// Repeated failures (a retry per event while the disk is full) are logged this often.
+constexpr auto kReportEvery = std::chrono::seconds(10);
+
+}  // namespace
+
+LineFile::LineFile(std::string path, std::uint64_t max_bytes, int keep, bool sync_every_flush,
+                   std::uint64_t max_pending_bytes)
     // Absolute: the daemon changes directory to / after opening its files, and rotation
     // reopens by name.
-    : path_(std::filesystem::absolute(path).string()), max_bytes_(max_bytes), keep_(keep) {
+    : path_(std::filesystem::absolute(path).string()),
+      max_bytes_(max_bytes),
+      keep_(keep),
+      sync_every_flush_(sync_every_flush),
+      max_pending_bytes_(max_pending_bytes) {
   open();
+  cut_torn_tail();
 }
 
 LineFile::~LineFile() {
-  if (file_) std::fclose(file_);
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void LineFile::open() {
-  file_ = std::fopen(path_.c_str(), "ab");
-  if (!file_) throw std::runtime_error(path_ + ": " + std::strerror(errno));
-  std::error_code ec;
-  size_ = std::filesystem::file_size(path_, ec);
-  if (ec) size_ = 0;
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw std::runtime_error(path_ + ": " + std::strerror(errno));
+  struct stat st {};
+  size_ = ::fstat(fd_, &st) == 0 ? static_cast<std::uint64_t>(st.st_size) : 0;
+}
+
+void LineFile::cut_torn_tail() {
+  if (size_ == 0) return;
+  const int in = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) return;
+  // Back from the end in blocks to the last line end.
+  char block[4096];
+  std::uint64_t end = size_;
+  std::optional<std::uint64_t> keep;
+  while (end > 0 && !keep) {
+    const std::uint64_t start = end > sizeof block ? end - sizeof block : 0;
+    const ssize_t n = ::pread(in, block, end - start, static_cast<off_t>(start));
+    if (n != static_cast<ssize_t>(end - start)) {  // unreadable: leave the file as it is
+      ::close(in);
+      return;
+    }
+    for (std::uint64_t i = end - start; i > 0; --i) {
+      if (block[i - 1] == '\n') {
+        keep = start + i;
+        break;
+      }
+    }
+    if (keep == size_) {
+      ::close(in);
+      return;
+    }
+    end = start;
+  }
+  ::close(in);
+  const std::uint64_t whole = keep.value_or(0);
+  if (::ftruncate(fd_, static_cast<off_t>(whole)) != 0) {
+    report_failure("cut the torn last line of", std::strerror(errno));
+    return;
+  }
+  spdlog::warn("{}: cut a torn last line of {} bytes (an earlier writer stopped mid-line)", path_, size_ - whole);
+  size_ = whole;
 }
 
 void LineFile::rotate() {
-  std::fclose(file_);
-  file_ = nullptr;
+  ::close(fd_);
+  fd_ = -1;
   std::error_code ec;
   if (keep_ <= 0) {
     std::filesystem::remove(path_, ec);
@@ -45,25 +101,109 @@ void LineFile::rotate() {
 
 void LineFile::append(std::string_view lines) {
   if (lines.empty()) return;
-  if (max_bytes_ > 0 && size_ > 0 && size_ + lines.size() > max_bytes_) {
-    try {
-      rotate();
-    } catch (const std::exception& e) {
-      ++write_errors_;
-      spdlog::error("cannot rotate {}: {}", path_, e.what());
-      if (!file_) return;
-    }
-  }
-  if (std::fwrite(lines.data(), 1, lines.size(), file_) != lines.size()) {
-    if (++write_errors_ == 1) spdlog::error("write to {} failed: {}", path_, std::strerror(errno));
-    return;
-  }
-  size_ += lines.size();
+  if (pending_.size() + lines.size() > max_pending_bytes_) drop_oldest(lines.size());
+  pending_.append(lines);
+  if (!failing_ && pending_.size() >= kWriteAtBytes) flush();
 }
 
-void LineFile::flush() {
-  if (file_ && std::fflush(file_) != 0 && ++write_errors_ == 1)
-    spdlog::error("flush of {} failed: {}", path_, std::strerror(errno));
+void LineFile::drop_oldest(std::size_t incoming) {
+  const std::uint64_t total = pending_.size() + incoming;
+  if (pending_.empty() || total <= max_pending_bytes_) return;
+  const std::size_t excess = static_cast<std::size_t>(std::min<std::uint64_t>(total - max_pending_bytes_, pending_.size()));
+  // Whole lines only: the cut goes after the line end at or beyond `excess`.
+  const std::size_t end = pending_.find('\n', excess - 1);
+  const std::size_t cut = end == std::string::npos ? pending_.size() : end + 1;
+  const auto lines = static_cast<std::uint64_t>(std::count(pending_.begin(), pending_.begin() + static_cast<long>(cut), '\n'));
+  if (dropped_lines_ == 0)
+    spdlog::error("{}: more than {} bytes wait for the file: the oldest queued lines are dropped (counted in the "
+                  "failure reports)", path_, max_pending_bytes_);
+  pending_.erase(0, cut);
+  dropped_lines_ += lines;
+}
+
+bool LineFile::flush() {
+  if (pending_.empty()) return true;
+  if (truncate_to_ && fd_ >= 0) {
+    if (::ftruncate(fd_, static_cast<off_t>(*truncate_to_)) != 0) {
+      failing_ = true;
+      report_failure("truncate", std::strerror(errno));
+      return false;
+    }
+    truncate_to_.reset();
+  }
+  if (fd_ < 0 || (max_bytes_ > 0 && size_ > 0 && size_ + pending_.size() > max_bytes_)) {
+    try {
+      if (fd_ < 0) open();
+      else rotate();
+    } catch (const std::exception& e) {
+      truncate_to_.reset();  // the torn piece, if any, went with the renamed file
+      report_failure("rotate", e.what());
+      if (fd_ < 0) {
+        failing_ = true;
+        return false;
+      }
+    }
+  }
+  std::size_t written = 0;
+  int error = 0;
+  while (written < pending_.size()) {
+    const ssize_t n = ::write(fd_, pending_.data() + written, pending_.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = n < 0 ? errno : ENOSPC;
+      break;
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (written > 0) unsynced_ = true;
+  if (written == pending_.size()) {
+    size_ += written;
+    pending_.clear();
+    if (failing_) {
+      spdlog::info("{}: writable again; every queued line written ({} failed attempts, {} lines dropped)", path_,
+                   write_errors_, dropped_lines_);
+      failing_ = false;
+    }
+    if (sync_every_flush_) sync();
+    return true;
+  }
+  keep_whole_lines(written);
+  failing_ = true;
+  report_failure("write to", std::strerror(error));
+  return false;
+}
+
+bool LineFile::keep_whole_lines(std::size_t written) {
+  const std::size_t last_end = written == 0 ? std::string::npos : pending_.rfind('\n', written - 1);
+  const std::size_t whole = last_end == std::string::npos ? 0 : last_end + 1;
+  if (whole < written && ::ftruncate(fd_, static_cast<off_t>(size_ + whole)) != 0) {
+    // The torn piece stays until a truncation succeeds; nothing is written after it.
+    truncate_to_ = size_ + whole;
+    report_failure("truncate", std::strerror(errno));
+  }
+  size_ += whole;
+  pending_.erase(0, whole);
+  return !truncate_to_;
+}
+
+bool LineFile::sync() {
+  if (fd_ < 0 || !unsynced_) return true;
+  unsynced_ = false;
+  if (::fdatasync(fd_) == 0) return true;
+  report_failure("sync", std::strerror(errno));
+  return false;
+}
+
+void LineFile::report_failure(std::string_view what, std::string_view reason) {
+  ++write_errors_;
+  ++errors_since_report_;
+  const auto now = std::chrono::steady_clock::now();
+  if (write_errors_ > 1 && now - last_report_ < kReportEvery) return;
+  spdlog::error("cannot {} {}: {} ({} failures in all, {} since the last report; {} bytes queued, {} lines dropped)",
+                what, path_, reason, write_errors_, errors_since_report_, pending_.size(),
+                dropped_lines_);
+  errors_since_report_ = 0;
+  last_report_ = now;
 }
 
 }  // namespace kew::daemon

@@ -82,6 +82,7 @@ Service::Service(Config config, ServiceOptions options)
       watchdog_timer_(io_),
       shutdown_timer_(io_),
       modbus_timer_(io_),
+      housekeeping_timer_(io_),
       config_(std::move(config)),
       options_(std::move(options)),
       pipeline_(config_.pipeline),
@@ -95,7 +96,10 @@ Service::Service(Config config, ServiceOptions options)
 
   if (!config_.service.alert_log.empty())
     alert_log_ = std::make_unique<LineFile>(config_.service.alert_log, config_.service.alert_log_max_bytes,
-                                            config_.service.alert_log_keep);
+                                            config_.service.alert_log_keep,
+                                            config_.service.alert_log_sync == AlertLogSync::Every);
+  if (const std::string directory = state_directory(config_.service); !directory.empty())
+    state_file_ = std::make_unique<StateFile>(directory);
   if (!config_.service.record_file.empty())
     record_file_ = std::make_unique<LineFile>(config_.service.record_file, 0, 0);
   if (config_.cat004.enabled) cat004_ = std::make_unique<Cat004Sender>(io_, config_.cat004);
@@ -119,6 +123,7 @@ Service::Service(Config config, ServiceOptions options)
   source.snapshot = [this] { return pipeline_.alerts().snapshot(); };
   source.seq = [this] { return last_alert_seq_; };
   source.stats = [this] { return stats_json(); };
+  source.start = [this] { return start_line_; };
   subscribers_ = open_listener("[service] alert_listen", listen, [&] {
     return std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), subscriber_limits(config_.service),
                                               config_.service.tracks_stream, std::move(source));
@@ -137,6 +142,7 @@ Service::Service(Config config, ServiceOptions options)
 Service::~Service() = default;
 
 int Service::run() {
+  begin_run();
   subscribers_->start();
   for (auto& input : inputs_) input->start();
   spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
@@ -144,6 +150,7 @@ int Service::run() {
   // Paths as resolved (design §5.7: relative to the working directory kewd started in).
   if (alert_log_) spdlog::info("alert log: {}", alert_log_->path());
   if (record_file_) spdlog::info("record file: {}", record_file_->path());
+  if (state_file_) spdlog::info("state file: {}", state_file_->path());
   for (const auto& input : inputs_) {
     const std::uint16_t port = input->bound_port();
     spdlog::info("input {}: {} {} {}{}", input->config().name, protocol::to_string(input->config().format),
@@ -159,13 +166,20 @@ int Service::run() {
   wait_for_signal();
   schedule_tick();
   schedule_alive();
+  schedule_housekeeping();
   std::uint64_t watchdog_us = 0;
   if (sd_watchdog_enabled(0, &watchdog_us) > 0 && watchdog_us > 0)
     schedule_watchdog(std::chrono::microseconds(watchdog_us / 2));
   sd_notifyf(0, "READY=1\nSTATUS=serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
   io_.run();
-  if (alert_log_) alert_log_->flush();
+  if (alert_log_) {
+    if (!alert_log_->flush())
+      spdlog::error("kewd stops with {} bytes of alert events the alert log could not take",
+                    alert_log_->pending_bytes());
+    if (config_.service.alert_log_sync != AlertLogSync::None) alert_log_->sync();
+  }
   if (record_file_) record_file_->flush();
+  save_numbering();
   spdlog::info("kewd stopped: {} records, {} alerts opened", pipeline_.statistics().records,
                pipeline_.alerts().counters().opened);
   spdlog::default_logger()->flush();
@@ -190,14 +204,92 @@ void Service::on_report(const TrackReport& report) {
   if (pipeline_.statistics().accepted != accepted) health_.accepted(std::chrono::steady_clock::now());
 }
 
-void Service::on_alert(const AlertEvent& event) {
-  last_alert_seq_ = event.seq;
-  if (alert_log_) {
-    // Flushed per alert: an alert nobody was subscribed to must survive a crash.
+void Service::begin_run() {
+  run_id_ = make_run_id();
+  const std::optional<Numbering> saved = state_file_ ? state_file_->load() : std::nullopt;
+  AlertLogTail tail;
+  if (alert_log_) tail = read_alert_log_tail(alert_log_->path());
+  if (tail.unreadable_lines)
+    spdlog::warn("alert log {}: {} of {} lines unreadable (skipped while looking for open alerts)",
+                 alert_log_->path(), tail.unreadable_lines, tail.lines);
+  Numbering numbering = resume_point(saved, tail);
+  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  line_.clear();
+  protocol::append_start_json(line_, protocol::StartInfo{run_id_, wall}, numbering.last_seq);
+  start_line_ = line_;
+  if (alert_log_) alert_log_->append(line_);
+  // Ended, not resumed under their ids: this run does not know whether the pair is still
+  // in conflict until its tracks are rebuilt; if it is, the alert opens again (new id,
+  // new number) within `confirm` evaluations (design §4.7).
+  for (AlertEvent event : tail.open) {
+    event.state = AlertState::End;
+    event.end_reason = AlertEndReason::Restart;
+    event.t = tail.last_t;  // the last data time the previous run logged
+    event.seq = ++numbering.last_seq;
     line_.clear();
     protocol::append_alert_json(line_, event, event.seq);
     alert_log_->append(line_);
+    if (cat004_) cat004_->send_alert(event);
+  }
+  if (alert_log_) alert_log_->flush();
+  pipeline_.alerts().resume(numbering.last_seq, numbering.next_number);
+  last_alert_seq_ = numbering.last_seq;
+  save_numbering();
+  spdlog::info("run {}: seq continues after {}, next alert number {}; {} alerts left open by the last run ended "
+               "(reason restart)",
+               run_id_, numbering.last_seq, numbering.next_number, tail.open.size());
+}
+
+void Service::save_numbering() {
+  if (!state_file_) return;
+  const Numbering now{pipeline_.alerts().last_seq(), pipeline_.alerts().next_number()};
+  if (saved_ && now.last_seq == saved_->last_seq && now.next_number == saved_->next_number) return;
+  std::string error;
+  if (state_file_->save(now, run_id_, error)) {
+    saved_ = now;
+    if (state_errors_) spdlog::info("state file {} written again", state_file_->path());
+    state_errors_ = 0;
+    return;
+  }
+  // Counted; reported at the first failure and then every minute of them (one a second).
+  if (state_errors_++ % 60 == 0)
+    spdlog::error("cannot save the numbering: {} ({} failures; the alert log's tail still guards it)", error,
+                  state_errors_);
+}
+
+void Service::schedule_housekeeping() {
+  housekeeping_timer_.expires_after(std::chrono::seconds(1));
+  housekeeping_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    if (alert_log_) {
+      const bool was_failing = alert_log_->failing();
+      if (was_failing) alert_log_->flush();
+      if (config_.service.alert_log_sync == AlertLogSync::Interval) alert_log_->sync();
+      if (was_failing != alert_log_->failing()) modbus_dirty_ = true;
+    }
+    save_numbering();
+    schedule_housekeeping();
+  });
+}
+
+protocol::HealthReason Service::health(std::chrono::steady_clock::time_point now) const {
+  // The log first: the feed's state is also told by register 4 and ALIVE's "t", a lost
+  // record of the alerts by nothing else.
+  if (alert_log_ && alert_log_->failing()) return protocol::HealthReason::AlertLogFailing;
+  return health_.reason(now);
+}
+
+void Service::on_alert(const AlertEvent& event) {
+  last_alert_seq_ = event.seq;
+  if (alert_log_) {
+    // Written per alert: an alert nobody was subscribed to must survive a crash. While
+    // the file cannot take it, the event waits in memory and each event retries.
+    line_.clear();
+    protocol::append_alert_json(line_, event, event.seq);
+    alert_log_->append(line_);
+    const bool was_failing = alert_log_->failing();
     alert_log_->flush();
+    if (was_failing != alert_log_->failing()) modbus_dirty_ = true;
   }
   subscribers_->broadcast_alert(event);
   if (cat004_) cat004_->send_alert(event);
@@ -223,7 +315,7 @@ void Service::publish_modbus() {
   snapshot.live_tracks = static_cast<std::uint32_t>(pipeline_.live_tracks());
   snapshot.seconds_since_last_record = health_.seconds_since_accepted(now).value_or(1e9);
   snapshot.feed_healthy = health_.reason(now) == protocol::HealthReason::Healthy;
-  snapshot.degraded = !snapshot.feed_healthy;
+  snapshot.degraded = health(now) != protocol::HealthReason::Healthy;
   snapshot.uptime_s = static_cast<std::uint32_t>(std::chrono::duration<double>(now - started_).count());
   snapshot.unacknowledged = static_cast<std::uint32_t>(pipeline_.alerts().unacknowledged_count());
   modbus_->publish(snapshot);
@@ -305,7 +397,7 @@ void Service::alive() {
   status.records_per_s = records_per_s_;
   status.updates_per_s = updates_per_s_;
   status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
-  status.health = health_.reason(now);
+  status.health = health(now);
   subscribers_->broadcast_alive(status);
   if (cat004_) {
     protocol::Cat004Alive a;
@@ -376,6 +468,7 @@ void Service::shutdown() {
   tick_timer_.cancel();
   alive_timer_.cancel();
   modbus_timer_.cancel();
+  housekeeping_timer_.cancel();
   if (modbus_) modbus_->stop();
   watchdog_timer_.cancel();
   // Subscribers get what is queued for them, then the connection closes; io_.run()
@@ -398,7 +491,11 @@ std::string Service::stats_json() const {
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   if (cat004_) service.cat004 = protocol::Cat004Statistics{cat004_->datagrams_sent(), cat004_->send_errors()};
   if (modbus_) service.modbus = modbus_->stats();
-  if (alert_log_) service.alert_log_errors = alert_log_->write_errors();
+  if (alert_log_) {
+    service.alert_log_errors = alert_log_->write_errors();
+    service.alert_log_queued_bytes = alert_log_->pending_bytes();
+    service.alert_log_dropped = alert_log_->dropped_lines();
+  }
   service.resident_bytes = resident_bytes();
   return protocol::stats_json(pipeline_, service);
 }

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "cat004_sender.hpp"
+#include "continuity.hpp"
 #include "feed_health.hpp"
 #include "inputs.hpp"
 #include "line_file.hpp"
@@ -43,6 +45,15 @@ class Service {
  private:
   void on_report(const TrackReport& report);
   void on_alert(const AlertEvent& event);
+  /// Before the inputs start: the run id, the START line, the End ("restart") of every
+  /// alert the last run left open, and the numbering continued (design §4.7).
+  void begin_run();
+  /// Once a second: retries a failing alert log, syncs it (alert_log_sync "interval"),
+  /// saves the numbering when it moved.
+  void schedule_housekeeping();
+  void save_numbering();
+  /// The verdict every interface reports: the alert log's, then the feed's.
+  protocol::HealthReason health(std::chrono::steady_clock::time_point now) const;
   void schedule_tick();
   void schedule_alive();
   void schedule_watchdog(std::chrono::microseconds period);
@@ -66,6 +77,7 @@ class Service {
   boost::asio::steady_timer watchdog_timer_;
   boost::asio::steady_timer shutdown_timer_;
   boost::asio::steady_timer modbus_timer_;
+  boost::asio::steady_timer housekeeping_timer_;
   Config config_;
   ServiceOptions options_;
   Pipeline pipeline_;
@@ -73,6 +85,11 @@ class Service {
   std::vector<std::unique_ptr<Input>> inputs_;
   std::unique_ptr<LineFile> alert_log_;
   std::unique_ptr<LineFile> record_file_;
+  std::unique_ptr<StateFile> state_file_;  // none without a state directory
+  std::string run_id_;
+  std::string start_line_;  // this run's START object, for each new subscriber
+  std::optional<Numbering> saved_;  // as last written to the state file
+  std::uint64_t state_errors_ = 0;
   std::unique_ptr<Cat004Sender> cat004_;
   std::unique_ptr<ModbusServer> modbus_;
   bool modbus_dirty_ = true;  // alarm state changed since the last publish

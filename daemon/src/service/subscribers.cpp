@@ -54,6 +54,10 @@ void SubscriberSession::start() {
   std::string version;
   protocol::append_version_json(version, server_.source().seq());
   enqueue(std::make_shared<const std::string>(std::move(version)));
+  if (server_.source().start) {
+    std::string start = server_.source().start();
+    if (!start.empty()) enqueue(std::make_shared<const std::string>(std::move(start)));
+  }
   arm_request_deadline();
   read_request();
 }

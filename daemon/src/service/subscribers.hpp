@@ -106,6 +106,8 @@ class SubscriberServer {
     std::function<std::uint64_t()> seq;
     /// One STATS line (answer to "?STATS"), newline included.
     std::function<std::string()> stats;
+    /// The START line of this run, sent right after VERSION (design §5.3); "" none.
+    std::function<std::string()> start;
   };
 
   /// Connections beyond max_subscribers that may still ask ?STATS (and nothing else).

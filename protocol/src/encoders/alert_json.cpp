@@ -158,6 +158,17 @@ void append_version_json(std::string& out, std::uint64_t seq) {
   out.push_back('\n');
 }
 
+void append_start_json(std::string& out, const StartInfo& start, std::uint64_t seq) {
+  ObjectWriter o(out);
+  o.text("class", "START");
+  o.integer("seq", seq);
+  o.text("run", start.run);
+  o.text("release", release());
+  o.fixed("t", start.t, kTimeDecimals);
+  o.close();
+  out.push_back('\n');
+}
+
 void append_alert_json(std::string& out, const AlertEvent& event, std::uint64_t seq) {
   append_alert_object(out, event, seq);
   out.push_back('\n');

@@ -315,6 +315,9 @@ bool AlertStreamReader::read(std::string_view line) {
   } else if (cls == "ERROR") {
     parsed_class = StreamObjectClass::Error;
     ok = m.required("message", text_);
+  } else if (cls == "START") {
+    parsed_class = StreamObjectClass::Start;
+    ok = m.required("run", run_) && m.required("release", text_) && m.required("t", start_t_);
   } else if (cls == "VERSION") {
     parsed_class = StreamObjectClass::Version;
     ok = m.required("release", text_) && m.required("proto", proto_);

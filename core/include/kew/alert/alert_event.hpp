@@ -25,6 +25,9 @@ enum class AlertEndReason : std::uint8_t {
   None,         ///< not an End event
   Cleared,      ///< `clear` consecutive clear evaluations
   TrackDropped, ///< one of the two tracks was dropped (timeout, removal)
+  /// Still open in the alert log when kewd stopped (crash, kill or stop): ended by the
+  /// next run before any alert of its own (design §4.7), never emitted by the manager.
+  Restart,
 };
 
 /// The names of severities in the alert stream, ?WATCH and kew-watch.
@@ -43,10 +46,11 @@ inline constexpr util::NameTable<AlertState, 3> kAlertStateNames({{
 }});
 constexpr std::string_view to_string(AlertState s) { return kAlertStateNames.name(s); }
 /// The names of an End event's `reason` ("" for None: not an End event).
-inline constexpr util::NameTable<AlertEndReason, 3> kAlertEndReasonNames({{
+inline constexpr util::NameTable<AlertEndReason, 4> kAlertEndReasonNames({{
     {AlertEndReason::None, ""},
     {AlertEndReason::Cleared, "cleared"},
     {AlertEndReason::TrackDropped, "track_dropped"},
+    {AlertEndReason::Restart, "restart"},
 }});
 constexpr std::string_view to_string(AlertEndReason r) { return kAlertEndReasonNames.name(r); }
 
@@ -70,7 +74,8 @@ struct AlertEvent {
   std::string id;
   /// 16-bit alert number (CAT004 I004/040, Modbus table); stable for the alert's life.
   std::uint16_t number = 0;
-  /// Per-stream sequence number, assigned by the alert manager in emission order (from 1).
+  /// Per-stream sequence number, assigned by the alert manager in emission order (from 1,
+  /// or on from AlertManager::resume()).
   std::uint64_t seq = 0;
   AlertState state = AlertState::New;
   AlertEndReason end_reason = AlertEndReason::None;

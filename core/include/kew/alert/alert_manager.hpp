@@ -122,6 +122,17 @@ class AlertManager {
   };
   const Counters& counters() const { return counters_; }
   std::uint64_t last_seq() const { return seq_; }
+  /// The number the next alert to open will get.
+  std::uint16_t next_number() const { return next_number_; }
+
+  /// Continues a numbering begun elsewhere (kewd after a restart, design §4.7): the next
+  /// event gets `last_seq` + 1 and the next alert opened `next_number` (0 reads as 1).
+  /// Call before the first evaluation; without it, seq and number start at 1, as
+  /// kew-replay's deterministic output needs.
+  void resume(std::uint64_t last_seq, std::uint16_t next_number) {
+    seq_ = last_seq;
+    next_number_ = next_number == 0 ? 1 : next_number;
+  }
   const AlertConfig& config() const { return config_; }
 
  private:

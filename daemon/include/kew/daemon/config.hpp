@@ -38,6 +38,14 @@ inline constexpr util::NameTable<LogLevel, 7> kLogLevelNames({{
 }});
 constexpr std::string_view to_string(LogLevel level) { return kLogLevelNames.name(level); }
 
+/// When the alert log is forced to the disk (fdatasync; design §6.6).
+enum class AlertLogSync { None, Interval, Every };
+inline constexpr util::NameTable<AlertLogSync, 3> kAlertLogSyncNames({{
+    {AlertLogSync::None, "none"},          // the kernel writes back when it likes
+    {AlertLogSync::Interval, "interval"},  // at most once a second, when written
+    {AlertLogSync::Every, "every"},        // after each event (and acknowledgement)
+}});
+
 /// One `[[input]]` table.
 struct InputConfig {
   std::string name;                 ///< for logs and statistics; default "input<N>"
@@ -77,6 +85,10 @@ struct ServiceConfig {
   std::string alert_log;                ///< JSON-lines file of every alert event; "" = none
   std::uint64_t alert_log_max_bytes = 64ull << 20;
   int alert_log_keep = 5;
+  AlertLogSync alert_log_sync = AlertLogSync::Interval;
+  /// Where kewd keeps what must survive a restart (the last seq and alert number,
+  /// design §4.7); "" = the alert log's directory, or none without an alert log.
+  std::string state_directory;
   std::string record_file;              ///< canonical NDJSON of every decoded record; "" = none
   bool tracks_stream = true;            ///< allow WATCH "tracks": true
   /// A record dated more than this after the wall clock is refused ("future_time"), s.
@@ -116,6 +128,10 @@ struct Config : config::SharedConfig {
   std::string origin;  ///< the file's name in messages ("" for the built-in defaults)
 };
 
+/// The state directory kewd uses: `state_directory`, else the alert log's directory;
+/// "" when there is neither (seq and numbers then start at 1 at each start).
+std::string state_directory(const ServiceConfig& service);
+
 /// Parses TOML text; `origin` names it in error messages. Throws config::ConfigError.
 Config parse_config(std::string_view toml_text, std::string_view origin = "config");
 /// Reads and parses a file. Throws config::ConfigError.
@@ -140,7 +156,8 @@ std::vector<Listener> listeners(const Config& config);
 /// - no two listeners share a port (per protocol, TCP or UDP, and address family);
 /// - alert_log and record_file are distinct, are not directories, and can be written:
 ///   an existing file writable, its directory existing and writable (the alert log
-///   rotates by renaming in it; a new file is created in it).
+///   rotates by renaming in it; a new file is created in it);
+/// - the state directory is a writable directory, or can be created (its parent exists).
 void check_config(const Config& config, bool listen_any);
 
 }  // namespace kew::daemon

@@ -34,12 +34,15 @@ enum class HealthReason : std::uint8_t {
   NoData,          ///< no record accepted since the start
   FeedStale,       ///< no record accepted for a track timeout
   RecordsRefused,  ///< most records of the last seconds were refused
+  /// The alert log cannot be written (disk full, I/O error): events wait in memory.
+  AlertLogFailing,
 };
-inline constexpr util::NameTable<HealthReason, 4> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 5> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
     {HealthReason::RecordsRefused, "records_refused"},
+    {HealthReason::AlertLogFailing, "alert_log_failing"},
 }});
 
 /// Figures of the once-a-second ALIVE object.
@@ -63,6 +66,19 @@ struct AliveStatus {
 
 /// {"class":"VERSION","seq":…,"release":"MAJOR.MINOR.PATCH","proto":1}
 void append_version_json(std::string& out, std::uint64_t seq);
+
+/// The start of one run of kewd (design §4.7): first in the alert log of each run and
+/// sent to each subscriber right after VERSION, so that a reader sees every restart.
+struct StartInfo {
+  /// 32 lower-case hex digits, random for each run.
+  std::string_view run;
+  /// Wall clock time of the start, UTC seconds.
+  double t = 0.0;
+};
+
+/// {"class":"START","seq":…,"run":"…","release":"MAJOR.MINOR.PATCH","t":…}; `seq` is the
+/// last sequence number before this run (0 for the first run).
+void append_start_json(std::string& out, const StartInfo& start, std::uint64_t seq);
 
 /// One ALERT object. `seq` is the stream's sequence number for this line (callers that
 /// forward the alert manager's numbering pass `event.seq`).

@@ -45,7 +45,7 @@ inline constexpr std::size_t kMaxWatchRequestBytes = 4096;
 WatchParseResult parse_watch_request(std::string_view line);
 
 /// Class of one object of the stream.
-enum class StreamObjectClass : std::uint8_t { Version, Alert, Alerts, Alive, Error, Track, Ack };
+enum class StreamObjectClass : std::uint8_t { Version, Alert, Alerts, Alive, Error, Track, Ack, Start };
 
 /// Reads the stream's lines back into kew's types. One reader is reused for many lines
 /// (it keeps its parser and buffers); not thread-safe.
@@ -77,8 +77,11 @@ class AlertStreamReader {
   const std::vector<std::string>& acknowledged() const { return acknowledged_; }
   /// ACK: the client that acknowledged ("HOST:PORT"; "" when the object names none).
   const std::string& acknowledging_client() const { return acknowledging_client_; }
-  /// ERROR: the message. VERSION: the release.
+  /// ERROR: the message. VERSION, START: the release.
   const std::string& text() const { return text_; }
+  /// START: the run id and the wall clock time of the start (UTC s).
+  const std::string& run() const { return run_; }
+  double start_t() const { return start_t_; }
   /// VERSION: the protocol version.
   int proto() const { return proto_; }
 
@@ -95,6 +98,8 @@ class AlertStreamReader {
   AliveStatus alive_;
   TrackReport track_;
   std::string text_;
+  std::string run_;
+  double start_t_ = 0.0;
   std::vector<std::string> acknowledged_;
   std::string acknowledging_client_;
   int proto_ = 0;

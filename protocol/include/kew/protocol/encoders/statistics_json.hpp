@@ -68,6 +68,10 @@ struct ServiceStatistics {
   std::optional<Cat004Statistics> cat004;  ///< when CAT004 is enabled
   std::optional<ModbusStatistics> modbus;  ///< when Modbus is enabled
   std::optional<std::uint64_t> alert_log_errors;  ///< when an alert log is written
+  /// When an alert log is written: bytes of events waiting for it (a failing disk) and
+  /// lines dropped because more than the queue's bound waited.
+  std::optional<std::uint64_t> alert_log_queued_bytes;
+  std::optional<std::uint64_t> alert_log_dropped;
   std::optional<std::uint64_t> resident_bytes;    ///< when /proc tells
 };
 
