@@ -133,6 +133,55 @@ TEST(RunStart, AStrayFirstTimeDoesNotFixTheClock) {
   }
 }
 
+TEST(RunStart, ARestartOfASparseFeedAppliesEveryRecordOnce) {
+  // Review finding: a stray first record an hour ahead, then a sparse feed (a record every
+  // 12 s, each more than max_time_jump_s after the last): the restart replays records that
+  // the time guard holds and releases; the replay must not iterate a buffer that
+  // processing reuses. Every record of the feed is applied once, none refused.
+  Feed run;
+  TrackReport stray = head_on("C", kT0, 0.0);
+  stray.t = kT0 + 3600.0;
+  run.pipeline.process(stray);
+  for (int i = 0; i < 12; ++i) {
+    TrackReport r = head_on("A", kT0 + 12.0 * i, 0.0);
+    r.id = "sparse-feed-track-with-a-long-identifier-" + std::to_string(i % 3);
+    run.pipeline.process(r);
+  }
+  run.pipeline.end_of_input();
+  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 1u);
+  EXPECT_EQ(run.pipeline.statistics().accepted, 1u + 12u);  // the stray, then all 12
+  EXPECT_EQ(run.pipeline.rejections().count("future_time"), 0u);
+  EXPECT_EQ(run.pipeline.rejections().count("too_late"), 5u);  // before the restart
+  EXPECT_EQ(run.pipeline.tracks().size(), 3u);
+}
+
+TEST(RunStart, AFeedWhoseDelayGrewCatchesUpWithTheLiveTick) {
+  // Review finding: live, a feed running 5 s late switches to a path 20 s late. Its
+  // records are too late; the tick (which moves the clock while nothing is accepted)
+  // must not carry the clock out of their reach for ever.
+  Feed run;
+  for (int i = 0; i < 10; ++i) run.pipeline.process(head_on("A", kT0 + i, 0.0));  // wall = t + 5
+  double wall = kT0 + 10.0 + 5.0;
+  double last_accepted_wall = wall - 1.0;
+  std::size_t accepted_after_switch = 0;
+  for (int i = 0; i < 30; ++i, wall += 1.0) {
+    const std::uint64_t before = run.pipeline.statistics().accepted;
+    run.pipeline.process(head_on("A", wall - 20.0, 0.0));
+    if (run.pipeline.statistics().accepted != before) {
+      ++accepted_after_switch;
+      last_accepted_wall = wall;
+    } else {
+      // kewd's tick when nothing was accepted for a whole second: the last data time plus
+      // the wall time since.
+      run.pipeline.advance_to(run.pipeline.statistics().last_data_time + (wall - last_accepted_wall));
+    }
+  }
+  // Its records are too late (and, for this one aircraft, out of order until they pass its
+  // last record at kT0 + 9); from then on every one is accepted.
+  EXPECT_EQ(accepted_after_switch, 15u);
+  EXPECT_GT(run.pipeline.rejections().count("too_late"), 0u);
+}
+
 TEST(RunStart, AnEstablishedRunIsNeverRestarted) {
   // Once five records were accepted, records elsewhere are only refused.
   Feed run;

@@ -88,15 +88,18 @@ void Pipeline::restart_young_run() {
   std::vector<TrackReport> refused = std::move(young_refused_);
   young_refused_.clear();
   drop_all();
-  guard_scratch_.clear();
-  time_guard_.release(guard_scratch_);  // held ahead of a clock that is being discarded
+  // Held ahead of a clock that is being discarded. A local copy: process_plausible()
+  // reuses guard_scratch_.
+  std::vector<TrackReport> held;
+  time_guard_.release(held);
   if (!config_.reference) projection_.reset();
   kdt_.emplace(config_.kinetic, 0.0);
   started_ = false;
   accepted_in_run_ = 0;
+  late_since_accepted_ = false;
   ++stats_.runs_restarted;
   for (const TrackReport& r : refused) process_plausible(r);
-  for (const TrackReport& r : guard_scratch_) process_plausible(r);
+  for (const TrackReport& r : held) process_plausible(r);
 }
 
 void Pipeline::process_plausible(const TrackReport& report) {
@@ -157,10 +160,14 @@ void Pipeline::apply_record(const TrackReport& report) {
 
   const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
   if (admitted.admission == track::Admission::Rejected) {
-    if (accepted_in_run_ < kYoungRun &&
-        (admitted.refusal == "too_late" || admitted.refusal == "outside_coverage")) {
-      young_refused_.push_back(report);
+    if (admitted.refusal == "too_late") {
+      newest_late_t_ = late_since_accepted_ ? std::max(newest_late_t_, report.t) : report.t;
+      late_since_accepted_ = true;
     }
+    // A configured reference cannot move: only a clock set by a stray record can.
+    const bool elsewhere = admitted.refusal == "too_late" ||
+                           (admitted.refusal == "outside_coverage" && !config_.reference);
+    if (accepted_in_run_ < kYoungRun && elsewhere) young_refused_.push_back(report);
     // The source ended the track: so it is, even when this last record is refused
     // (a repeated time, say); otherwise it would linger until the timeout.
     if (report.track_end) {
@@ -172,6 +179,7 @@ void Pipeline::apply_record(const TrackReport& report) {
   ++stats_.accepted;
   ++accepted_in_run_;
   young_refused_.clear();
+  late_since_accepted_ = false;
   stats_.last_data_time = clock_;
   track::Track& track = tracks_[admitted.slot];
   if (admitted.admission == track::Admission::AwaitingVelocity) {
@@ -225,6 +233,10 @@ void Pipeline::move_clock(double t) {
 
 void Pipeline::advance_to(double t) {
   if (!started_ || !std::isfinite(t)) return;
+  // Records arriving too late since the last accepted one (a feed whose delay grew by
+  // more than max_lateness_s) must be able to catch up: the tick may not carry the clock
+  // beyond their reach, or they would be refused for ever.
+  if (late_since_accepted_) t = std::min(t, newest_late_t_ + tracks_.config().max_lateness_s);
   move_clock(t);
 }
 

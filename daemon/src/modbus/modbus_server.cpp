@@ -94,6 +94,7 @@ struct Client {
   Clock::time_point last_request;
   std::string peer;          ///< "HOST:PORT", for acknowledgements and logs
   bool may_write = true;     ///< in acknowledge_from, or that list is empty
+  bool requested = false;    ///< has completed a request (a panel, not a silent socket)
 };
 
 /// The peer of a connected socket as "HOST:PORT" (canonical_ip form), or "?".
@@ -267,12 +268,25 @@ class ModbusServer::Impl {
     }
   }
 
-  /// Makes room for a new client: drops the one quiet longest, if quiet long enough.
+  /// Makes room for a new client: drops the client quiet longest among those that never
+  /// completed a request and are quiet kEvictableAfter; else the one quiet longest if
+  /// quiet half the idle timeout. A panel that polls every few seconds is never evicted
+  /// by a burst of connections (review finding).
   void evict_oldest_idle(Clock::time_point now) {
-    auto oldest = std::min_element(clients_.begin(), clients_.end(), [](const Client& a, const Client& b) {
-      return a.last_request < b.last_request;
-    });
-    if (oldest != clients_.end() && now - oldest->last_request >= kEvictableAfter) drop(*oldest, "modbus_evicted");
+    const auto quietest = [&](bool silent_only) {
+      auto best = clients_.end();
+      for (auto it = clients_.begin(); it != clients_.end(); ++it) {
+        if (silent_only && it->requested) continue;
+        if (best == clients_.end() || it->last_request < best->last_request) best = it;
+      }
+      return best;
+    };
+    if (auto silent = quietest(true); silent != clients_.end() && now - silent->last_request >= kEvictableAfter) {
+      drop(*silent, "modbus_evicted");
+      return;
+    }
+    if (auto oldest = quietest(false); oldest != clients_.end() && now - oldest->last_request >= idle_timeout_ / 2)
+      drop(*oldest, "modbus_evicted");
   }
 
   void drop_idle_clients(Clock::time_point now) {
@@ -313,6 +327,7 @@ class ModbusServer::Impl {
   /// Answers one ADU; false when the client must be dropped.
   bool answer(Client& client, std::span<const std::uint8_t> adu) {
     client.last_request = Clock::now();
+    client.requested = true;
     const std::uint8_t unit = adu[protocol::MbapFramer::kHeaderBytes - 1];
     const auto pdu = adu.subspan(protocol::MbapFramer::kHeaderBytes);
     protocol::ModbusVerdict verdict;

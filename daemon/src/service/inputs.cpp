@@ -139,6 +139,8 @@ class TcpStream : public std::enable_shared_from_this<TcpStream> {
       idle_timer_.async_wait([weak = weak_from_this()](const boost::system::error_code& ec) {
         const auto self = weak.lock();
         if (ec || !self || self->ended_) return;
+        // A completion already queued when a read re-armed the timer is not a time-out.
+        if (self->idle_timer_.expiry() > std::chrono::steady_clock::now()) return;
         if (self->on_idle_) self->on_idle_(*self);
         self->close();
       });

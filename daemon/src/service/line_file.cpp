@@ -188,8 +188,13 @@ bool LineFile::keep_whole_lines(std::size_t written) {
 
 bool LineFile::sync() {
   if (fd_ < 0 || !unsynced_) return true;
-  unsynced_ = false;
-  if (::fdatasync(fd_) == 0) return true;
+  if (::fdatasync(fd_) == 0) {
+    unsynced_ = false;
+    if (failing_ && pending_.empty() && !truncate_to_) failing_ = false;
+    return true;
+  }
+  // The written pages may be lost (EIO): say so, and sync again next time.
+  failing_ = true;
   report_failure("sync", std::strerror(errno));
   return false;
 }

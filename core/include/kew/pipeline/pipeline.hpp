@@ -92,6 +92,8 @@ class Pipeline {
 
   /// Moves the clock to t (UTC s) without a record — live mode's periodic tick: drops
   /// tracks that timed out and executes kinetic events up to t. Ignored if t ≤ now().
+  /// While records arrive too late (none accepted since), the clock stops within
+  /// max_lateness_s of the newest of them, so a feed whose delay grew can catch up.
   void advance_to(double t);
 
   /// Ends every alert and drops every track at the current time (end of a replay, or a
@@ -173,6 +175,8 @@ class Pipeline {
   track::TimeGuard time_guard_;
   std::vector<TrackReport> guard_scratch_;
   std::vector<TrackReport> young_refused_;
+  bool late_since_accepted_ = false;  // a record was refused too_late since the last accepted
+  double newest_late_t_ = 0.0;        // the newest such record's time
   std::uint64_t accepted_in_run_ = 0;
   double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::Projection> projection_;

@@ -19,10 +19,11 @@ namespace kew::daemon {
 
 class ModbusServer {
  public:
-  /// When every slot is taken, a new client replaces the one that has completed no
-  /// request for the longest time, if that is at least this long (an HMI polls more
-  /// often); silent connections then cannot lock the panel out even for
-  /// `config.idle_timeout_s`, after which a client that completes no request is closed.
+  /// When every slot is taken, a new client replaces the quietest client that has never
+  /// completed a request, if quiet at least this long, else the quietest of all if quiet
+  /// half of `config.idle_timeout_s` (a panel polling every few seconds is never the one);
+  /// silent connections then cannot lock the panel out, and a client that completes no
+  /// request for `config.idle_timeout_s` is closed.
   static constexpr std::chrono::seconds kEvictableAfter{1};
   /// Out of descriptors, accepting pauses this long at first, doubling up to 1 s.
   static constexpr std::chrono::milliseconds kAcceptBackoff{100};
