@@ -22,6 +22,7 @@
 #include "kew/protocol/asterix/item_format.hpp"
 #include "kew/protocol/asterix/record_walker.hpp"
 #include "kew/protocol/asterix/uap.hpp"
+#include "kew/pipeline/pipeline.hpp"
 
 namespace kew::protocol {
 namespace {
@@ -531,6 +532,57 @@ TEST(AsterixRoundTrip, ALiveStreamIsDatedByWhenItsBytesArrived) {
     EXPECT_DOUBLE_EQ(reports[1].t, today + 1);
     EXPECT_DOUBLE_EQ(reports[2].t, today + 86396);
     EXPECT_DOUBLE_EQ(reports[3].t, today + 86400 + 1);  // tomorrow 00:00:01
+  }
+}
+
+TEST(AsterixRoundTrip, ACat062FeedAcrossMidnightKeepsAlerting) {
+  // Issue 18: a head-on pair 45 NM apart reported by one SDPS every 4 s from 23:59:20
+  // UTC, closing at 900 kt: the conflict comes within the 120 s look-ahead after
+  // midnight. Decoded as a stream (days counted from the
+  // first record) and live (dated by arrival), the records cross midnight in order and
+  // the conflict alerts.
+  std::mt19937 random(5);
+  const double day = 1714348800;  // 2024-04-29T00:00:00Z
+  const double metres_per_degree = 111320.0 * std::cos(50.0 * std::numbers::pi / 180.0);
+  for (const bool live : {false, true}) {
+    SCOPED_TRACE(live ? "live" : "stream");
+    AsterixOptions options;
+    options.day_start_utc_s = day;
+    auto decoder = make_asterix_decoder(AsterixFraming::RawBlocks, options);
+    Pipeline pipeline;
+    std::size_t opened = 0;
+    double opened_at = 0.0;
+    pipeline.set_alert_sink([&](const AlertEvent& e) {
+      if (e.state != AlertState::New) return;
+      ++opened;
+      opened_at = e.t;
+    });
+    const ReportSink sink = [&](const TrackReport& r) { pipeline.process(r); };
+    for (double dt = 0.0; dt < 100.0; dt += 4.0) {
+      const double t = 86400.0 - 40.0 + dt;  // seconds since the first day's midnight
+      for (const int side : {-1, 1}) {
+        Cat062Truth truth;
+        truth.sac = 1;
+        truth.sic = 2;
+        truth.tod_s = std::fmod(t, 86400.0);
+        truth.track_number = static_cast<std::uint16_t>(side < 0 ? 1 : 2);
+        truth.lat = 50.0;
+        truth.lon = 8.0 + side * (22.5 * 1852.0 - 231.5 * dt) / metres_per_degree;
+        truth.alt_ft = 35000.0;
+        truth.vx = -side * 231.5;
+        truth.vy = 0.0;
+        truth.vr_fpm = 0.0;
+        if (live) decoder->set_receive_time(day + t + 0.5);
+        const Bytes block = data_block(62, {random_cat062_record(random, truth)});
+        decoder->feed(std::as_bytes(std::span<const std::uint8_t>(block)), sink);
+      }
+    }
+    decoder->finish(sink);
+    pipeline.end_of_input();
+    EXPECT_EQ(opened, 1u);
+    EXPECT_GT(opened_at, day + 86400.0);  // after midnight, on the next day
+    EXPECT_EQ(pipeline.rejections().total(), 0u);
+    EXPECT_EQ(pipeline.statistics().accepted, 50u);
   }
 }
 
