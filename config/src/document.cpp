@@ -56,19 +56,11 @@ void TableReader::string(std::string_view key, std::string& out) {
 }
 
 void TableReader::mode3a_list(std::string_view key, std::vector<std::uint16_t>& out) {
-  const toml::node* node = take(key);
-  if (!node) return;
-  const auto* array = node->as_array();
-  if (!array) fail(node, fmt::format("{} must be an array of Mode 3/A codes (\"7777\")", key));
-  std::vector<std::uint16_t> codes;
-  for (const toml::node& element : *array) {
-    const auto* text = element.as_string();
-    const bool octal = text && text->get().size() == 4 &&
-                       text->get().find_first_not_of("01234567") == std::string::npos;
-    if (!octal) fail(&element, fmt::format("{}: each code is a string of four octal digits (\"7777\")", key));
-    codes.push_back(static_cast<std::uint16_t>(std::stoul(text->get(), nullptr, 8)));
-  }
-  out = std::move(codes);
+  string_list(key, "Mode 3/A codes (\"7777\")", "a string of four octal digits (\"7777\")", out,
+              [](const std::string& text) -> std::optional<std::uint16_t> {
+                if (text.size() != 4 || text.find_first_not_of("01234567") != std::string::npos) return std::nullopt;
+                return static_cast<std::uint16_t>(std::stoul(text, nullptr, 8));
+              });
 }
 
 void TableReader::address(std::string_view key, std::string& out) {
@@ -79,20 +71,9 @@ void TableReader::address(std::string_view key, std::string& out) {
 }
 
 void TableReader::ip_list(std::string_view key, std::vector<std::string>& out) {
-  const toml::node* node = take(key);
-  if (!node) return;
-  const auto* array = node->as_array();
-  if (!array) fail(node, fmt::format("{} must be an array of IP addresses (\"127.0.0.1\")", key));
-  std::vector<std::string> addresses;
-  for (const toml::node& element : *array) {
-    const auto* text = element.as_string();
-    const std::optional<std::string> ip = text ? canonical_ip(text->get()) : std::nullopt;
-    if (!ip)
-      fail(&element, fmt::format("{}: each entry is an IPv4 or IPv6 address without port or brackets "
-                                 "(\"127.0.0.1\", \"::1\")", key));
-    addresses.push_back(*ip);
-  }
-  out = std::move(addresses);
+  string_list(key, "IP addresses (\"127.0.0.1\")",
+              "an IPv4 or IPv6 address without port or brackets (\"127.0.0.1\", \"::1\")", out,
+              [](const std::string& text) { return canonical_ip(text); });
 }
 
 void TableReader::path(std::string_view key, std::string& out) {

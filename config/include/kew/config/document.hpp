@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <span>
 #include <string>
@@ -79,6 +80,24 @@ class TableReader {
 
  private:
   const toml::node* take(std::string_view key);
+  /// An array of strings, each turned into a T by `convert` (nullopt: refused). `what`
+  /// names the array's entries, `each` what one entry must be, in the error messages.
+  template <class T, class Convert>
+  void string_list(std::string_view key, std::string_view what, std::string_view each, std::vector<T>& out,
+                   Convert convert) {
+    const toml::node* node = take(key);
+    if (!node) return;
+    const auto* array = node->as_array();
+    if (!array) fail(node, fmt::format("{} must be an array of {}", key, what));
+    std::vector<T> values;
+    for (const toml::node& element : *array) {
+      const auto* text = element.as_string();
+      std::optional<T> value = text ? convert(text->get()) : std::nullopt;
+      if (!value) fail(&element, fmt::format("{}: each entry is {}", key, each));
+      values.push_back(std::move(*value));
+    }
+    out = std::move(values);
+  }
 
   const toml::table& table_;
   std::string_view origin_;
