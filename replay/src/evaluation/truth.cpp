@@ -358,7 +358,9 @@ void Truth::build_losses(const std::vector<std::pair<std::uint64_t, const PairTr
   }
 
   aircraft_traces_.reserve(by_aircraft.size());
-  for (auto& [key, trace] : by_aircraft) {
+  for (auto& keyed : by_aircraft) {
+    const std::uint64_t key = keyed.first;
+    PairTrace& trace = keyed.second;  // plain references: clang 14 cannot capture a structured binding
     PairTrace merged;
     merged.close = union_of(std::move(trace.close));
     // Loss ranges in time order (ties: the lower track pair), joined where they overlap
