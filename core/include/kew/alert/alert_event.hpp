@@ -30,6 +30,22 @@ enum class AlertEndReason : std::uint8_t {
   Restart,
 };
 
+/// Which prediction found the pair's conflict (design §4.4): the alert says why it exists.
+enum class Hypothesis : std::uint8_t {
+  Linear,     ///< both aircraft in straight lines at constant rates
+  LevelOff,   ///< a climb or descent stopping at its selected altitude (vertical intent)
+  Turn,       ///< a turning aircraft continuing its turn (the turn hypothesis)
+  Proximity,  ///< separation is lost now, whatever the prediction
+};
+/// The names of an ALERT's `hypothesis`.
+inline constexpr util::NameTable<Hypothesis, 4> kHypothesisNames({{
+    {Hypothesis::Linear, "linear"},
+    {Hypothesis::LevelOff, "level_off"},
+    {Hypothesis::Turn, "turn"},
+    {Hypothesis::Proximity, "proximity"},
+}});
+constexpr std::string_view to_string(Hypothesis h) { return kHypothesisNames.name(h); }
+
 /// The names of severities in the alert stream, ?WATCH and kew-watch.
 inline constexpr util::NameTable<Severity, 4> kSeverityNames({{
     {Severity::None, "none"},
@@ -92,6 +108,10 @@ struct AlertEvent {
   double cpa_v_ft = 0.0;  ///< vertical distance at CPA, feet (>= 0)
   double sep_h_m = 0.0;   ///< current horizontal separation, geodesic, metres
   double sep_v_ft = 0.0;  ///< current vertical separation, feet (>= 0)
+  /// The prediction that found the conflict at this evaluation.
+  Hypothesis hypothesis = Hypothesis::Linear;
+  /// Name of the [[region]] whose parameters judged the pair; empty: the defaults.
+  std::string region;
   /// Acknowledged by an operator (Modbus coil 0) before this event was emitted.
   bool acknowledged = false;
 };

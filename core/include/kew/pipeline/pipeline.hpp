@@ -16,6 +16,7 @@
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/probe/proximity_search.hpp"
+#include "kew/region/region_map.hpp"
 #include "kew/track/time_guard.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/indexed_heap.hpp"
@@ -32,6 +33,9 @@ struct PipelineConfig {
   probe::SeparationMinima minima;
   alert::AlertConfig alerts;
   eligibility::EligibilityConfig eligibility;
+  /// Parameter regions and inhibition volumes (design §4.8), in precedence order; each
+  /// valid (region::RegionMap::problem), names distinct.
+  std::vector<region::Region> regions;
 
   /// kew's kinetic defaults: absolute τ = 50 m, H = 300 s, §8.3 on.
   static kinetic::KineticConfig default_kinetic() {

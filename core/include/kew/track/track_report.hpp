@@ -6,8 +6,24 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
+
+#include "kew/util/name_table.hpp"
 
 namespace kew {
+
+/// Which altitude the aircraft's automation was set to level at (design §4.4, vertical
+/// intent): the pilot's MCP/FCU selection or the FMS target altitude.
+enum class SelectedAltitudeSource : std::uint8_t {
+  Mcp,  ///< MCP/FCU selected altitude (also CAT062/021 "final state selected altitude")
+  Fms,  ///< FMS selected altitude
+};
+/// The names of the canonical record's `sel_src`.
+inline constexpr util::NameTable<SelectedAltitudeSource, 2> kSelectedAltitudeSourceNames({{
+    {SelectedAltitudeSource::Mcp, "mcp"},
+    {SelectedAltitudeSource::Fms, "fms"},
+}});
+constexpr std::string_view to_string(SelectedAltitudeSource s) { return kSelectedAltitudeSourceNames.name(s); }
 
 struct TrackReport {
   /// Data time, UTC seconds since the Unix epoch (fractional).
@@ -31,6 +47,15 @@ struct TrackReport {
   std::optional<double> trk_deg;
   /// Vertical rate, feet per minute, positive climbing. Absent: treated as 0 (level).
   std::optional<double> vr_fpm;
+  /// Selected altitude, feet (the level the aircraft's automation will stop at), only when
+  /// the source says it is valid (design §5.1 gives each format's validity rule).
+  std::optional<double> sel_ft;
+  /// Where sel_ft comes from; meaningful only with sel_ft.
+  SelectedAltitudeSource sel_src = SelectedAltitudeSource::Mcp;
+  /// Track angle rate, degrees per second, positive turning right (clockwise), when the
+  /// source gives one (CAT062 I062/380 TAR, CAT021 I021/165, CAT048 BDS 5,0, readsb
+  /// `track_rate`). Absent: the track table derives it from the last track angles.
+  std::optional<double> tar_dps;
   /// Callsign / aircraft identification, trimmed; empty when unknown.
   std::string callsign;
   /// 12-bit Mode 3/A code when the source gives one.
