@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -87,6 +88,45 @@ void TableReader::utc_day(std::string_view key, std::string& out) {
   if (node && !parse_utc_day(out)) fail(node, fmt::format("{} = \"{}\" is not YYYY-MM-DD", key, out));
 }
 
+namespace {
+// [lat, lon] in range, or nullopt.
+std::optional<geo::GeodeticPosition> lat_lon(const toml::node& node) {
+  const toml::array* pair = node.as_array();
+  if (!pair || pair->size() != 2) return std::nullopt;
+  double degrees[2];
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::optional<double> value = (*pair)[i].value<double>();  // an integer or a float
+    if (!value) return std::nullopt;
+    degrees[i] = *value;
+  }
+  if (!(std::abs(degrees[0]) <= 90.0 && std::abs(degrees[1]) <= 180.0)) return std::nullopt;
+  return geo::GeodeticPosition{degrees[0], degrees[1]};
+}
+constexpr std::string_view kLatLon = "[lat, lon]: latitude in [-90, 90] then longitude in [-180, 180], degrees";
+}  // namespace
+
+void TableReader::position(std::string_view key, std::optional<geo::GeodeticPosition>& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto position = lat_lon(*node);
+  if (!position) fail(node, fmt::format("{} must be {}", key, kLatLon));
+  out = position;
+}
+
+void TableReader::position_list(std::string_view key, std::vector<geo::GeodeticPosition>& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const toml::array* array = node->as_array();
+  if (!array) fail(node, fmt::format("{} must be an array of positions [[lat, lon], ...]", key));
+  std::vector<geo::GeodeticPosition> positions;
+  for (const toml::node& element : *array) {
+    const auto position = lat_lon(element);
+    if (!position) fail(&element, fmt::format("{}: entry {} must be {}", key, positions.size() + 1, kLatLon));
+    positions.push_back(*position);
+  }
+  out = std::move(positions);
+}
+
 void TableReader::finish() const {
   for (const auto& [key, node] : table_)
     if (!used_.count(key.str())) fail(&node, fmt::format("unknown key \"{}\"", key.str()));
@@ -103,12 +143,10 @@ Document Document::parse(std::string_view text, std::string origin) {
   return Document(std::move(root), std::move(origin));
 }
 
-namespace {
-
-/// The file's text, refused before anything large is read: a configuration is a small
-/// regular file, and a path to a device, a pipe or a huge file must fail at once rather
-/// than fill the memory of `--check-config` or of a daemon reloading on SIGHUP.
-std::string read_capped(const std::string& path) {
+// The file's text, refused before anything large is read: a configuration is a small
+// regular file, and a path to a device, a pipe or a huge file must fail at once rather
+// than fill the memory of `--check-config` or of a daemon reloading on SIGHUP.
+std::string read_config_file(const std::string& path) {
   // O_NONBLOCK: opening a FIFO without a writer must not wait; it is refused just below.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw ConfigError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
@@ -141,9 +179,7 @@ std::string read_capped(const std::string& path) {
   return text;
 }
 
-}  // namespace
-
-Document Document::load(const std::string& path) { return parse(read_capped(path), path); }
+Document Document::load(const std::string& path) { return parse(read_config_file(path), path); }
 
 void Document::refuse_unknown_sections(std::span<const std::string_view> known) const {
   for (const auto& [key, node] : root_) {

@@ -6,13 +6,15 @@
 #include <fmt/format.h>
 
 #include "kew/config/document.hpp"
+#include "kew/config/regions.hpp"
+#include "parameter_ranges.hpp"
 
 namespace kew::config {
 
 namespace {
 
-constexpr double kNauticalMile = 1852.0;
-constexpr double kFoot = 0.3048;
+using ranges::kFoot;
+using ranges::kNauticalMile;
 
 void read_projection(TableReader& r, PipelineConfig& p) {
   double lat = NAN, lon = NAN;
@@ -52,9 +54,9 @@ void read_probe(TableReader& r, PipelineConfig& p) {
   r.choice("mode", p.probe_mode, probe::kProbeModeNames);
   double horizontal_nm = p.minima.horizontal_m / kNauticalMile;
   double vertical_ft = p.minima.vertical_m / kFoot;
-  r.number("horizontal_nm", horizontal_nm, 0.1, 100.0);
-  r.number("vertical_ft", vertical_ft, 1.0, 100000.0);
-  r.number("lookahead_s", p.minima.lookahead_s, 0.0, 3600.0);
+  r.number("horizontal_nm", horizontal_nm, ranges::kHorizontalNm.lo, ranges::kHorizontalNm.hi);
+  r.number("vertical_ft", vertical_ft, ranges::kVerticalFt.lo, ranges::kVerticalFt.hi);
+  r.number("lookahead_s", p.minima.lookahead_s, ranges::kLookaheadS.lo, ranges::kLookaheadS.hi);
   r.number("vertical_lookahead_s", p.minima.vertical_lookahead_s, 0.0, 3600.0);
   double tolerance_ft = p.minima.altimetry_tolerance_m / kFoot;
   r.number("altimetry_tolerance_ft", tolerance_ft, 0.0, 1000.0);
@@ -65,9 +67,9 @@ void read_probe(TableReader& r, PipelineConfig& p) {
 }
 
 void read_alerts(TableReader& r, alert::AlertConfig& a) {
-  r.integer("confirm", a.confirm, 1, 1000);
-  r.integer("clear", a.clear, 1, 1000);
-  r.number("warning_s", a.warning_s, 0.0, 3600.0);
+  r.integer("confirm", a.confirm, ranges::kEvaluationsMin, ranges::kEvaluationsMax);
+  r.integer("clear", a.clear, ranges::kEvaluationsMin, ranges::kEvaluationsMax);
+  r.number("warning_s", a.warning_s, ranges::kWarningS.lo, ranges::kWarningS.hi);
   r.number("update_t_los_s", a.update_t_los_s, 0.0, 3600.0);
   r.number("update_cpa_h_m", a.update_cpa_h_m, 0.0, 1e6);
   r.number("update_cpa_v_ft", a.update_cpa_v_ft, 0.0, 1e5);
@@ -125,6 +127,8 @@ SharedConfig read_shared_config(const Document& document) {
     read_radar(r, site);
     config.decoding.asterix.radars.push_back(site);
   });
+  // After [probe]: a region's vertical_ft is checked against its altimetry tolerance.
+  config.pipeline.regions = read_regions(document, config.pipeline, &config.regions_geojson);
   // Without a configured reference the radars' mean position is a better centre than
   // whatever record comes first (design §4.2). Longitudes are averaged as given: radars
   // of one feed do not straddle ±180°.

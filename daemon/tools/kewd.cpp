@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "logging.hpp"
@@ -22,6 +25,25 @@ namespace {
 constexpr int kUsageError = 64;   // EX_USAGE: bad flags or configuration
 constexpr int kStartFailed = 1;
 constexpr const char* kSystemConfig = KEW_SYSTEM_CONFIG;  // set by CMake from the install prefix
+
+/// One line of --check-config per region (design §4.8): its shape, band and effect.
+std::string describe(const kew::region::Region& r) {
+  std::string text = r.polygon.empty() ? fmt::format("circle of {} NM", r.radius_m / 1852.0)
+                                       : fmt::format("polygon of {} vertices", r.polygon.size());
+  const kew::region::Region unbounded;
+  if (r.floor_ft != unbounded.floor_ft) text += fmt::format(", from {} ft", r.floor_ft);
+  if (r.ceiling_ft != unbounded.ceiling_ft) text += fmt::format(", below {} ft", r.ceiling_ft);
+  if (r.inhibit) return text + ", inhibits alerts";
+  const kew::region::RegionParameters& p = r.parameters;
+  std::vector<std::string> set;
+  if (p.horizontal_m) set.push_back(fmt::format("horizontal {} NM", *p.horizontal_m / 1852.0));
+  if (p.vertical_m) set.push_back(fmt::format("vertical {} ft", *p.vertical_m / 0.3048));
+  if (p.lookahead_s) set.push_back(fmt::format("look-ahead {} s", *p.lookahead_s));
+  if (p.warning_s) set.push_back(fmt::format("warning {} s", *p.warning_s));
+  if (p.confirm) set.push_back(fmt::format("confirm {}", *p.confirm));
+  if (p.clear) set.push_back(fmt::format("clear {}", *p.clear));
+  return text + (set.empty() ? ", the default parameters" : fmt::format(", {}", fmt::join(set, ", ")));
+}
 
 struct Flags {
   std::string config_path;
@@ -122,6 +144,9 @@ int main(int argc, char** argv) {
     for (const auto& input : config.inputs)
       if (input.transport == kew::daemon::Transport::File)
         std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());
+    if (!config.regions_geojson.empty()) std::printf("regions file: %s\n", config.regions_geojson.c_str());
+    for (const auto& region : config.pipeline.regions)
+      std::printf("region %s: %s\n", region.name.c_str(), describe(region).c_str());
     return 0;
   }
 

@@ -84,6 +84,8 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.eligibility.level_rate_fpm, d.eligibility.level_rate_fpm);
   EXPECT_EQ(p.eligibility.same_code_distance_nm, d.eligibility.same_code_distance_nm);
   EXPECT_EQ(p.eligibility.same_code_altitude_ft, d.eligibility.same_code_altitude_ft);
+  EXPECT_TRUE(p.regions.empty());
+  EXPECT_EQ(file.regions_geojson, "");
   EXPECT_EQ(file.cat004.enabled, defaults.cat004.enabled);
   EXPECT_EQ(file.cat004.destination, defaults.cat004.destination);
   EXPECT_EQ(file.cat004.interface, defaults.cat004.interface);

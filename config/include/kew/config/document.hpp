@@ -18,6 +18,7 @@
 #include <toml++/toml.h>
 
 #include "kew/config/config_error.hpp"
+#include "kew/geo/projection.hpp"
 #include "kew/util/name_table.hpp"
 
 namespace kew::config {
@@ -74,6 +75,16 @@ class TableReader {
   void path(std::string_view key, std::string& out);
   /// A "YYYY-MM-DD" string, checked with parse_utc_day (utc_day.hpp) and kept as text.
   void utc_day(std::string_view key, std::string& out);
+  /// A position [lat, lon] in WGS84 degrees, latitude first as everywhere in kew's TOML
+  /// (latitude in [-90, 90], longitude in [-180, 180]).
+  void position(std::string_view key, std::optional<geo::GeodeticPosition>& out);
+  /// An array of positions [[lat, lon], ...]; an error names the entry (from 1) and its line.
+  void position_list(std::string_view key, std::vector<geo::GeodeticPosition>& out);
+
+  /// The node of `key`, nullptr when absent (to point a message about it at its line).
+  const toml::node* node(std::string_view key) const { return table_.get(key); }
+  /// The table itself (a message about the table as a whole: its header's line).
+  const toml::node* table_node() const { return &table_; }
 
   /// Refuses every key of the table that no reader above took.
   void finish() const;
@@ -108,15 +119,18 @@ class TableReader {
 /// Largest configuration file read, bytes (1 MiB; the shipped kew.toml is a few KB).
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;
 
+/// The text of a configuration file (a kew TOML file, or a GeoJSON file it names). Throws
+/// ConfigError naming the file when it cannot be read, is not a regular file (/dev/zero,
+/// a pipe) or is larger than kMaxConfigBytes; nothing more than the cap is ever read.
+std::string read_config_file(const std::string& path);
+
 /// A parsed configuration file.
 class Document {
  public:
   /// Parses TOML text; `origin` names it in messages. Throws ConfigError
   /// ("origin:line:column: ...") on a syntax error.
   static Document parse(std::string_view text, std::string origin);
-  /// Reads and parses the file at `path`. Throws ConfigError naming the file when it
-  /// cannot be read, is not a regular file (/dev/zero, a pipe) or is larger than
-  /// kMaxConfigBytes; nothing more than the cap is ever read.
+  /// Reads (read_config_file) and parses the file at `path`. Throws ConfigError.
   static Document load(const std::string& path);
 
   const std::string& origin() const { return origin_; }

@@ -1,6 +1,7 @@
 #pragma once
 // The configuration every kew tool shares (design §5.7): one TOML file whose
-// [projection], [tracks], [kinetic], [probe], [alerts], [decoding] and [[radar]] tables
+// [projection], [tracks], [kinetic], [probe], [alerts], [eligibility], [decoding],
+// [[radar]], [[region]] and [regions] tables
 // set up the pipeline and the decoders identically in kewd, kew-replay and the tools
 // that replay recordings, so that a recording replayed with a daemon's file gives the
 // daemon's alerts. Every key, its unit, range and default is documented in
@@ -19,13 +20,15 @@ namespace kew::config {
 class Document;
 
 struct SharedConfig {
-  PipelineConfig pipeline;
+  PipelineConfig pipeline;  ///< regions: the [[region]] tables, then [regions] geojson's
   protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits
+  /// The GeoJSON file of [regions] geojson, absolute; empty when none.
+  std::string regions_geojson;
 };
 
 /// Top-level tables read into SharedConfig.
-inline constexpr std::array<std::string_view, 8> kSharedSections = {
-    "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar"};
+inline constexpr std::array<std::string_view, 10> kSharedSections = {
+    "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar", "region", "regions"};
 /// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
 /// kewd file and leaves them unread.
 inline constexpr std::array<std::string_view, 4> kDaemonSections = {"service", "cat004", "modbus", "input"};
