@@ -302,5 +302,43 @@ TEST(ConfigRegions, TheGeoJsonFileIsFoundBesideTheConfigurationAndComesAfterTheT
   std::filesystem::remove_all(dir);
 }
 
+// deploy/examples: the Barcelona terminal area in TOML and in GeoJSON are the same regions.
+TEST(ConfigRegions, TheBarcelonaExamplesAgree) {
+  const SharedConfig toml = load_shared_config(std::string(KEW_DEPLOY_DIR) + "/examples/barcelona-tma.toml");
+  const SharedConfig json = load_shared_config(std::string(KEW_DEPLOY_DIR) + "/examples/barcelona-tma-geojson.toml");
+  ASSERT_EQ(toml.pipeline.regions.size(), 2u);
+  ASSERT_EQ(json.pipeline.regions.size(), toml.pipeline.regions.size());
+  EXPECT_TRUE(toml.regions_geojson.empty());
+  EXPECT_NE(json.regions_geojson.find("examples/barcelona-tma.geojson"), std::string::npos);
+  for (std::size_t i = 0; i < toml.pipeline.regions.size(); ++i) {
+    const Region& a = toml.pipeline.regions[i];
+    const Region& b = json.pipeline.regions[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.polygon.size(), b.polygon.size());
+    EXPECT_EQ(a.center.lat_deg, b.center.lat_deg);
+    EXPECT_EQ(a.center.lon_deg, b.center.lon_deg);
+    EXPECT_EQ(a.radius_m, b.radius_m);
+    EXPECT_EQ(a.floor_ft, b.floor_ft);
+    EXPECT_EQ(a.ceiling_ft, b.ceiling_ft);
+    EXPECT_EQ(a.inhibit, b.inhibit);
+    EXPECT_EQ(a.parameters.horizontal_m, b.parameters.horizontal_m);
+    EXPECT_EQ(a.parameters.vertical_m, b.parameters.vertical_m);
+  }
+  // The inhibition volume comes first: inside the terminal area, it would be shadowed.
+  EXPECT_TRUE(toml.pipeline.regions[0].inhibit);
+  EXPECT_DOUBLE_EQ(*toml.pipeline.regions[1].parameters.horizontal_m, 3 * kNm);
+  EXPECT_DOUBLE_EQ(*toml.pipeline.regions[1].parameters.vertical_m, 1000 * kFt);
+  // The radar of the shared upc-bcn-cat048 recording, which the examples replay as is.
+  ASSERT_EQ(toml.decoding.asterix.radars.size(), 1u);
+  EXPECT_EQ(toml.decoding.asterix.radars[0].sac, 20);
+  EXPECT_EQ(toml.decoding.asterix.radars[0].sic, 129);
+  const region::RegionMap map(toml.pipeline.regions);
+  // LEBL ARP at 1,500 ft: inhibited; at 5,000 ft: the terminal area; at FL200: neither.
+  const double lat = 41.0 + 17.0 / 60 + 49.0 / 3600, lon = 2.0 + 4.0 / 60 + 42.0 / 3600;
+  EXPECT_EQ(map.locate(lat, lon, 1500.0), 0u);
+  EXPECT_EQ(map.locate(lat, lon, 5000.0), 1u);
+  EXPECT_EQ(map.locate(lat, lon, 20000.0), region::RegionMap::kNone);
+}
+
 }  // namespace
 }  // namespace kew::config
