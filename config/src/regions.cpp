@@ -73,6 +73,7 @@ Region read_region_table(TableReader& r, const PipelineConfig& pipeline) {
   r.finish();  // a misspelt key ("radius") before what its absence implies
   if ((r.node("polygon") != nullptr) == center.has_value())
     r.fail(r.table_node(), "a region has either polygon = [[lat, lon], ...] or center = [lat, lon] with radius_nm");
+  if (r.node("polygon") && region.polygon.empty()) r.fail(r.node("polygon"), "polygon has no vertices");
   if (center) {
     if (std::isnan(radius_nm)) r.fail(r.node("center"), "center needs radius_nm (the circle's radius)");
     region.center = *center;
