@@ -66,7 +66,9 @@ void print_alert(const kew::AlertEvent& e, const char* state) {
   if (e.state != kew::AlertState::End) {
     line += fmt::format("  t_los {:>3.0f} s  cpa {:.1f} NM {:.0f} ft in {:.0f} s", e.t_los_s, e.cpa_h_m / kMetresPerNm,
                         e.cpa_v_ft, e.t_cpa_s);
+    line += fmt::format("  by {}", kew::to_string(e.hypothesis));
   }
+  if (!e.region.empty()) line += fmt::format("  region {}", e.region);
   if (e.acknowledged) line += "  ack";
   std::printf("%s  [%s]\n", line.c_str(), e.id.c_str());
 }

@@ -44,7 +44,7 @@ constexpr const char* kUpdateLine =
     R"("b":{"id":"3C6586","src":"sbs","cs":"DLH4AB","lat":51.512346,"lon":-0.300000,)"
     R"("alt_ft":35500,"gs_kt":430.3,"trk_deg":90.0,"vr_fpm":-1500,"tn":13},)"
     R"("t_los_s":41.0,"t_cpa_s":63.5,"cpa_h_m":1234.6,"cpa_v_ft":300,"sep_h_m":15000.0,)"
-    R"("sep_v_ft":500,"ack":false})"
+    R"("sep_v_ft":500,"hypothesis":"linear","region":"","ack":false})"
     "\n";
 
 TEST(AlertJson, AlertObjectIsByteExact) {
@@ -72,8 +72,49 @@ TEST(AlertJson, EndObjectCarriesItsReason) {
             R"("b":{"id":"3C6586","src":"sbs","cs":"","lat":51.512346,"lon":-0.300000,)"
             R"("alt_ft":35500,"gs_kt":430.3,"trk_deg":90.0,"vr_fpm":-1500,"tn":13},)"
             R"("t_los_s":null,"t_cpa_s":63.5,"cpa_h_m":1234.6,"cpa_v_ft":300,)"
-            R"("sep_h_m":15000.0,"sep_v_ft":500,"ack":true})"
+            R"("sep_h_m":15000.0,"sep_v_ft":500,"hypothesis":"linear","region":"","ack":true})"
             "\n");
+}
+
+TEST(AlertJson, AlertSaysWhichHypothesisFoundItAndWhichRegionJudgedIt) {
+  const std::vector<std::pair<Hypothesis, std::string>> hypotheses{
+      {Hypothesis::Linear, "linear"},
+      {Hypothesis::LevelOff, "level_off"},
+      {Hypothesis::Turn, "turn"},
+      {Hypothesis::Proximity, "proximity"},
+  };
+  AlertStreamReader reader;
+  for (const auto& [hypothesis, name] : hypotheses) {
+    AlertEvent e = update_event();
+    e.hypothesis = hypothesis;
+    e.region = name == "turn" ? "" : "EGLL \"TMA\"";  // the defaults, or a named region
+    std::string line;
+    append_alert_json(line, e, 17);
+    const std::string region = e.region.empty() ? R"("")" : R"("EGLL \"TMA\"")";
+    EXPECT_NE(line.find(R"(,"sep_v_ft":500,"hypothesis":")" + name + R"(","region":)" + region +
+                        R"(,"ack":false})"),
+              std::string::npos)
+        << line;
+    ASSERT_TRUE(reader.read(line)) << reader.error();
+    EXPECT_EQ(reader.alert().hypothesis, hypothesis) << name;
+    EXPECT_EQ(reader.alert().region, e.region) << name;
+  }
+}
+
+TEST(AlertStreamReader, AlertOfAnOlderServerWasFoundByTheLinearPredictionWithTheDefaults) {
+  std::string line = kUpdateLine;
+  line.replace(line.find(R"("hypothesis":"linear","region":"",)"), 34, "");
+  ASSERT_EQ(line.find("hypothesis"), std::string::npos);
+  AlertStreamReader reader;
+  AlertEvent turning = update_event();  // the reader's previous alert does not leak
+  turning.hypothesis = Hypothesis::Turn;
+  turning.region = "north";
+  std::string previous;
+  append_alert_json(previous, turning, 16);
+  ASSERT_TRUE(reader.read(previous)) << reader.error();
+  ASSERT_TRUE(reader.read(line)) << reader.error();
+  EXPECT_EQ(reader.alert().hypothesis, Hypothesis::Linear);
+  EXPECT_EQ(reader.alert().region, "");
 }
 
 TEST(AlertJson, AbsurdMagnitudesArePrintedShortAndReadBack) {
@@ -423,6 +464,11 @@ TEST(AlertStreamReader, RefusesBrokenLinesWithAReason) {
           "member \"b\".\"tn\" must be an integer in [0, 65535]");
   line = kUpdateLine;
   refused(line.replace(line.find(",\"sep_v_ft\":500"), 15, ""), "missing member \"sep_v_ft\"");
+  line = kUpdateLine;
+  refused(line.replace(line.find("\"linear\""), 8, "\"curved\""), "unknown hypothesis \"curved\"");
+  line = kUpdateLine;
+  refused(line.replace(line.find("\"region\":\"\""), 11, "\"region\":7"),
+          "member \"region\" must be a string");
 }
 
 // --- round trip ------------------------------------------------------------------------
@@ -474,6 +520,9 @@ AlertEvent random_event(std::mt19937& random) {
   e.cpa_v_ft = feet(random);
   e.sep_h_m = metres(random);
   e.sep_v_ft = feet(random);
+  const auto& hypotheses = kHypothesisNames.entries();
+  e.hypothesis = hypotheses[random() % hypotheses.size()].value;
+  e.region = random_text(random);
   e.acknowledged = (random() & 1) != 0;
   return e;
 }
@@ -525,6 +574,8 @@ TEST(AlertJsonRoundTrip, RandomEventsReadBackWithinThePrintedPrecision) {
     expect_within(read.cpa_v_ft, written.cpa_v_ft, 0, "cpa_v_ft");
     expect_within(read.sep_h_m, written.sep_h_m, 1, "sep_h_m");
     expect_within(read.sep_v_ft, written.sep_v_ft, 0, "sep_v_ft");
+    EXPECT_EQ(read.hypothesis, written.hypothesis);
+    EXPECT_EQ(read.region, written.region);
     EXPECT_EQ(read.acknowledged, written.acknowledged);
 
     // Encoding what was read gives the same bytes: the printed form is a fixed point.

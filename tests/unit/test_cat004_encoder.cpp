@@ -93,7 +93,7 @@ TEST(Cat004Encoder, StcaRecordIsByteExact) {
       0x80,                                // 170 FSPEC: AI
       'B', 'A', 'W', '1', '2', '3', ' ',   //   AI
       0x50,                                // 120 FSPEC: CC, CD
-      0x01,                                //   CC: TID 0, CPC 0, CS HIGH
+      0x19,                                //   CC: TID 1, CPC LPF, CS HIGH
       0x00, 0x05, 0x00,                    //   CD 10 s × 128
       0xFC,                                // 070 FSPEC: TC TCA CHS MHS CVS MVS
       0x00, 0x14, 0x80,                    //   TC 41 s × 128
@@ -187,8 +187,51 @@ TEST(Cat004Encoder, ReaderReadsBackWhatWasEncoded) {
   EXPECT_EQ(r.minimum_horizontal_separation_m, 1234.5);
   EXPECT_EQ(r.current_vertical_separation_ft, 1000.0);
   EXPECT_EQ(r.minimum_vertical_separation_ft, 300.0);
-  EXPECT_EQ(r.conflict_classification, 0x01);
+  EXPECT_EQ(r.conflict_classification, 0x19);
+  ASSERT_TRUE(r.stca_filters);
+  EXPECT_TRUE(r.stca_filters->linear_prediction);
+  EXPECT_FALSE(r.stca_filters->current_proximity);
+  EXPECT_FALSE(r.stca_filters->manoeuvre_hazard);
   EXPECT_EQ(r.conflict_duration_s, 10.0);
+}
+
+// I004/120 CC, TID 1 (bits 8–5): the Conflict Properties Class (bits 4–2) has one filter
+// bit for the hypothesis that found the conflict; CS (bit 1) is HIGH from warning up.
+TEST(Cat004Encoder, ConflictClassificationNamesTheFilterOfTheHypothesis) {
+  struct Case {
+    Hypothesis hypothesis;
+    Severity severity;
+    unsigned cc;
+    Cat004StcaFilters filters;  // LPF, CPF, MHF
+  };
+  const std::vector<Case> cases{
+      {Hypothesis::Linear, Severity::Warning, 0x19, {true, false, false}},
+      {Hypothesis::LevelOff, Severity::Caution, 0x18, {true, false, false}},
+      {Hypothesis::Turn, Severity::Warning, 0x13, {false, false, true}},
+      {Hypothesis::Proximity, Severity::Loss, 0x15, {false, true, false}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(to_string(c.hypothesis)));
+    AlertEvent e = warning_alert();
+    e.hypothesis = c.hypothesis;
+    e.severity = c.severity;
+    e.region = "north";  // not in CAT004: the record is the same length
+    Cat004Encoder encoder(options());
+    ASSERT_TRUE(encoder.add_alert(e));
+    const auto datagram = encoder.take_datagrams().at(0);
+    ASSERT_EQ(datagram.size(), 56u);
+    // Block header (3), FSPEC (3), 010 000 020 040 045 030 (11), 170 (8), 120's FSPEC (1).
+    EXPECT_EQ(static_cast<unsigned>(datagram[26]), c.cc);
+
+    Cat004Reader reader;
+    const auto records = read_all(datagram, reader);
+    ASSERT_EQ(records.size(), 1u);
+    EXPECT_EQ(records[0].conflict_classification, c.cc);
+    ASSERT_TRUE(records[0].stca_filters);
+    EXPECT_EQ(records[0].stca_filters->linear_prediction, c.filters.linear_prediction);
+    EXPECT_EQ(records[0].stca_filters->current_proximity, c.filters.current_proximity);
+    EXPECT_EQ(records[0].stca_filters->manoeuvre_hazard, c.filters.manoeuvre_hazard);
+  }
 }
 
 TEST(Cat004Encoder, FiguresAreRoundedToTheItemResolution) {
@@ -312,6 +355,33 @@ TEST(Cat004Reader, DecodesModeSIdentificationModeAAndPredictedPosition) {
   EXPECT_EQ(a.predicted_alt_ft, 35000.0);
   EXPECT_EQ(a.mode_s_identification, "BAW123");
   EXPECT_EQ(records[0].track_number_1, 3130);
+}
+
+// The CPC bits are LPF, CPF, MHF only under TID 1 of an STCA message.
+TEST(Cat004Reader, DecodesStcaFiltersOnlyInTheirTable) {
+  const auto record_with = [](unsigned message_type, unsigned cc) {
+    return bytes({
+        0x04, 0x00, 0x0A,           // CAT 4, LEN 10
+        0xC1, 0x20,                 // 010 000 | 120
+        0x00, 0x01, message_type,   // SAC 0 SIC 1, message type
+        0x40, cc,                   // 120 FSPEC: CC
+    });
+  };
+  Cat004Reader reader;
+  auto records = read_all(record_with(7, 0x1E), reader);  // STCA, TID 1: all three
+  ASSERT_EQ(records.size(), 1u);
+  ASSERT_TRUE(records[0].stca_filters);
+  EXPECT_TRUE(records[0].stca_filters->linear_prediction);
+  EXPECT_TRUE(records[0].stca_filters->current_proximity);
+  EXPECT_TRUE(records[0].stca_filters->manoeuvre_hazard);
+  records = read_all(record_with(7, 0x08), reader);  // STCA, TID 0: another table
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].conflict_classification, 0x08);
+  EXPECT_FALSE(records[0].stca_filters);
+  records = read_all(record_with(5, 0x18), reader);  // APW, TID 1: APW severities
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_FALSE(records[0].stca_filters);
+  EXPECT_EQ(reader.rejections().total(), 0u);
 }
 
 TEST(Cat004Reader, RejectsMalformedInputByReason) {

@@ -280,7 +280,7 @@ TEST(Cat004Tshark, DecodesEncodedMessagesToTheEncodedValues) {
   EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_MHS_VALUE").at(0)), 1234.5);
   EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_CVS_VALUE").at(0)), 1000.0);
   EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_MVS_VALUE").at(0)), 300.0);
-  EXPECT_EQ(alerts.at("asterix.004_120_CC_TID"), (std::vector<std::string>{"0", "0"}));
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_TID"), (std::vector<std::string>{"1", "1"}));
   EXPECT_EQ(alerts.at("asterix.004_120_CC_CS"), (std::vector<std::string>{"0", "1"}));
   EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_120_CD_VALUE").at(1)), 4.0);
 
@@ -293,6 +293,40 @@ TEST(Cat004Tshark, DecodesEncodedMessagesToTheEncodedValues) {
   EXPECT_TRUE(ended.at("asterix.004_070_TC_VALUE").empty());
   EXPECT_TRUE(ended.at("asterix.004_170_AI1_VALUE").empty());
 
+  EXPECT_EQ(tshark_problems(pcap), "") << "tshark reports malformed frames or expert info";
+  std::remove(pcap.c_str());
+}
+
+// The filter bits of I004/120 CC (TID 1 of STCA: CPC = LPF, CPF, MHF). Wireshark 4.0's
+// dissector shows the Conflict Properties Class as one 3-bit number (the edition's table
+// of its meaning per TID is not in it): LPF 4, CPF 2, MHF 1.
+TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
+  KEW_REQUIRE_TSHARK();
+  const std::vector<Hypothesis> hypotheses{Hypothesis::Linear, Hypothesis::LevelOff,
+                                           Hypothesis::Turn, Hypothesis::Proximity};
+  Cat004Encoder encoder(Cat004Options{});
+  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
+    AlertEvent e = stca(AlertState::Update, i % 2 == 0 ? Severity::Caution : Severity::Loss,
+                        static_cast<std::uint16_t>(i + 1));
+    e.hypothesis = hypotheses[i];
+    e.region = "north";
+    ASSERT_TRUE(encoder.add_alert(e));
+  }
+  const std::vector<Datagram> datagrams = encoder.take_datagrams();
+  ASSERT_EQ(datagrams.size(), 1u);
+  const std::string pcap = write_pcap(datagrams, "cat004_filters");
+  const auto frames = tshark_fields(
+      pcap, {"asterix.004_040_VALUE", "asterix.004_120_CC_TID", "asterix.004_120_CC_CP",
+             "asterix.004_120_CC_CS"});
+  ASSERT_EQ(frames.size(), 1u) << "tshark decoded no frames from " << pcap;
+  const FieldValues& f = frames[0];
+  std::vector<long> numbers;  // tshark shows the raw 040 in hex, "0x0001"
+  for (const std::string& text : f.at("asterix.004_040_VALUE")) numbers.push_back(integer(text));
+  EXPECT_EQ(numbers, (std::vector<long>{1, 2, 3, 4}));
+  EXPECT_EQ(f.at("asterix.004_120_CC_TID"), (std::vector<std::string>{"1", "1", "1", "1"}));
+  // linear: LPF; level_off: LPF; turn: MHF; proximity: CPF.
+  EXPECT_EQ(f.at("asterix.004_120_CC_CP"), (std::vector<std::string>{"4", "4", "1", "2"}));
+  EXPECT_EQ(f.at("asterix.004_120_CC_CS"), (std::vector<std::string>{"0", "1", "0", "1"}));
   EXPECT_EQ(tshark_problems(pcap), "") << "tshark reports malformed frames or expert info";
   std::remove(pcap.c_str());
 }

@@ -122,6 +122,8 @@ void append_alert_object(std::string& out, const AlertEvent& e, std::uint64_t se
   o.fixed("cpa_v_ft", e.cpa_v_ft, kFeetDecimals);
   o.fixed("sep_h_m", e.sep_h_m, kMetreSecondDecimals);
   o.fixed("sep_v_ft", e.sep_v_ft, kFeetDecimals);
+  o.text("hypothesis", to_string(e.hypothesis));
+  o.text("region", e.region);
   o.boolean("ack", e.acknowledged);
   o.close();
 }

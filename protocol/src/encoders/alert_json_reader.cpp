@@ -166,6 +166,8 @@ bool read_alert(dom::object object, AlertEvent& event, std::string& error) {
   event = AlertEvent{};
   Members m(object, error);
   std::string_view state, severity, reason;
+  // Servers before "hypothesis" found every conflict by the linear prediction.
+  std::string_view hypothesis = to_string(Hypothesis::Linear);
   dom::object a, b;
   if (!(m.required("id", event.id) && m.optional("number", event.number) &&
         m.required("seq", event.seq) && m.required("state", state) &&
@@ -174,17 +176,20 @@ bool read_alert(dom::object object, AlertEvent& event, std::string& error) {
         m.required("a", a) && m.required("b", b) && m.required("t_los_s", event.t_los_s) &&
         m.required("t_cpa_s", event.t_cpa_s) && m.required("cpa_h_m", event.cpa_h_m) &&
         m.required("cpa_v_ft", event.cpa_v_ft) && m.required("sep_h_m", event.sep_h_m) &&
-        m.required("sep_v_ft", event.sep_v_ft) && m.optional("ack", event.acknowledged))) {
+        m.required("sep_v_ft", event.sep_v_ft) && m.optional("hypothesis", hypothesis) &&
+        m.optional("region", event.region) && m.optional("ack", event.acknowledged))) {
     return false;
   }
-  if (!parse_name(kAlertStateNames, state, event.state)) return m.fail("unknown state " + quoted(state));
-  if (!parse_name(kSeverityNames, severity, event.severity)) {
-    return m.fail("unknown severity " + quoted(severity));
-  }
-  if (!parse_name(kAlertEndReasonNames, reason, event.end_reason)) {
-    return m.fail("unknown reason " + quoted(reason));
-  }
-  return read_party(a, "a", event.a, error) && read_party(b, "b", event.b, error);
+  const auto named = [&m](const auto& names, std::string_view member, std::string_view text,
+                          auto& out) {
+    return parse_name(names, text, out) ||
+           m.fail("unknown " + std::string(member) + " " + quoted(text));
+  };
+  return named(kAlertStateNames, "state", state, event.state) &&
+         named(kSeverityNames, "severity", severity, event.severity) &&
+         named(kAlertEndReasonNames, "reason", reason, event.end_reason) &&
+         named(kHypothesisNames, "hypothesis", hypothesis, event.hypothesis) &&
+         read_party(a, "a", event.a, error) && read_party(b, "b", event.b, error);
 }
 
 bool read_alive(dom::object object, AliveStatus& alive, std::string& error) {

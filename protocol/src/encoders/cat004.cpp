@@ -118,13 +118,35 @@ void write_aircraft(FieldList& record, unsigned frn, const AlertParty& party) {
   subfields.write_to(record.field(frn));
 }
 
-/// I004/120: CC (table 0, properties class 0, CS = HIGH from warning up) and CD (time
-/// since the alert opened, 1/128 s).
+/// The CC octet of I004/120 in an STCA message: TID (bits 8–5) = 1, the table whose
+/// Conflict Properties Class (bits 4–2) holds the filters that raised the alert: LPF
+/// (linear prediction, bit 4), CPF (current proximity, bit 3), MHF (manoeuvre hazard,
+/// bit 2); then CS (bit 1), HIGH from warning up.
+unsigned conflict_classification(const AlertEvent& event) {
+  constexpr unsigned kTableFilters = 1u << 4;
+  constexpr unsigned kLpf = 1u << 3, kCpf = 1u << 2, kMhf = 1u << 1, kHigh = 1u;
+  unsigned filter = kLpf;
+  switch (event.hypothesis) {
+    case Hypothesis::Linear:
+    case Hypothesis::LevelOff:  // a straight-line prediction that stops at a level
+      filter = kLpf;
+      break;
+    case Hypothesis::Proximity:
+      filter = kCpf;
+      break;
+    case Hypothesis::Turn:
+      filter = kMhf;
+      break;
+  }
+  return kTableFilters | filter | (event.severity >= Severity::Warning ? kHigh : 0u);
+}
+
+/// I004/120: CC (the filter that found the conflict, and its severity) and CD (time since
+/// the alert opened, 1/128 s).
 void write_conflict_characteristics(FieldList& record, const AlertEvent& event) {
   constexpr unsigned kCc = 2, kCd = 4;
   FieldList subfields;
-  const bool high = event.severity >= Severity::Warning;
-  subfields.field(kCc).u8(high ? 1 : 0);
+  subfields.field(kCc).u8(conflict_classification(event));
   const double duration = event.t - event.opened_t;
   if (std::isfinite(duration)) subfields.field(kCd).u24(saturated(duration, 1.0 / 128.0, 24));
   subfields.write_to(record.field(kFrn120));

@@ -139,7 +139,15 @@ void read_items(const asterix::RecordItems& items, Cat004Record& r) {
     };
     r.has_conflict_characteristics = true;
     r.conflict_nature = octets(subfield(0));
-    if (const auto cc = subfield(1); !cc.empty()) r.conflict_classification = cc[0];
+    if (const auto cc = subfield(1); !cc.empty()) {
+      r.conflict_classification = cc[0];
+      constexpr std::uint8_t kStca = 7;
+      constexpr unsigned kTableFilters = 1;
+      if (r.message_type == kStca && (cc[0] >> 4) == kTableFilters) {
+        r.stca_filters = Cat004StcaFilters{(cc[0] & 0x08) != 0, (cc[0] & 0x04) != 0,
+                                           (cc[0] & 0x02) != 0};
+      }
+    }
     r.conflict_probability_pct = unsigned_quantity(subfield(2), 0.5);
     r.conflict_duration_s = unsigned_quantity(subfield(3), 1.0 / 128.0);
   }

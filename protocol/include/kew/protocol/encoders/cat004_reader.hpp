@@ -36,6 +36,14 @@ struct Cat004Aircraft {
   std::optional<double> cleared_flight_level;
 };
 
+/// The filters that raised an STCA alert: the Conflict Properties Class of I004/120 CC
+/// under table TID = 1 of message type 7 (STCA).
+struct Cat004StcaFilters {
+  bool linear_prediction = false;  ///< LPF, CPC bit 3 (CC bit 4)
+  bool current_proximity = false;  ///< CPF, CPC bit 2 (CC bit 3)
+  bool manoeuvre_hazard = false;   ///< MHF, CPC bit 1 (CC bit 2)
+};
+
 struct Cat004Record {
   std::optional<Cat004SourceId> source;         ///< I004/010
   std::optional<std::uint8_t> message_type;     ///< I004/000
@@ -59,6 +67,8 @@ struct Cat004Record {
   bool has_conflict_characteristics = false;
   std::vector<std::uint8_t> conflict_nature;          ///< CN octets as sent (FX included)
   std::optional<std::uint8_t> conflict_classification;  ///< CC octet: TID(4) CPC(3) CS(1)
+  /// CC of an STCA message (type 7) with TID 1: its filter bits.
+  std::optional<Cat004StcaFilters> stca_filters;
   std::optional<double> conflict_probability_pct;
   std::optional<double> conflict_duration_s;
   // I004/074, 075, 076
