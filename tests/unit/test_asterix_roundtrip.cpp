@@ -23,64 +23,16 @@
 #include "kew/protocol/asterix/record_walker.hpp"
 #include "kew/protocol/asterix/uap.hpp"
 #include "kew/pipeline/pipeline.hpp"
+#include "asterix_writer.hpp"
 
 namespace kew::protocol {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using namespace asterix_writer;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kFtPerM = 1.0 / 0.3048;
 constexpr double kKtPerMs = 3600.0 / 1852.0;
-
-// ---- A test-only ASTERIX writer ---------------------------------------------------------
-
-void put(Bytes& out, std::uint64_t value, int bytes) {
-  for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<std::uint8_t>(value >> (8 * i)));
-}
-
-/// One record: items by FRN, written in FRN order after an FSPEC that announces them.
-class RecordWriter {
- public:
-  void set(unsigned frn, Bytes item) { items_[frn] = std::move(item); }
-
-  Bytes bytes() const {
-    unsigned last = 0;
-    for (const auto& [frn, item] : items_) last = std::max(last, frn);
-    const unsigned fspec_bytes = (last + 6) / 7;
-    Bytes out(fspec_bytes, 0);
-    for (const auto& [frn, item] : items_) {
-      out[(frn - 1) / 7] |= static_cast<std::uint8_t>(0x80U >> ((frn - 1) % 7));
-    }
-    for (unsigned i = 0; i + 1 < fspec_bytes; ++i) out[i] |= 0x01;  // FX
-    for (const auto& [frn, item] : items_) out.insert(out.end(), item.begin(), item.end());
-    return out;
-  }
-
- private:
-  std::map<unsigned, Bytes> items_;
-};
-
-Bytes data_block(std::uint8_t category, const std::vector<Bytes>& records) {
-  Bytes body;
-  for (const Bytes& r : records) body.insert(body.end(), r.begin(), r.end());
-  Bytes block{category};
-  put(block, body.size() + 3, 2);
-  block.insert(block.end(), body.begin(), body.end());
-  return block;
-}
-
-/// A compound item announcing subfields `present` (0-based) with the given contents.
-Bytes compound_item(const std::map<unsigned, Bytes>& present) {
-  unsigned last = 0;
-  for (const auto& [index, sub] : present) last = std::max(last, index + 1);
-  const unsigned primary = std::max(1U, (last + 6) / 7);
-  Bytes out(primary, 0);
-  for (const auto& [index, sub] : present) out[index / 7] |= static_cast<std::uint8_t>(0x80U >> (index % 7));
-  for (unsigned i = 0; i + 1 < primary; ++i) out[i] |= 0x01;
-  for (const auto& [index, sub] : present) out.insert(out.end(), sub.begin(), sub.end());
-  return out;
-}
 
 /// 8 characters of 6-bit ICAO code in 6 bytes.
 Bytes icao_characters(const std::string& text) {
@@ -93,20 +45,6 @@ Bytes icao_characters(const std::string& text) {
   Bytes out;
   put(out, bits, 6);
   return out;
-}
-
-std::int64_t quantize(double value, double lsb) { return std::llround(value / lsb); }
-
-/// Decodes `stream` (data blocks) as one datagram: every block is decoded, whatever it holds.
-std::vector<TrackReport> decode_bytes(const Bytes& stream, const AsterixOptions& options = {},
-                                      Rejections* rejections = nullptr) {
-  auto decoder = make_asterix_decoder(AsterixFraming::Datagram, options);
-  std::vector<TrackReport> reports;
-  const ReportSink sink = [&](const TrackReport& r) { reports.push_back(r); };
-  decoder->feed(std::as_bytes(std::span<const std::uint8_t>(stream)), sink);
-  decoder->finish(sink);
-  if (rejections != nullptr) rejections->merge(decoder->rejections());
-  return reports;
 }
 
 // ---- Random CAT062 records --------------------------------------------------------------
@@ -391,28 +329,6 @@ TEST(AsterixRoundTrip, Cat062RecordWithoutPositionIsCounted) {
   EXPECT_EQ(rejections.count("cat062_cartesian_only"), 1U);
 }
 
-/// A minimal CAT062 record of SAC/SIC 25/100 that the decoder accepts: time of day
-/// `tod_lsb` (1/128 s), a WGS-84 position, FL350, and the track number if given.
-RecordWriter minimal_cat062(std::uint32_t tod_lsb, std::optional<std::uint16_t> track_number) {
-  using namespace asterix::cat062;
-  RecordWriter w;
-  w.set(kDataSource, {25, 100});
-  Bytes tod;
-  put(tod, tod_lsb, 3);
-  w.set(kTimeOfTrack, tod);
-  Bytes position;
-  put(position, static_cast<std::uint32_t>(quantize(51.47, 180.0 / 33554432.0)), 4);
-  put(position, static_cast<std::uint32_t>(quantize(-0.45, 180.0 / 33554432.0)), 4);
-  w.set(kPositionWgs84, position);
-  w.set(kMeasuredFl, {0x05, 0x78});  // 1400 quarter FL = FL350
-  if (track_number) {
-    Bytes number;
-    put(number, *track_number, 2);
-    w.set(kTrackNumber, number);
-  }
-  return w;
-}
-
 TEST(AsterixCat062Identity, TrackNumberIsTheIdentityWhetherOrNotTheAddressIsSent) {
   // An SDPS sends I062/380 ADR in some updates of a track and not in others. Keyed by
   // the address when present, such a track became two kew tracks (the address, then the
@@ -670,35 +586,6 @@ TEST(AsterixRoundTrip, RandomCat048PolarPlotsLandWhereTheyWereMeasured) {
   }
 }
 
-/// A minimal CAT048 record of radar 25/7 that the decoder accepts (a plot at 50 NM, FL200),
-/// with the track number and address if given.
-RecordWriter minimal_cat048(std::optional<std::uint16_t> track_number,
-                            std::optional<std::uint32_t> address) {
-  using namespace asterix::cat048;
-  RecordWriter w;
-  w.set(kDataSource, {25, 7});
-  w.set(kTimeOfDay, {0x10, 0x00, 0x00});
-  w.set(kPolarPosition, {0x32, 0x00, 0x40, 0x00});  // RHO 50 NM, THETA 90 deg
-  w.set(kFlightLevel, {0x03, 0x20});                 // 800 quarter FL = FL200
-  if (track_number) {
-    Bytes number;
-    put(number, *track_number, 2);
-    w.set(kTrackNumber, number);
-  }
-  if (address) {
-    Bytes bytes;
-    put(bytes, *address, 3);
-    w.set(kAddress, bytes);
-  }
-  return w;
-}
-
-AsterixOptions radar_25_7() {
-  AsterixOptions options;
-  options.radars.push_back({25, 7, 47.45, 8.56, 500.0});
-  return options;
-}
-
 TEST(AsterixCat048Identity, TrackNumberIsTheIdentityAndTheAddressAnAttribute) {
   // As in CAT062: a Mode S address that comes and goes within one radar track must not
   // split it. Only a plot without a track number is keyed by its address.
@@ -738,9 +625,7 @@ TEST(AsterixCat048TrackStatus, TrackEndIsTreOfTheSecondOctetAndNothingIsCoasting
     w.set(asterix::cat048::kTrackStatus, c.status);
     records.push_back(w.bytes());
   }
-  Rejections rejections;
-  const auto reports = decode_bytes(data_block(48, records), radar_25_7(), &rejections);
-  EXPECT_EQ(rejections.total(), 0U);
+  const auto reports = decode_every_record(48, records);
   ASSERT_EQ(reports.size(), cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE("case " + std::to_string(i));
