@@ -1,6 +1,7 @@
-// Round trip of the ASTERIX record reader: a test-only writer builds random CAT062 and
-// CAT048 records with known values (and random items kew only skips), the decoder must
-// return those values within the scaling's resolution. Also unit tests of the item walker
+// Round trip of the ASTERIX record reader: a test-only writer builds random CAT062 (with
+// selected altitude and track angle rate, design §5.2) and CAT048 records with known
+// values (and random items kew only skips), the decoder must return those values within
+// the scaling's resolution. Also unit tests of the item walker
 // and of the time-of-day clock.
 
 #include <gtest/gtest.h>
@@ -59,7 +60,41 @@ struct Cat062Truth {
   std::optional<std::uint16_t> mode3a;
   std::string callsign;
   bool coasting = false, track_end = false;  // I062/080 CST, TSE
+  std::optional<double> sel_ft, tar_dps;      // multiples of 25 ft and 1/4 deg/s
+  bool sel_fms = false;                       // sel_ft is the FMS one (else MCP/FCU)
 };
+
+/// I062/380 SAL or FSS: 3 bits (SAS, SRC or MV, AH, AM) then 13-bit altitude of 25 ft.
+Bytes altitude_subfield(std::uint32_t top_bits, double feet) {
+  Bytes out;
+  put(out, (top_bits << 13) | (static_cast<std::uint32_t>(quantize(feet, 25.0)) & 0x1FFF), 2);
+  return out;
+}
+
+/// SAL, FSS and TAR subfields of I062/380 for `truth` (design §5.2): the selected altitude
+/// by a valid route, with or beside ones the decoder must ignore (SAS 0, source unknown or
+/// aircraft altitude, TI 0).
+void add_intent_subfields(std::mt19937& random, const Cat062Truth& truth,
+                          std::map<unsigned, Bytes>& derived) {
+  using namespace asterix::cat062;
+  const auto bits = [&](unsigned n) { return static_cast<std::uint32_t>(random() % n); };
+  const auto ignored_sal = [&] { return altitude_subfield(bits(6), -1000.0); };  // SAS.SRC < 1.10
+  if (truth.sel_ft && (truth.sel_fms || random() % 2 != 0)) {
+    derived[k380SelectedAltitude] = altitude_subfield(truth.sel_fms ? 7 : 6, *truth.sel_ft);
+    if (random() % 2 != 0) derived[k380FinalSelectedAltitude] = altitude_subfield(bits(8), 5000.0);
+  } else if (truth.sel_ft) {
+    derived[k380FinalSelectedAltitude] = altitude_subfield(bits(8), *truth.sel_ft);
+    if (random() % 2 != 0) derived[k380SelectedAltitude] = ignored_sal();
+  } else if (random() % 2 != 0) {
+    derived[k380SelectedAltitude] = ignored_sal();
+  }
+  if (truth.tar_dps || random() % 2 != 0) {
+    const std::uint32_t ti = truth.tar_dps ? 1 + bits(3) : 0;
+    const auto rate = static_cast<std::uint32_t>(quantize(truth.tar_dps.value_or(1.0), 0.25));
+    derived[k380TrackAngleRate] = {static_cast<std::uint8_t>(ti << 6 | (random() & 0x3F)),
+                                   static_cast<std::uint8_t>((rate & 0x7F) << 1 | (random() & 1))};
+  }
+}
 
 std::string random_callsign(std::mt19937& random) {
   static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
@@ -188,6 +223,7 @@ Bytes random_cat062_record(std::mt19937& random, const Cat062Truth& truth) {
     mb.insert(mb.end(), body.begin(), body.end());
     derived[24] = mb;
   }
+  add_intent_subfields(random, truth, derived);
   if (!derived.empty()) w.set(kAircraftDerived, compound_item(derived));
 
   std::map<unsigned, Bytes> plan;
@@ -246,6 +282,11 @@ Cat062Truth random_cat062_truth(std::mt19937& random, double tod_s) {
   if (random() % 4 != 0) t.callsign = random_callsign(random);
   t.coasting = random() % 4 == 0;
   t.track_end = random() % 8 == 0;
+  if (random() % 2 != 0) {
+    t.sel_ft = 25.0 * (static_cast<int>(random() % 4053) - 52);  // -1,300 to 100,000 ft
+    t.sel_fms = random() % 2 == 0;
+  }
+  if (random() % 2 != 0) t.tar_dps = 0.25 * (static_cast<int>(random() % 128) - 64);
   return t;
 }
 
@@ -277,6 +318,11 @@ void expect_matches(const TrackReport& r, const Cat062Truth& t) {
   EXPECT_EQ(r.mode3a, t.mode3a);
   EXPECT_EQ(r.callsign, t.callsign);
   EXPECT_FALSE(r.on_ground);
+  EXPECT_EQ(r.sel_ft, t.sel_ft);
+  if (t.sel_ft) {
+    EXPECT_EQ(r.sel_src, t.sel_fms ? SelectedAltitudeSource::Fms : SelectedAltitudeSource::Mcp);
+  }
+  EXPECT_EQ(r.tar_dps, t.tar_dps);
 }
 
 TEST(AsterixRoundTrip, RandomCat062RecordsDecodeToTheirValues) {
