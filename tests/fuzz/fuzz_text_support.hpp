@@ -24,7 +24,8 @@ inline void check_report(const TrackReport& r) {
                      r.lat_deg <= 90.0 && r.lon_deg >= -180.0 && r.lon_deg <= 180.0 &&
                      std::isfinite(r.alt_ft) && (!r.gs_kt || (*r.gs_kt >= 0.0 && std::isfinite(*r.gs_kt))) &&
                      (!r.trk_deg || (*r.trk_deg >= 0.0 && *r.trk_deg < 360.0) || *r.trk_deg == 0.0) &&
-                     (!r.vr_fpm || std::isfinite(*r.vr_fpm)) && (!r.mode3a || *r.mode3a <= 07777);
+                     (!r.vr_fpm || std::isfinite(*r.vr_fpm)) && (!r.mode3a || *r.mode3a <= 07777) &&
+                     (!r.sel_ft || std::isfinite(*r.sel_ft)) && (!r.tar_dps || std::isfinite(*r.tar_dps));
   if (!valid) __builtin_trap();
 }
 

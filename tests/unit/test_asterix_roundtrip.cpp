@@ -1,6 +1,7 @@
-// Round trip of the ASTERIX record reader: a test-only writer builds random CAT062 and
-// CAT048 records with known values (and random items kew only skips), the decoder must
-// return those values within the scaling's resolution. Also unit tests of the item walker
+// Round trip of the ASTERIX record reader: a test-only writer builds random CAT062 (with
+// selected altitude and track angle rate, design §5.2) and CAT048 records with known
+// values (and random items kew only skips), the decoder must return those values within
+// the scaling's resolution. Also unit tests of the item walker
 // and of the time-of-day clock.
 
 #include <gtest/gtest.h>
@@ -23,64 +24,16 @@
 #include "kew/protocol/asterix/record_walker.hpp"
 #include "kew/protocol/asterix/uap.hpp"
 #include "kew/pipeline/pipeline.hpp"
+#include "asterix_writer.hpp"
 
 namespace kew::protocol {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using namespace asterix_writer;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kFtPerM = 1.0 / 0.3048;
 constexpr double kKtPerMs = 3600.0 / 1852.0;
-
-// ---- A test-only ASTERIX writer ---------------------------------------------------------
-
-void put(Bytes& out, std::uint64_t value, int bytes) {
-  for (int i = bytes - 1; i >= 0; --i) out.push_back(static_cast<std::uint8_t>(value >> (8 * i)));
-}
-
-/// One record: items by FRN, written in FRN order after an FSPEC that announces them.
-class RecordWriter {
- public:
-  void set(unsigned frn, Bytes item) { items_[frn] = std::move(item); }
-
-  Bytes bytes() const {
-    unsigned last = 0;
-    for (const auto& [frn, item] : items_) last = std::max(last, frn);
-    const unsigned fspec_bytes = (last + 6) / 7;
-    Bytes out(fspec_bytes, 0);
-    for (const auto& [frn, item] : items_) {
-      out[(frn - 1) / 7] |= static_cast<std::uint8_t>(0x80U >> ((frn - 1) % 7));
-    }
-    for (unsigned i = 0; i + 1 < fspec_bytes; ++i) out[i] |= 0x01;  // FX
-    for (const auto& [frn, item] : items_) out.insert(out.end(), item.begin(), item.end());
-    return out;
-  }
-
- private:
-  std::map<unsigned, Bytes> items_;
-};
-
-Bytes data_block(std::uint8_t category, const std::vector<Bytes>& records) {
-  Bytes body;
-  for (const Bytes& r : records) body.insert(body.end(), r.begin(), r.end());
-  Bytes block{category};
-  put(block, body.size() + 3, 2);
-  block.insert(block.end(), body.begin(), body.end());
-  return block;
-}
-
-/// A compound item announcing subfields `present` (0-based) with the given contents.
-Bytes compound_item(const std::map<unsigned, Bytes>& present) {
-  unsigned last = 0;
-  for (const auto& [index, sub] : present) last = std::max(last, index + 1);
-  const unsigned primary = std::max(1U, (last + 6) / 7);
-  Bytes out(primary, 0);
-  for (const auto& [index, sub] : present) out[index / 7] |= static_cast<std::uint8_t>(0x80U >> (index % 7));
-  for (unsigned i = 0; i + 1 < primary; ++i) out[i] |= 0x01;
-  for (const auto& [index, sub] : present) out.insert(out.end(), sub.begin(), sub.end());
-  return out;
-}
 
 /// 8 characters of 6-bit ICAO code in 6 bytes.
 Bytes icao_characters(const std::string& text) {
@@ -95,20 +48,6 @@ Bytes icao_characters(const std::string& text) {
   return out;
 }
 
-std::int64_t quantize(double value, double lsb) { return std::llround(value / lsb); }
-
-/// Decodes `stream` (data blocks) as one datagram: every block is decoded, whatever it holds.
-std::vector<TrackReport> decode_bytes(const Bytes& stream, const AsterixOptions& options = {},
-                                      Rejections* rejections = nullptr) {
-  auto decoder = make_asterix_decoder(AsterixFraming::Datagram, options);
-  std::vector<TrackReport> reports;
-  const ReportSink sink = [&](const TrackReport& r) { reports.push_back(r); };
-  decoder->feed(std::as_bytes(std::span<const std::uint8_t>(stream)), sink);
-  decoder->finish(sink);
-  if (rejections != nullptr) rejections->merge(decoder->rejections());
-  return reports;
-}
-
 // ---- Random CAT062 records --------------------------------------------------------------
 
 /// The values a random CAT062 record carries, before quantisation.
@@ -121,7 +60,41 @@ struct Cat062Truth {
   std::optional<std::uint16_t> mode3a;
   std::string callsign;
   bool coasting = false, track_end = false;  // I062/080 CST, TSE
+  std::optional<double> sel_ft, tar_dps;      // multiples of 25 ft and 1/4 deg/s
+  bool sel_fms = false;                       // sel_ft is the FMS one (else MCP/FCU)
 };
+
+/// I062/380 SAL or FSS: 3 bits (SAS, SRC or MV, AH, AM) then 13-bit altitude of 25 ft.
+Bytes altitude_subfield(std::uint32_t top_bits, double feet) {
+  Bytes out;
+  put(out, (top_bits << 13) | (static_cast<std::uint32_t>(quantize(feet, 25.0)) & 0x1FFF), 2);
+  return out;
+}
+
+/// SAL, FSS and TAR subfields of I062/380 for `truth` (design §5.2): the selected altitude
+/// by a valid route, with or beside ones the decoder must ignore (SAS 0, source unknown or
+/// aircraft altitude, TI 0).
+void add_intent_subfields(std::mt19937& random, const Cat062Truth& truth,
+                          std::map<unsigned, Bytes>& derived) {
+  using namespace asterix::cat062;
+  const auto bits = [&](unsigned n) { return static_cast<std::uint32_t>(random() % n); };
+  const auto ignored_sal = [&] { return altitude_subfield(bits(6), -1000.0); };  // SAS.SRC < 1.10
+  if (truth.sel_ft && (truth.sel_fms || random() % 2 != 0)) {
+    derived[k380SelectedAltitude] = altitude_subfield(truth.sel_fms ? 7 : 6, *truth.sel_ft);
+    if (random() % 2 != 0) derived[k380FinalSelectedAltitude] = altitude_subfield(bits(8), 5000.0);
+  } else if (truth.sel_ft) {
+    derived[k380FinalSelectedAltitude] = altitude_subfield(bits(8), *truth.sel_ft);
+    if (random() % 2 != 0) derived[k380SelectedAltitude] = ignored_sal();
+  } else if (random() % 2 != 0) {
+    derived[k380SelectedAltitude] = ignored_sal();
+  }
+  if (truth.tar_dps || random() % 2 != 0) {
+    const std::uint32_t ti = truth.tar_dps ? 1 + bits(3) : 0;
+    const auto rate = static_cast<std::uint32_t>(quantize(truth.tar_dps.value_or(1.0), 0.25));
+    derived[k380TrackAngleRate] = {static_cast<std::uint8_t>(ti << 6 | (random() & 0x3F)),
+                                   static_cast<std::uint8_t>((rate & 0x7F) << 1 | (random() & 1))};
+  }
+}
 
 std::string random_callsign(std::mt19937& random) {
   static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
@@ -250,6 +223,7 @@ Bytes random_cat062_record(std::mt19937& random, const Cat062Truth& truth) {
     mb.insert(mb.end(), body.begin(), body.end());
     derived[24] = mb;
   }
+  add_intent_subfields(random, truth, derived);
   if (!derived.empty()) w.set(kAircraftDerived, compound_item(derived));
 
   std::map<unsigned, Bytes> plan;
@@ -308,6 +282,11 @@ Cat062Truth random_cat062_truth(std::mt19937& random, double tod_s) {
   if (random() % 4 != 0) t.callsign = random_callsign(random);
   t.coasting = random() % 4 == 0;
   t.track_end = random() % 8 == 0;
+  if (random() % 2 != 0) {
+    t.sel_ft = 25.0 * (static_cast<int>(random() % 4053) - 52);  // -1,300 to 100,000 ft
+    t.sel_fms = random() % 2 == 0;
+  }
+  if (random() % 2 != 0) t.tar_dps = 0.25 * (static_cast<int>(random() % 128) - 64);
   return t;
 }
 
@@ -339,6 +318,11 @@ void expect_matches(const TrackReport& r, const Cat062Truth& t) {
   EXPECT_EQ(r.mode3a, t.mode3a);
   EXPECT_EQ(r.callsign, t.callsign);
   EXPECT_FALSE(r.on_ground);
+  EXPECT_EQ(r.sel_ft, t.sel_ft);
+  if (t.sel_ft) {
+    EXPECT_EQ(r.sel_src, t.sel_fms ? SelectedAltitudeSource::Fms : SelectedAltitudeSource::Mcp);
+  }
+  EXPECT_EQ(r.tar_dps, t.tar_dps);
 }
 
 TEST(AsterixRoundTrip, RandomCat062RecordsDecodeToTheirValues) {
@@ -389,28 +373,6 @@ TEST(AsterixRoundTrip, Cat062RecordWithoutPositionIsCounted) {
   expect_matches(reports[0], truth);
   EXPECT_EQ(rejections.count("asterix_missing_position"), 1U);
   EXPECT_EQ(rejections.count("cat062_cartesian_only"), 1U);
-}
-
-/// A minimal CAT062 record of SAC/SIC 25/100 that the decoder accepts: time of day
-/// `tod_lsb` (1/128 s), a WGS-84 position, FL350, and the track number if given.
-RecordWriter minimal_cat062(std::uint32_t tod_lsb, std::optional<std::uint16_t> track_number) {
-  using namespace asterix::cat062;
-  RecordWriter w;
-  w.set(kDataSource, {25, 100});
-  Bytes tod;
-  put(tod, tod_lsb, 3);
-  w.set(kTimeOfTrack, tod);
-  Bytes position;
-  put(position, static_cast<std::uint32_t>(quantize(51.47, 180.0 / 33554432.0)), 4);
-  put(position, static_cast<std::uint32_t>(quantize(-0.45, 180.0 / 33554432.0)), 4);
-  w.set(kPositionWgs84, position);
-  w.set(kMeasuredFl, {0x05, 0x78});  // 1400 quarter FL = FL350
-  if (track_number) {
-    Bytes number;
-    put(number, *track_number, 2);
-    w.set(kTrackNumber, number);
-  }
-  return w;
 }
 
 TEST(AsterixCat062Identity, TrackNumberIsTheIdentityWhetherOrNotTheAddressIsSent) {
@@ -670,35 +632,6 @@ TEST(AsterixRoundTrip, RandomCat048PolarPlotsLandWhereTheyWereMeasured) {
   }
 }
 
-/// A minimal CAT048 record of radar 25/7 that the decoder accepts (a plot at 50 NM, FL200),
-/// with the track number and address if given.
-RecordWriter minimal_cat048(std::optional<std::uint16_t> track_number,
-                            std::optional<std::uint32_t> address) {
-  using namespace asterix::cat048;
-  RecordWriter w;
-  w.set(kDataSource, {25, 7});
-  w.set(kTimeOfDay, {0x10, 0x00, 0x00});
-  w.set(kPolarPosition, {0x32, 0x00, 0x40, 0x00});  // RHO 50 NM, THETA 90 deg
-  w.set(kFlightLevel, {0x03, 0x20});                 // 800 quarter FL = FL200
-  if (track_number) {
-    Bytes number;
-    put(number, *track_number, 2);
-    w.set(kTrackNumber, number);
-  }
-  if (address) {
-    Bytes bytes;
-    put(bytes, *address, 3);
-    w.set(kAddress, bytes);
-  }
-  return w;
-}
-
-AsterixOptions radar_25_7() {
-  AsterixOptions options;
-  options.radars.push_back({25, 7, 47.45, 8.56, 500.0});
-  return options;
-}
-
 TEST(AsterixCat048Identity, TrackNumberIsTheIdentityAndTheAddressAnAttribute) {
   // As in CAT062: a Mode S address that comes and goes within one radar track must not
   // split it. Only a plot without a track number is keyed by its address.
@@ -738,9 +671,7 @@ TEST(AsterixCat048TrackStatus, TrackEndIsTreOfTheSecondOctetAndNothingIsCoasting
     w.set(asterix::cat048::kTrackStatus, c.status);
     records.push_back(w.bytes());
   }
-  Rejections rejections;
-  const auto reports = decode_bytes(data_block(48, records), radar_25_7(), &rejections);
-  EXPECT_EQ(rejections.total(), 0U);
+  const auto reports = decode_every_record(48, records);
   ASSERT_EQ(reports.size(), cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE("case " + std::to_string(i));

@@ -101,6 +101,11 @@ inline void expect_same_report(const TrackReport& a, const TrackReport& b, std::
   EXPECT_EQ(bits(a.gs_kt), bits(b.gs_kt));
   EXPECT_EQ(bits(a.trk_deg), bits(b.trk_deg));
   EXPECT_EQ(bits(a.vr_fpm), bits(b.vr_fpm));
+  EXPECT_EQ(bits(a.sel_ft), bits(b.sel_ft));
+  if (a.sel_ft) {
+    EXPECT_EQ(a.sel_src, b.sel_src);  // meaningful only with sel_ft
+  }
+  EXPECT_EQ(bits(a.tar_dps), bits(b.tar_dps));
   EXPECT_EQ(a.callsign, b.callsign);
   EXPECT_EQ(a.mode3a, b.mode3a);
   EXPECT_EQ(a.address, b.address);

@@ -42,6 +42,35 @@ TEST(NdjsonDecoder, DecodesEveryMember) {
   EXPECT_EQ(decoder->rejections().total(), 0u);
 }
 
+TEST(NdjsonDecoder, SelectedAltitudeItsSourceAndTrackAngleRate) {
+  auto decoder = make_ndjson_decoder();
+  const std::string head = R"({"t":1,"id":"A","lat":0,"lon":0,"alt_ft":100)";
+  const auto reports = decode_all(
+      *decoder, head + R"(,"sel_ft":24000,"sel_src":"fms","tar_dps":-2.5})" "\n" +
+                    head + R"(,"sel_src":"fms","sel_ft":-1000})" "\n" +  // order does not matter
+                    head + R"(,"sel_ft":35000})" "\n" +                 // source defaults to mcp
+                    head + R"(,"sel_ft":35000,"sel_src":null,"tar_dps":null})" "\n" +
+                    head + R"(,"sel_ft":null,"sel_src":"mcp","tar_dps":3})" "\n" +
+                    head + R"(,"sel_ft":35000,"sel_src":"FMS"})" "\n" +    // bad_sel_src
+                    head + R"(,"sel_ft":35000,"sel_src":2})" "\n" +        // wrong_type
+                    head + R"(,"sel_ft":"35000"})" "\n" +                  // wrong_type
+                    head + R"(,"tar_dps":true})" "\n");                    // wrong_type
+  ASSERT_EQ(reports.size(), 5u);
+  EXPECT_EQ(reports[0].sel_ft, 24000.0);
+  EXPECT_EQ(reports[0].sel_src, SelectedAltitudeSource::Fms);
+  EXPECT_EQ(reports[0].tar_dps, -2.5);
+  EXPECT_EQ(reports[1].sel_ft, -1000.0);
+  EXPECT_EQ(reports[1].sel_src, SelectedAltitudeSource::Fms);
+  EXPECT_EQ(reports[2].sel_ft, 35000.0);
+  EXPECT_EQ(reports[2].sel_src, SelectedAltitudeSource::Mcp);
+  EXPECT_FALSE(reports[2].tar_dps);
+  EXPECT_EQ(reports[3].sel_src, SelectedAltitudeSource::Mcp);
+  EXPECT_FALSE(reports[3].tar_dps);
+  EXPECT_FALSE(reports[4].sel_ft);
+  EXPECT_EQ(reports[4].tar_dps, 3.0);
+  EXPECT_EQ(decoder->rejections().by_reason(), (test::Counts{{"bad_sel_src", 1}, {"wrong_type", 3}}));
+}
+
 TEST(NdjsonDecoder, OptionalMembersAbsentOrNullAndUnknownKeysIgnored) {
   auto decoder = make_ndjson_decoder();
   const auto reports = decode_all(
@@ -55,6 +84,8 @@ TEST(NdjsonDecoder, OptionalMembersAbsentOrNullAndUnknownKeysIgnored) {
     EXPECT_FALSE(r.gs_kt);
     EXPECT_FALSE(r.trk_deg);
     EXPECT_FALSE(r.vr_fpm);
+    EXPECT_FALSE(r.sel_ft);
+    EXPECT_FALSE(r.tar_dps);
     EXPECT_FALSE(r.mode3a);
     EXPECT_EQ(r.callsign, "");
     EXPECT_EQ(r.source, "");
@@ -212,6 +243,22 @@ TEST(NdjsonWriter, WritesShortestRoundTripNumbersAndOnlyPresentMembers) {
             "\"gnd\":true,\"sq\":\"0000\",\"addr\":\"00ABCF\",\"coast\":true,\"end\":true}");
 }
 
+TEST(NdjsonWriter, SelectedAltitudeIsWrittenWithItsSourceAndTrackAngleRateWhenPresent) {
+  TrackReport r;
+  r.t = 10;
+  r.id = "A";
+  r.sel_src = SelectedAltitudeSource::Fms;  // without sel_ft: not written
+  r.tar_dps = -1.5;
+  EXPECT_EQ(to_ndjson_line(r),
+            "{\"t\":10,\"id\":\"A\",\"lat\":0,\"lon\":0,\"alt_ft\":0,\"tar_dps\":-1.5}\n");
+  r.sel_ft = 24000;
+  r.tar_dps.reset();
+  EXPECT_EQ(to_ndjson_line(r), "{\"t\":10,\"id\":\"A\",\"lat\":0,\"lon\":0,\"alt_ft\":0,"
+                               "\"sel_ft\":24000,\"sel_src\":\"fms\"}\n");
+  r.sel_src = SelectedAltitudeSource::Mcp;
+  EXPECT_NE(to_ndjson_line(r).find("\"sel_ft\":24000,\"sel_src\":\"mcp\""), std::string::npos);
+}
+
 TEST(NdjsonWriter, EscapesStringsAndReplacesInvalidUtf8) {
   std::string out;
   append_json_string(out, std::string("a\"b\\c\n\t\x01\x1f\x7f", 10));
@@ -285,6 +332,11 @@ TEST(NdjsonRoundTrip, RandomReportsReadBackEqual) {
     if (random() % 2) r.gs_kt = random_double(random, 0, 1e4);
     if (random() % 2) r.trk_deg = std::min(random_double(random, 0, 360), std::nextafter(360.0, 0.0));
     if (random() % 2) r.vr_fpm = random_double(random, -1e5, 1e5);
+    if (random() % 2) {
+      r.sel_ft = random_double(random, -1300, 1e5);
+      r.sel_src = random() % 2 ? SelectedAltitudeSource::Fms : SelectedAltitudeSource::Mcp;
+    }
+    if (random() % 2) r.tar_dps = random_double(random, -30, 30);
     if (random() % 2) r.mode3a = static_cast<std::uint16_t>(random() % 010000);
     r.on_ground = random() % 2 == 0;
     if (random() % 2) r.address = static_cast<std::uint32_t>(random() & 0xFFFFFF);

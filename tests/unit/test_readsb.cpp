@@ -55,6 +55,36 @@ TEST(ReadsbDecoder, GsPreferredOverGscpAndFlightdictFillsWhatTheTopLevelLacks) {
   EXPECT_EQ(reports[1].callsign, "");    // flightdict's flight is not used
 }
 
+TEST(ReadsbDecoder, SelectedAltitudeMcpElseFmsAndTrackRate) {
+  auto decoder = make_readsb_decoder();
+  const std::string head = R"({"now":1,"hex":"a4e625","lat":36.8,"lon":-121.7,"alt_baro":4300)";
+  const auto reports = decode_all(
+      *decoder,
+      head + R"(,"nav_altitude_mcp":8512,"track_rate":-0.94})" "\n" +
+      head + R"(,"nav_altitude_fms":11008})" "\n" +
+      head + R"(,"nav_altitude_fms":11008,"nav_altitude_mcp":8512})" "\n" +  // MCP first
+      head + R"(,"flightdict":{"nav_altitude_mcp":6016,"nav_modes":["vnav"],"track_rate":1.5}})" "\n" +
+      head + R"(,"nav_altitude_mcp":null,"flightdict":{"nav_altitude_fms":7008}})" "\n" +
+      head + "}\n");
+  ASSERT_EQ(reports.size(), 6u);
+  EXPECT_EQ(reports[0].sel_ft, 8512.0);
+  EXPECT_EQ(reports[0].sel_src, SelectedAltitudeSource::Mcp);
+  EXPECT_EQ(reports[0].tar_dps, -0.94);
+  EXPECT_EQ(reports[1].sel_ft, 11008.0);
+  EXPECT_EQ(reports[1].sel_src, SelectedAltitudeSource::Fms);
+  EXPECT_FALSE(reports[1].tar_dps);
+  EXPECT_EQ(reports[2].sel_ft, 8512.0);
+  EXPECT_EQ(reports[2].sel_src, SelectedAltitudeSource::Mcp);
+  EXPECT_EQ(reports[3].sel_ft, 6016.0);  // from the flightdict
+  EXPECT_EQ(reports[3].sel_src, SelectedAltitudeSource::Mcp);
+  EXPECT_EQ(reports[3].tar_dps, 1.5);
+  EXPECT_EQ(reports[4].sel_ft, 7008.0);
+  EXPECT_EQ(reports[4].sel_src, SelectedAltitudeSource::Fms);
+  EXPECT_FALSE(reports[5].sel_ft);
+  EXPECT_FALSE(reports[5].tar_dps);
+  EXPECT_EQ(decoder->rejections().total(), 0u);
+}
+
 TEST(ReadsbDecoder, GroundNumericStringsNullsAndNonIcaoAddresses) {
   auto decoder = make_readsb_decoder();
   const auto reports = decode_all(

@@ -109,6 +109,12 @@ TEST(BadOptionalFields, CostOnlyTheFieldAndTheRecordIsAccepted) {
       {"track_angle_not_finite", [](TrackReport& r) { r.trk_deg = kNaN; }},
       {"vertical_rate_too_high", [](TrackReport& r) { r.vr_fpm = -165100.0; }},
       {"vertical_rate_not_finite", [](TrackReport& r) { r.vr_fpm = kInf; }},
+      {"selected_altitude_out_of_range", [](TrackReport& r) { r.sel_ft = 150000.0; }},
+      {"selected_altitude_out_of_range", [](TrackReport& r) { r.sel_ft = -2025.0; }},
+      {"selected_altitude_not_finite", [](TrackReport& r) { r.sel_ft = kNaN; }},
+      {"track_angle_rate_too_high", [](TrackReport& r) { r.tar_dps = 30.5; }},
+      {"track_angle_rate_too_high", [](TrackReport& r) { r.tar_dps = -45.0; }},
+      {"track_angle_rate_not_finite", [](TrackReport& r) { r.tar_dps = -kInf; }},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.reason);
@@ -132,6 +138,24 @@ TEST(BadOptionalFields, CostOnlyTheFieldAndTheRecordIsAccepted) {
     }
     EXPECT_EQ(pipeline.live_tracks(), 1u);
   }
+}
+
+TEST(BadOptionalFields, SelectedAltitudeAndTrackAngleRateInRangeAreKept) {
+  // The bounds themselves are plausible: the altitude range of the track table, ±30 deg/s.
+  const std::vector<std::pair<std::optional<double>, std::optional<double>>> values = {
+      {-2000.0, -30.0}, {100000.0, 30.0}, {35000.0, 0.0}, {-0.0, -3.0}};
+  track::TrackTable table;
+  const geo::Projection projection(geo::GeodeticPosition{50.0, 8.0}, 1000e3);
+  double t = kT0;
+  for (const auto& [sel_ft, tar_dps] : values) {
+    TrackReport r = report("GOOD01", t, 50.0, 8.0);
+    r.sel_ft = sel_ft;
+    r.tar_dps = tar_dps;
+    EXPECT_EQ(table.admit(r, t, projection).refusal, "");
+    t += 4.0;
+  }
+  EXPECT_EQ(table.dropped_fields().total(), 0u);
+  EXPECT_EQ(table.rejections().total(), 0u);
 }
 
 TEST(BadRecords, RejectionsAreReportedRateLimited) {

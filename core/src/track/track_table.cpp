@@ -11,6 +11,9 @@ namespace {
 constexpr double kKnotToMps = 1852.0 / 3600.0;
 constexpr double kFootToMetre = 0.3048;
 constexpr double kFpmToMps = kFootToMetre / 60.0;
+/// The largest |track angle rate| kept (deg/s): a rate-one turn is 3 deg/s, and no
+/// aircraft the tables carry turns ten times as fast (design §4.3).
+constexpr double kMaxTrackAngleRateDps = 30.0;
 
 std::string_view projection_reason(geo::ProjectionError e) {
   switch (e) {
@@ -47,6 +50,9 @@ unsigned TrackTable::implausible_optional_fields(const TrackReport& r) const {
   if (r.gs_kt && !(*r.gs_kt >= 0.0 && *r.gs_kt <= config_.max_ground_speed_kt)) bits |= kGroundSpeed;
   if (r.trk_deg && !(*r.trk_deg >= 0.0 && *r.trk_deg < 360.0)) bits |= kTrackAngle;
   if (r.vr_fpm && !(std::abs(*r.vr_fpm) <= config_.max_vertical_rate_fpm)) bits |= kVerticalRate;
+  if (r.sel_ft && !(*r.sel_ft >= config_.min_altitude_ft && *r.sel_ft <= config_.max_altitude_ft))
+    bits |= kSelectedAltitude;
+  if (r.tar_dps && !(std::abs(*r.tar_dps) <= kMaxTrackAngleRateDps)) bits |= kTrackAngleRate;
   return bits;
 }
 
@@ -58,16 +64,19 @@ void TrackTable::drop_optional_fields(TrackReport& r, unsigned bits) {
                            fmt::format("{}: ground speed {} kt dropped", r.id, v));
     r.gs_kt.reset();
   }
-  if (bits & kTrackAngle) {
-    dropped_fields_.reject(std::isfinite(*r.trk_deg) ? "track_angle_out_of_range" : "track_angle_not_finite",
-                           fmt::format("{}: track angle {} deg dropped", r.id, *r.trk_deg));
-    r.trk_deg.reset();
-  }
-  if (bits & kVerticalRate) {
-    dropped_fields_.reject(std::isfinite(*r.vr_fpm) ? "vertical_rate_too_high" : "vertical_rate_not_finite",
-                           fmt::format("{}: vertical rate {} ft/min dropped", r.id, *r.vr_fpm));
-    r.vr_fpm.reset();
-  }
+  const auto drop = [&](unsigned bit, std::optional<double>& field, std::string_view out_of_range,
+                        std::string_view not_finite, std::string_view what, std::string_view unit) {
+    if ((bits & bit) == 0) return;
+    dropped_fields_.reject(std::isfinite(*field) ? out_of_range : not_finite,
+                           fmt::format("{}: {} {} {} dropped", r.id, what, *field, unit));
+    field.reset();
+  };
+  drop(kTrackAngle, r.trk_deg, "track_angle_out_of_range", "track_angle_not_finite", "track angle", "deg");
+  drop(kVerticalRate, r.vr_fpm, "vertical_rate_too_high", "vertical_rate_not_finite", "vertical rate", "ft/min");
+  drop(kSelectedAltitude, r.sel_ft, "selected_altitude_out_of_range", "selected_altitude_not_finite",
+       "selected altitude", "ft");
+  drop(kTrackAngleRate, r.tar_dps, "track_angle_rate_too_high", "track_angle_rate_not_finite",
+       "track angle rate", "deg/s");
 }
 
 AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection) {

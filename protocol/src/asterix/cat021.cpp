@@ -19,6 +19,7 @@ constexpr double kAngleLsbDeg = 360.0 / 65536.0;
 constexpr double kQuarterFlightLevelFt = kFeetPerFlightLevel / 4.0;
 constexpr double kHeightLsbFt = 6.25;
 constexpr double kVerticalRateLsbFpm = 6.25;
+constexpr double kTrackAngleRateLsbDps = 1.0 / 32.0;
 
 /// Checks shared by both editions after the edition-specific items are read: identity,
 /// altitude (ground targets may lack one), time, position.
@@ -137,6 +138,12 @@ bool decode_cat021(const RecordItems& items, RecordContext& context, TrackReport
   read_vertical_rate(items, kBaroVerticalRate, kGeoVerticalRate, 15, report);
   if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
   if (items.has(kIdentification)) decode_icao_characters(items.data(kIdentification), report.callsign);
+  set_selected_altitude(items.item(kSelectedAltitude), items.item(kFinalSelectedAltitude), report);
+  if (items.has(kTrackAngleRate)) {
+    // Editions 2.x: 6 spare bits, then a 10-bit two's complement rate, LSB 1/32 deg/s,
+    // positive turning right. No availability bit: present means given.
+    report.tar_dps = sign_extend(be16(items.data(kTrackAngleRate)), 10) * kTrackAngleRateLsbDps;
+  }
   return true;
 }
 
@@ -185,6 +192,9 @@ bool decode_cat021_v026(const RecordItems& items, RecordContext& context, TrackR
   read_vertical_rate(items, kBaroVerticalRate, kGeoVerticalRate, 16, report);
   if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
   if (items.has(kIdentification)) decode_icao_characters(items.data(kIdentification), report.callsign);
+  set_selected_altitude(items.item(kSelectedAltitude), items.item(kFinalSelectedAltitude), report);
+  // I021/165 Rate Of Turn: TI octet (FX), then the rate octet (FX), as I062/380 TAR.
+  set_turn_indicator_rate(items.item(kRateOfTurn), report);
   return true;
 }
 

@@ -1,6 +1,8 @@
 // CAT048 (monoradar target reports) record → TrackReport. Items and scalings: ASTERIX
 // Part 4, editions 1.15-1.32; the polar position is converted with RadarProjector.
 
+#include <algorithm>
+
 #include "bytes.hpp"
 #include "kew/protocol/asterix/uap.hpp"
 #include "record_context.hpp"
@@ -30,6 +32,56 @@ bool reports_on_ground(const RecordItems& items) {
   if (!items.has(cat048::kCommsCapability)) return false;
   const std::uint32_t status = (be16(items.data(cat048::kCommsCapability)) >> 10) & 0x7;
   return status == 1 || status == 3;
+}
+
+// ---- I048/250 Mode S MB data (design §5.2) --------------------------------------------
+// Each element: 56 bits of MB data, then BDS1 (4 bits) and BDS2 (4 bits) naming the
+// register (0,0 for a Comm-B broadcast, which names none: ignored). Register layouts:
+// ICAO Doc 9871 (Technical Provisions for Mode S Services), Tables A-2-64 (BDS 4,0) and
+// A-2-80 (BDS 5,0); bit 1 is the most significant bit of the MB field.
+
+constexpr std::size_t kMbElementBytes = 8;
+constexpr double kSelectedAltitudeLsbFt = 16.0;
+constexpr double kTrackAngleRateLsbDps = 8.0 / 256.0;
+
+/// Bits `first`..`last` (1-based, inclusive, as Doc 9871 numbers them) of a 56-bit MB field.
+std::uint32_t mb_bits(std::uint64_t mb, unsigned first, unsigned last) {
+  const unsigned width = last - first + 1;
+  return static_cast<std::uint32_t>((mb >> (56 - last)) & ((std::uint64_t{1} << width) - 1));
+}
+
+/// BDS 4,0 selected vertical intention: the FMS selected altitude when the target altitude
+/// source is valid (bit 54) and says FMS (bits 55-56 = 11) and the FMS value is valid (bit
+/// 14); else the MCP/FCU selected altitude when valid (bit 1). Nothing else is trusted.
+void read_bds40(std::uint64_t mb, TrackReport& report) {
+  const bool fms_targeted = mb_bits(mb, 54, 54) != 0 && mb_bits(mb, 55, 56) == 3;
+  if (fms_targeted && mb_bits(mb, 14, 14) != 0) {
+    report.sel_ft = mb_bits(mb, 15, 26) * kSelectedAltitudeLsbFt;
+    report.sel_src = SelectedAltitudeSource::Fms;
+  } else if (mb_bits(mb, 1, 1) != 0) {
+    report.sel_ft = mb_bits(mb, 2, 13) * kSelectedAltitudeLsbFt;
+    report.sel_src = SelectedAltitudeSource::Mcp;
+  }
+}
+
+/// BDS 5,0 track and turn report: the track angle rate when its status (bit 35) is set;
+/// sign (bit 36, 1 = left) and 9 bits (37-45) are one 10-bit two's complement value.
+void read_bds50(std::uint64_t mb, TrackReport& report) {
+  if (mb_bits(mb, 35, 35) == 0) return;
+  report.tar_dps = sign_extend(mb_bits(mb, 36, 45), 10) * kTrackAngleRateLsbDps;
+}
+
+/// sel_ft from the first BDS 4,0 element that gives one, tar_dps from the first BDS 5,0.
+void read_mode_s_registers(const RecordItems& items, TrackReport& report) {
+  const auto item = items.item(cat048::kModeSMbData);
+  if (item.empty()) return;
+  const std::size_t elements = std::min<std::size_t>(item[0], (item.size() - 1) / kMbElementBytes);
+  for (std::size_t i = 0; i < elements; ++i) {
+    const std::uint8_t* element = item.data() + 1 + i * kMbElementBytes;
+    const std::uint64_t mb = (std::uint64_t{be24(element)} << 32) | be32(element + 3);
+    if (element[7] == 0x40 && !report.sel_ft) read_bds40(mb, report);
+    if (element[7] == 0x50 && !report.tar_dps) read_bds50(mb, report);
+  }
 }
 
 }  // namespace
@@ -123,6 +175,7 @@ bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport
     if ((word & 0xC000) == 0) report.mode3a = static_cast<std::uint16_t>(word & 0x0FFF);
   }
   if (items.has(kIdentification)) decode_icao_characters(items.data(kIdentification), report.callsign);
+  read_mode_s_registers(items, report);
   return true;
 }
 

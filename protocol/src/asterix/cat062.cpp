@@ -50,6 +50,17 @@ void read_callsign(const RecordItems& items, std::string& callsign) {
   if (!plan_callsign.empty()) decode_ascii_characters(plan_callsign, callsign);
 }
 
+/// Selected altitude (I062/380 SAL, else FSS) and track angle rate (I062/380 TAR).
+void read_intent(const RecordItems& items, TrackReport& report) {
+  using namespace cat062;
+  const ItemFormat& format = format_of(kAircraftDerived);
+  const auto derived = items.item(kAircraftDerived);
+  if (derived.empty()) return;
+  set_selected_altitude(compound_subfield(format, derived, k380SelectedAltitude),
+                        compound_subfield(format, derived, k380FinalSelectedAltitude), report);
+  set_turn_indicator_rate(compound_subfield(format, derived, k380TrackAngleRate), report);
+}
+
 }  // namespace
 
 bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport& report) {
@@ -121,6 +132,7 @@ bool decode_cat062(const RecordItems& items, RecordContext& context, TrackReport
   }
   if (items.has(kMode3A)) report.mode3a = static_cast<std::uint16_t>(be16(items.data(kMode3A)) & 0x0FFF);
   read_callsign(items, report.callsign);
+  read_intent(items, report);
   return true;
 }
 

@@ -52,6 +52,20 @@ bool decode_ascii_characters(std::span<const std::uint8_t> chars, std::string& o
 /// x east, y north).
 void set_velocity_from_cartesian(double vx_ms, double vy_ms, TrackReport& report);
 
+/// Selected altitude (design §5.2) from a field laid out as I062/380 SAL and I021/146
+/// (SAS, SRC(2), ALT: 13-bit two's complement, LSB 25 ft) and one laid out as I062/380 FSS
+/// and I021/148 (MV, AH, AM, ALT as above); either may be empty (absent). SAL counts only
+/// when SAS = 1 and SRC is 2 (MCP/FCU) or 3 (FMS); otherwise FSS, which is the MCP/FCU
+/// value. Neither: sel_ft stays unset.
+void set_selected_altitude(std::span<const std::uint8_t> selected,
+                           std::span<const std::uint8_t> final_state, TrackReport& report);
+
+/// Track angle rate from a field laid out as I062/380 TAR and the two octets of
+/// I021/165 in edition 0.26: TI(2) at the top of the first octet, the rate in the top 7
+/// bits of the second (two's complement, LSB 1/4 deg/s, positive turning right). Set only
+/// when the field has both octets and TI ≠ 0 (0: not available).
+void set_turn_indicator_rate(std::span<const std::uint8_t> field, TrackReport& report);
+
 /// True when lat/lon are finite and in range; otherwise counts
 /// "asterix_position_out_of_range".
 bool accept_position(RecordContext& context, const TrackReport& report);

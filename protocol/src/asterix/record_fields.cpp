@@ -43,6 +43,9 @@ void reset_report(TrackReport& report) {
   report.gs_kt.reset();
   report.trk_deg.reset();
   report.vr_fpm.reset();
+  report.sel_ft.reset();
+  report.sel_src = SelectedAltitudeSource::Mcp;
+  report.tar_dps.reset();
   report.callsign.clear();
   report.mode3a.reset();
   report.address.reset();
@@ -121,6 +124,31 @@ void set_velocity_from_cartesian(double vx_ms, double vy_ms, TrackReport& report
   if (track < 0) track += 360.0;
   if (track >= 360.0) track -= 360.0;
   report.trk_deg = track;
+}
+
+void set_selected_altitude(std::span<const std::uint8_t> selected,
+                           std::span<const std::uint8_t> final_state, TrackReport& report) {
+  constexpr double kAltitudeLsbFt = 25.0;
+  if (selected.size() == 2) {
+    const std::uint32_t word = be16(selected.data());
+    const bool source_given = (word & 0x8000) != 0;  // SAS
+    const std::uint32_t source = (word >> 13) & 0x3;  // 0 unknown, 1 aircraft altitude
+    if (source_given && (source == 2 || source == 3)) {
+      report.sel_ft = sign_extend(word, 13) * kAltitudeLsbFt;
+      report.sel_src = source == 3 ? SelectedAltitudeSource::Fms : SelectedAltitudeSource::Mcp;
+      return;
+    }
+  }
+  if (final_state.size() == 2) {
+    report.sel_ft = sign_extend(be16(final_state.data()), 13) * kAltitudeLsbFt;
+    report.sel_src = SelectedAltitudeSource::Mcp;
+  }
+}
+
+void set_turn_indicator_rate(std::span<const std::uint8_t> field, TrackReport& report) {
+  constexpr double kRateLsbDps = 0.25;
+  if (field.size() < 2 || (field[0] >> 6) == 0) return;
+  report.tar_dps = sign_extend(field[1] >> 1, 7) * kRateLsbDps;
 }
 
 bool accept_position(RecordContext& context, const TrackReport& report) {

@@ -42,6 +42,9 @@ class NdjsonDecoder final : public text::LineDecoder {
     if (key == "gs_kt") return text::read_number(value, key, report_.gs_kt);
     if (key == "trk_deg") return text::read_number(value, key, report_.trk_deg);
     if (key == "vr_fpm") return text::read_number(value, key, report_.vr_fpm);
+    if (key == "sel_ft") return text::read_number(value, key, report_.sel_ft);
+    if (key == "sel_src") return read_selected_altitude_source(value, key);
+    if (key == "tar_dps") return text::read_number(value, key, report_.tar_dps);
     if (key == "sq") return text::read_mode3a(value, key, report_.mode3a);
     if (key == "addr") return text::read_icao_address(value, key, report_.address);
     if (key == "coast") return optional_flag(value, key, report_.coasting);
@@ -57,6 +60,23 @@ class NdjsonDecoder final : public text::LineDecoder {
     }
     if (key == "cs") return optional_string(value, key, report_.callsign);
     if (key == "src") return optional_string(value, key, report_.source);
+    return std::nullopt;
+  }
+
+  /// "mcp" or "fms"; absent and null mean "mcp" (meaningful only with sel_ft).
+  LineResult read_selected_altitude_source(simdjson::dom::element value, std::string_view key) {
+    std::optional<std::string_view> name;
+    if (LineResult r = text::read_string(value, key, name)) return r;
+    if (!name) {
+      report_.sel_src = SelectedAltitudeSource::Mcp;
+      return std::nullopt;
+    }
+    const auto source = kSelectedAltitudeSourceNames.parse(*name);
+    if (!source) {
+      return text::problem("bad_sel_src", fmt::format("\"sel_src\" \"{}\" is not one of {}", *name,
+                                                      kSelectedAltitudeSourceNames.list()));
+    }
+    report_.sel_src = *source;
     return std::nullopt;
   }
 

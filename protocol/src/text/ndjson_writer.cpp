@@ -106,6 +106,13 @@ void append_ndjson(std::string& out, const TrackReport& report) {
   if (report.gs_kt) append_member(out, "gs_kt", *report.gs_kt);
   if (report.trk_deg) append_member(out, "trk_deg", *report.trk_deg);
   if (report.vr_fpm) append_member(out, "vr_fpm", *report.vr_fpm);
+  if (report.sel_ft) {
+    append_member(out, "sel_ft", *report.sel_ft);
+    out += ",\"sel_src\":\"";
+    out += to_string(report.sel_src);
+    out += '"';
+  }
+  if (report.tar_dps) append_member(out, "tar_dps", *report.tar_dps);
   if (!report.callsign.empty()) {
     out += ",\"cs\":";
     append_json_string(out, report.callsign);

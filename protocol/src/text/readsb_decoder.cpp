@@ -2,6 +2,9 @@
 // readsb.hpp.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+
 #include "json_object.hpp"
 #include "kew/protocol/readsb.hpp"
 #include "line_decoder.hpp"
@@ -14,6 +17,7 @@ using text::LineResult;
 /// The members of one line (or of its "flightdict") that make a report.
 struct ReadsbMembers {
   std::optional<double> now, lat, lon, alt_baro, alt_geom, gs, gscp, track, baro_rate, geom_rate;
+  std::optional<double> nav_altitude_mcp, nav_altitude_fms, track_rate;
   std::optional<std::string_view> hex, flight;
   std::optional<std::uint16_t> squawk;
   bool alt_baro_ground = false;
@@ -24,6 +28,9 @@ struct ReadsbMembers {
     if (!baro_rate) baro_rate = nested.baro_rate;
     if (!geom_rate) geom_rate = nested.geom_rate;
     if (!squawk) squawk = nested.squawk;
+    if (!nav_altitude_mcp) nav_altitude_mcp = nested.nav_altitude_mcp;
+    if (!nav_altitude_fms) nav_altitude_fms = nested.nav_altitude_fms;
+    if (!track_rate) track_rate = nested.track_rate;
   }
 };
 
@@ -65,12 +72,18 @@ class ReadsbDecoder final : public text::LineDecoder {
     if (key == "track") return text::read_number(value, key, m.track);
     if (key == "baro_rate") return text::read_number(value, key, m.baro_rate);
     if (key == "geom_rate") return text::read_number(value, key, m.geom_rate);
+    if (key == "nav_altitude_mcp") return text::read_number(value, key, m.nav_altitude_mcp);
+    if (key == "nav_altitude_fms") return text::read_number(value, key, m.nav_altitude_fms);
+    if (key == "track_rate") return text::read_number(value, key, m.track_rate);
     if (key == "hex") return text::read_string(value, key, m.hex);
     if (key == "flight") return text::read_string(value, key, m.flight);
     if (key == "squawk") return text::read_mode3a(value, key, m.squawk);
     return std::nullopt;
   }
 
+  /// The members a flightdict may supply (ReadsbMembers::complete_from).
+  static constexpr std::array<std::string_view, 7> kNestedKeys{
+      "alt_geom", "baro_rate", "geom_rate", "squawk", "nav_altitude_mcp", "nav_altitude_fms", "track_rate"};
   static LineResult read_flightdict(simdjson::dom::element value, ReadsbMembers& nested) {
     if (value.is_null()) return std::nullopt;
     simdjson::dom::object object;
@@ -78,7 +91,7 @@ class ReadsbDecoder final : public text::LineDecoder {
       return text::problem("wrong_type", "\"flightdict\" must be an object");
     for (const simdjson::dom::key_value_pair member : object) {
       const std::string_view key = member.key;
-      if (key == "alt_geom" || key == "baro_rate" || key == "geom_rate" || key == "squawk") {
+      if (std::ranges::find(kNestedKeys, key) != kNestedKeys.end()) {
         if (LineResult r = read_member(key, member.value, nested)) return r;
       }
     }
@@ -123,6 +136,16 @@ class ReadsbDecoder final : public text::LineDecoder {
     report_.gs_kt = m.gs ? m.gs : m.gscp;
     report_.trk_deg = m.track;
     report_.vr_fpm = m.baro_rate ? m.baro_rate : m.geom_rate;
+    // The MCP/FCU selected altitude when given, else the FMS one (design §5.2). readsb's
+    // nav_modes ("vnav"...) would tell which one the aircraft flies to; kew does not
+    // guess from them.
+    if (m.nav_altitude_mcp) {
+      report_.sel_ft = m.nav_altitude_mcp;
+    } else if (m.nav_altitude_fms) {
+      report_.sel_ft = m.nav_altitude_fms;
+      report_.sel_src = SelectedAltitudeSource::Fms;
+    }
+    report_.tar_dps = m.track_rate;
     report_.mode3a = m.squawk;
     if (m.flight) {
       const std::string_view callsign = text::trim(*m.flight);

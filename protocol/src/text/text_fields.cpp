@@ -100,6 +100,9 @@ void clear_report(TrackReport& report) {
   report.gs_kt.reset();
   report.trk_deg.reset();
   report.vr_fpm.reset();
+  report.sel_ft.reset();
+  report.sel_src = SelectedAltitudeSource::Mcp;
+  report.tar_dps.reset();
   report.mode3a.reset();
   report.address.reset();
   report.on_ground = false;

@@ -113,8 +113,9 @@ class TrackTable {
   /// Checks a record and, when it passes, applies it to its track. `now` is the pipeline
   /// clock (UTC s): records older than now − max_lateness_s are refused. On refusal the
   /// reason is counted in rejections() and nothing else changes. An implausible optional
-  /// field (speed, track angle, vertical rate) costs only that field (design §4.3): it is
-  /// dropped, counted in dropped_fields(), and the record judged without it.
+  /// field (speed, track angle, vertical rate, selected altitude, track angle rate) costs
+  /// only that field (design §4.3): it is dropped, counted in dropped_fields(), and the
+  /// record judged without it.
   AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection);
 
   /// Forgets a track (its slot may be reused by a later track).
@@ -157,7 +158,13 @@ class TrackTable {
  private:
   TrackSlot allocate(const TrackReport& r);
   /// Bits of the optional fields of `r` that are implausible.
-  enum OptionalField : unsigned { kGroundSpeed = 1, kTrackAngle = 2, kVerticalRate = 4 };
+  enum OptionalField : unsigned {
+    kGroundSpeed = 1,
+    kTrackAngle = 2,
+    kVerticalRate = 4,
+    kSelectedAltitude = 8,  ///< outside [min_altitude_ft, max_altitude_ft]
+    kTrackAngleRate = 16,   ///< |rate| above 30 deg/s
+  };
   unsigned implausible_optional_fields(const TrackReport& r) const;
   /// Clears the fields of `bits` in `r` and counts each in dropped_fields().
   void drop_optional_fields(TrackReport& r, unsigned bits);

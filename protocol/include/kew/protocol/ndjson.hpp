@@ -7,18 +7,20 @@
 //
 // Required: t (UTC s since 1970), id (string), lat, lon (degrees), alt_ft (feet).
 // Optional: gs_kt (knots), trk_deg (degrees, wrapped into [0, 360)), vr_fpm (ft/min),
-// cs, src (strings), gnd (bool), sq (Mode 3/A, string of 4 octal digits), addr (24-bit
-// ICAO address, an attribute of the track, not its id: string of exactly 6 hex digits,
-// either case), coast (bool: the position is extrapolated), end (bool: the track's last
-// update). null for an optional member means absent (false for the booleans). Unknown
-// keys are ignored (so that producers may add members); when a key repeats, the last
-// value wins. Lines starting with '#' and blank lines are skipped; CRLF is accepted; the
-// last line needs no newline.
+// sel_ft (selected altitude, feet), sel_src ("mcp" or "fms": where sel_ft comes from,
+// meaningful only with sel_ft; absent or null means "mcp"), tar_dps (track angle rate,
+// deg/s, positive turning right), cs, src (strings), gnd (bool), sq (Mode 3/A, string of
+// 4 octal digits), addr (24-bit ICAO address, an attribute of the track, not its id:
+// string of exactly 6 hex digits, either case), coast (bool: the position is
+// extrapolated), end (bool: the track's last update). null for an optional member means
+// absent (false for the booleans). Unknown keys are ignored (so that producers may add
+// members); when a key repeats, the last value wins. Lines starting with '#' and blank
+// lines are skipped; CRLF is accepted; the last line needs no newline.
 //
 // Rejection reasons (each message names the line number): bad_json, wrong_type,
-// bad_number, missing_field, bad_id, bad_mode3a, bad_address, lat_out_of_range,
-// lon_out_of_range, gs_out_of_range, line_too_long, truncated (a refused last line
-// without newline).
+// bad_number, missing_field, bad_id, bad_mode3a, bad_address, bad_sel_src (sel_src is
+// neither "mcp" nor "fms"), lat_out_of_range, lon_out_of_range, gs_out_of_range,
+// line_too_long, truncated (a refused last line without newline).
 
 #include <cstddef>
 #include <memory>

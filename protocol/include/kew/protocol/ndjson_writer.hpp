@@ -7,7 +7,8 @@
 //
 // Numbers are the shortest text that reads back to the same double (fmt "{}"), so 35000.0
 // is written 35000. Optional members are written only when present: gs_kt, trk_deg, vr_fpm
-// when set, cs and src when non-empty, gnd only when true, sq (4 octal digits of the low
+// when set, sel_ft with sel_src ("mcp" or "fms") when sel_ft is set, tar_dps when set, cs
+// and src when non-empty, gnd only when true, sq (4 octal digits of the low
 // 12 bits of mode3a) when set, addr (6 upper-case hex digits of the low 24 bits of
 // address) when set, coast and end (coasting, track_end) only when true. JSON has no NaN or infinity: a non-finite number is
 // written null, which the decoder refuses for required members and reads as absent for

@@ -8,9 +8,12 @@
 // alt_baro (ft, or the string "ground": on ground, altitude alt_geom or 0; a numeric
 // string is read as a number), alt_geom (ft, used when alt_baro is absent), gs (kt) or
 // gscp (kt, what adsb_actions writes instead of gs), track (deg), baro_rate or
-// geom_rate (ft/min), squawk (octal string). A nested "flightdict" object (adsb_actions'
-// copy of the full readsb record) supplies alt_geom, baro_rate, geom_rate and squawk
-// when the top level lacks them. null means absent; other keys are ignored.
+// geom_rate (ft/min), squawk (octal string), nav_altitude_mcp (ft: sel_ft, sel_src mcp)
+// or else nav_altitude_fms (ft: sel_ft, sel_src fms), track_rate (deg/s, positive turning
+// right: tar_dps). A nested "flightdict" object (adsb_actions' copy of the full readsb
+// record) supplies alt_geom, baro_rate, geom_rate, squawk, nav_altitude_mcp,
+// nav_altitude_fms and track_rate when the top level lacks them. null means absent;
+// other keys are ignored.
 // Lines without lat/lon (adsb_actions writes {"flight":"N/A","now":...} heartbeats) are
 // counted "no_position". Other rejections: bad_json, wrong_type, bad_number,
 // missing_field, no_altitude, bad_address, bad_mode3a, *_out_of_range, line_too_long,

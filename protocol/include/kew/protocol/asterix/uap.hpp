@@ -37,6 +37,9 @@ inline constexpr unsigned kFlightPlan = 21;       // I062/390
 // Subfields (0-based) of I062/380 and I062/390.
 inline constexpr unsigned k380Address = 0;
 inline constexpr unsigned k380Identification = 1;
+inline constexpr unsigned k380SelectedAltitude = 5;       // SAL
+inline constexpr unsigned k380FinalSelectedAltitude = 6;  // FSS
+inline constexpr unsigned k380TrackAngleRate = 15;        // TAR
 inline constexpr unsigned k390Callsign = 1;
 }  // namespace cat062
 
@@ -49,6 +52,7 @@ inline constexpr unsigned kMode3A = 5;            // I048/070
 inline constexpr unsigned kFlightLevel = 6;       // I048/090
 inline constexpr unsigned kAddress = 8;           // I048/220
 inline constexpr unsigned kIdentification = 9;    // I048/240
+inline constexpr unsigned kModeSMbData = 10;      // I048/250
 inline constexpr unsigned kTrackNumber = 11;      // I048/161
 inline constexpr unsigned kVelocity = 13;         // I048/200
 inline constexpr unsigned kTrackStatus = 14;      // I048/170
@@ -71,8 +75,11 @@ inline constexpr unsigned kFlightLevel = 21;      // I021/145
 inline constexpr unsigned kBaroVerticalRate = 24; // I021/155
 inline constexpr unsigned kGeoVerticalRate = 25;  // I021/157
 inline constexpr unsigned kGroundVector = 26;     // I021/160
+inline constexpr unsigned kTrackAngleRate = 27;   // I021/165
 inline constexpr unsigned kTimeOfTransmission = 28;  // I021/077
 inline constexpr unsigned kIdentification = 29;   // I021/170
+inline constexpr unsigned kSelectedAltitude = 32; // I021/146
+inline constexpr unsigned kFinalSelectedAltitude = 33;  // I021/148
 }  // namespace cat021
 
 namespace cat021_v026 {
@@ -86,7 +93,10 @@ inline constexpr unsigned kFlightLevel = 10;      // I021/145
 inline constexpr unsigned kBaroVerticalRate = 14; // I021/155
 inline constexpr unsigned kGeoVerticalRate = 15;  // I021/157
 inline constexpr unsigned kGroundVector = 16;     // I021/160
+inline constexpr unsigned kRateOfTurn = 17;       // I021/165 (extended: TI, then ROT)
 inline constexpr unsigned kIdentification = 18;   // I021/170
+inline constexpr unsigned kSelectedAltitude = 24; // I021/146 Intermediate State Selected Altitude
+inline constexpr unsigned kFinalSelectedAltitude = 25;  // I021/148
 inline constexpr unsigned kMode3A = 27;           // I021/070
 }  // namespace cat021_v026
 
