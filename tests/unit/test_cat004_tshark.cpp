@@ -156,7 +156,7 @@ TEST(Cat004Tshark, DecodesEncodedMessagesToTheEncodedValues) {
 // dissector shows the Conflict Properties Class as one 3-bit number (the edition's table
 // of its meaning per TID is not in it): LPF 4, CPF 2, MHF 1.
 TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
-  KEW_REQUIRE_TSHARK();
+  KEW_REQUIRE_TSHARK("the CAT004 filter-bit check");
   const std::vector<Hypothesis> hypotheses{Hypothesis::Linear, Hypothesis::LevelOff,
                                            Hypothesis::Turn, Hypothesis::Proximity};
   Cat004Encoder encoder(Cat004Options{});
@@ -170,7 +170,7 @@ TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
   const std::vector<Datagram> datagrams = encoder.take_datagrams();
   ASSERT_EQ(datagrams.size(), 1u);
   const std::string pcap = write_pcap(datagrams, "cat004_filters");
-  const auto frames = tshark_fields(
+  const auto frames = tshark::fields(
       pcap, {"asterix.004_040_VALUE", "asterix.004_120_CC_TID", "asterix.004_120_CC_CP",
              "asterix.004_120_CC_CS"});
   ASSERT_EQ(frames.size(), 1u) << "tshark decoded no frames from " << pcap;
@@ -182,7 +182,7 @@ TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
   // linear: LPF; level_off: LPF; turn: MHF; proximity: CPF.
   EXPECT_EQ(f.at("asterix.004_120_CC_CP"), (std::vector<std::string>{"4", "4", "1", "2"}));
   EXPECT_EQ(f.at("asterix.004_120_CC_CS"), (std::vector<std::string>{"0", "1", "0", "1"}));
-  EXPECT_EQ(tshark_problems(pcap), "") << "tshark reports malformed frames or expert info";
+  EXPECT_EQ(tshark::problems(pcap), "") << "tshark reports malformed frames or expert info";
   std::remove(pcap.c_str());
 }
 
