@@ -64,6 +64,9 @@ void read_probe(TableReader& r, PipelineConfig& p) {
   if (tolerance_ft >= vertical_ft) r.fail(nullptr, "altimetry_tolerance_ft must be below vertical_ft");
   p.minima.horizontal_m = horizontal_nm * kNauticalMile;
   p.minima.vertical_m = vertical_ft * kFoot;
+  r.boolean("vertical_intent", p.tracks.intent.enabled);
+  r.boolean("turn_hypothesis", p.turn.enabled);
+  r.number("turn_min_rate_dps", p.turn.min_rate_dps, 0.1, 30.0);
 }
 
 void read_alerts(TableReader& r, alert::AlertConfig& a) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -24,9 +26,13 @@ struct RunResult {
   std::uint64_t fields_dropped = 0;
 };
 
+using Configure = void (*)(PipelineConfig& config);
+
 RunResult run(const replay::GeneratorConfig& traffic, probe::ProbeMode mode, double tolerance,
-              kinetic::ToleranceMode tolerance_mode = kinetic::ToleranceMode::Absolute, Edit edit = nullptr) {
+              kinetic::ToleranceMode tolerance_mode = kinetic::ToleranceMode::Absolute, Edit edit = nullptr,
+              Configure configure = nullptr) {
   PipelineConfig config;
+  if (configure) configure(config);
   config.probe_mode = mode;
   config.kinetic.tolerance = tolerance;
   config.kinetic.tolerance_mode = tolerance_mode;
@@ -79,6 +85,8 @@ void expect_identical(const std::vector<AlertEvent>& exact, const std::vector<Al
     EXPECT_EQ(x.cpa_h_m, y.cpa_h_m);
     EXPECT_EQ(x.cpa_v_ft, y.cpa_v_ft);
     EXPECT_EQ(x.sep_h_m, y.sep_h_m);
+    EXPECT_EQ(x.hypothesis, y.hypothesis);
+    EXPECT_EQ(x.region, y.region);
     expect_same_party(x.a, y.a);
     expect_same_party(x.b, y.b);
     if (::testing::Test::HasFailure()) return;
@@ -164,19 +172,27 @@ void with_every_rule(const TrackReport& in, std::vector<TrackReport>& out) {
   }
 }
 
-TEST(ProbeEquivalence, ExactEqualsBruteWithEveryRuleOn) {
+// Two minutes of mixed traffic through the exact probe and brute force, with `edit` and
+// `configure`: the events and suppressions must be identical. Returns the exact run.
+RunResult expect_exact_equals_brute(std::size_t aircraft, double radius_km, std::uint64_t seed, Edit edit,
+                                    Configure configure = nullptr) {
   replay::GeneratorConfig traffic;
   traffic.scenario = replay::Scenario::Mixed;
-  traffic.aircraft = 1500;
+  traffic.aircraft = aircraft;
   traffic.duration_s = 120.0;
-  traffic.seed = 17;
-  traffic.radius_km = 300.0;
-  const RunResult exact = run(traffic, probe::ProbeMode::Exact, 50.0, kinetic::ToleranceMode::Absolute,
-                              with_every_rule);
-  const RunResult brute = run(traffic, probe::ProbeMode::Brute, 50.0, kinetic::ToleranceMode::Absolute,
-                              with_every_rule);
+  traffic.seed = seed;
+  traffic.radius_km = radius_km;
+  const RunResult exact =
+      run(traffic, probe::ProbeMode::Exact, 50.0, kinetic::ToleranceMode::Absolute, edit, configure);
+  const RunResult brute =
+      run(traffic, probe::ProbeMode::Brute, 50.0, kinetic::ToleranceMode::Absolute, edit, configure);
   expect_identical(exact.events, brute.events);
   EXPECT_EQ(exact.suppressed, brute.suppressed);
+  return exact;
+}
+
+TEST(ProbeEquivalence, ExactEqualsBruteWithEveryRuleOn) {
+  const RunResult exact = expect_exact_equals_brute(1500, 300.0, 17, with_every_rule);
   std::size_t opened = 0;
   for (const AlertEvent& e : exact.events) opened += e.state == AlertState::New;
   EXPECT_GE(opened, 5u) << "the scenario must exercise the probe";
@@ -184,6 +200,59 @@ TEST(ProbeEquivalence, ExactEqualsBruteWithEveryRuleOn) {
   for (const char* rule : {"same_aircraft", "level_pair", "slow", "excluded_code", "coasting", "below_lower_limit"})
     EXPECT_GT(exact.suppressed.count(rule) ? exact.suppressed.at(rule) : 0u, 0u) << rule;
   EXPECT_GT(exact.fields_dropped, 0u);
+  EXPECT_EQ(exact.audit_violations, 0u);
+}
+
+// Selected altitudes on most climbing and descending aircraft (the next thousand feet
+// but one in the direction of motion, so that the level-off is within the look-ahead),
+// and a reported rate of turn on one aircraft in five.
+void with_intent_and_turns(const TrackReport& in, std::vector<TrackReport>& out) {
+  out.push_back(in);
+  TrackReport& r = out.back();
+  const std::uint32_t h = static_cast<std::uint32_t>(std::hash<std::string>{}(r.id));
+  if (r.vr_fpm && std::abs(*r.vr_fpm) > 300.0 && h % 4 != 0) {
+    const double step = *r.vr_fpm > 0.0 ? 1000.0 : -1000.0;
+    r.sel_ft = (std::round(r.alt_ft / 1000.0) + 2.0 * (step > 0.0 ? 1.0 : -1.0)) * 1000.0;
+    r.sel_src = h % 2 ? SelectedAltitudeSource::Mcp : SelectedAltitudeSource::Fms;
+  }
+  if (h % 5 == 0) r.tar_dps = (h % 2 ? 1.0 : -1.0) * (1.0 + (h >> 8) % 3);
+}
+
+// A terminal area with smaller minima, a longer look-ahead and its own confirm/clear,
+// and an inhibition volume overlapping its edge (design §4.8).
+void with_regions_and_turns(PipelineConfig& config) {
+  config.turn.enabled = true;
+  region::Region tma;
+  tma.name = "tma";
+  tma.center = {50.0, 8.0};
+  tma.radius_m = 120e3;
+  tma.ceiling_ft = 24500.0;
+  tma.parameters.horizontal_m = 3.0 * 1852.0;
+  tma.parameters.lookahead_s = 300.0;  // the search radius must grow for it
+  tma.parameters.warning_s = 40.0;
+  tma.parameters.confirm = 1;
+  tma.parameters.clear = 2;
+  region::Region inhibited;
+  inhibited.name = "aerodrome";
+  inhibited.polygon = {{50.6, 7.5}, {51.4, 7.6}, {51.3, 8.9}, {50.7, 8.6}};
+  inhibited.inhibit = true;
+  config.regions = {inhibited, tma};
+}
+
+TEST(ProbeEquivalence, ExactEqualsBruteWithRegionsIntentAndTurns) {
+  const RunResult exact = expect_exact_equals_brute(600, 200.0, 19, with_intent_and_turns, with_regions_and_turns);
+  // Every hypothesis and both regions took part, so the equivalence covers each.
+  std::map<Hypothesis, int> by_hypothesis;
+  std::map<std::string, int> by_region;
+  for (const AlertEvent& e : exact.events) {
+    ++by_hypothesis[e.hypothesis];
+    ++by_region[e.region];
+  }
+  for (const Hypothesis h : {Hypothesis::Linear, Hypothesis::LevelOff, Hypothesis::Turn, Hypothesis::Proximity})
+    EXPECT_GT(by_hypothesis[h], 0) << to_string(h);
+  EXPECT_GT(by_region["tma"], 0);
+  EXPECT_GT(by_region[""], 0);
+  EXPECT_GT(exact.suppressed.count("inhibited") ? exact.suppressed.at("inhibited") : 0u, 0u);
   EXPECT_EQ(exact.audit_violations, 0u);
 }
 

@@ -68,6 +68,9 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.minima.lookahead_s, d.minima.lookahead_s);
   EXPECT_EQ(p.minima.vertical_lookahead_s, d.minima.vertical_lookahead_s);
   EXPECT_DOUBLE_EQ(p.minima.altimetry_tolerance_m, d.minima.altimetry_tolerance_m);
+  EXPECT_EQ(p.tracks.intent.enabled, d.tracks.intent.enabled);
+  EXPECT_EQ(p.turn.enabled, d.turn.enabled);
+  EXPECT_EQ(p.turn.min_rate_dps, d.turn.min_rate_dps);
   EXPECT_EQ(p.alerts.confirm, d.alerts.confirm);
   EXPECT_EQ(p.alerts.clear, d.alerts.clear);
   EXPECT_EQ(p.alerts.warning_s, d.alerts.warning_s);
@@ -216,6 +219,18 @@ level_rate_fpm = 0
   EXPECT_EQ(e.excluded_mode3a, (std::vector<std::uint16_t>{07777, 033}));
   EXPECT_FALSE(e.exclude_coasting);
   EXPECT_EQ(e.level_rate_fpm, 0.0);
+}
+
+TEST(Config, ReadsTheVerticalIntentAndTurnHypothesisSwitches) {
+  const Config c = parse_config(R"(
+[probe]
+vertical_intent = false
+turn_hypothesis = true
+turn_min_rate_dps = 2.5
+)");
+  EXPECT_FALSE(c.pipeline.tracks.intent.enabled);
+  EXPECT_TRUE(c.pipeline.turn.enabled);
+  EXPECT_EQ(c.pipeline.turn.min_rate_dps, 2.5);
 }
 
 TEST(Config, UtcDays) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scripted_flight.hpp"
+
 #include <GeographicLib/Geodesic.hpp>
 
 #include <functional>
@@ -17,64 +19,10 @@
 namespace kew {
 namespace {
 
-constexpr double kT0 = 1714400000.0;
-constexpr double kKnot = 1852.0 / 3600.0;
-
-// One aircraft's record at time t on a straight track through (50° N, 8° E): `east_m`
-// east of it at t = kT0, flying `trk_deg` at `gs_kt`.
-struct Flight {
-  std::string id;
-  std::string source = "test";
-  double east_m = 0.0;
-  double north_m = 0.0;
-  double alt_ft = 35000.0;
-  double gs_kt = 450.0;
-  double trk_deg = 90.0;
-  double vr_fpm = 0.0;
-  std::function<void(TrackReport&)> edit = {};  // applied to every record
-
-  TrackReport at(double t) const {
-    const auto& wgs84 = GeographicLib::Geodesic::WGS84();
-    const double flown = gs_kt * kKnot * (t - kT0);
-    const double rad = trk_deg * M_PI / 180.0;
-    double lat0, lon0, lat, lon;
-    wgs84.Direct(50.0, 8.0, 90.0, east_m + flown * std::sin(rad), lat0, lon0);
-    wgs84.Direct(lat0, lon0, 0.0, north_m + flown * std::cos(rad), lat, lon);
-    TrackReport r;
-    r.t = t;
-    r.id = id;
-    r.source = source;
-    r.lat_deg = lat;
-    r.lon_deg = lon;
-    r.alt_ft = alt_ft + vr_fpm * (t - kT0) / 60.0;
-    r.gs_kt = gs_kt;
-    r.trk_deg = trk_deg;
-    r.vr_fpm = vr_fpm;
-    if (edit) edit(r);
-    return r;
-  }
-};
-
-struct Outcome {
-  std::unique_ptr<Pipeline> pipeline;
-  std::vector<AlertEvent> events;
-  std::size_t opened() const {
-    std::size_t n = 0;
-    for (const AlertEvent& e : events) n += e.state == AlertState::New;
-    return n;
-  }
-};
-
-// Every flight reports every 4 s from kT0 for `seconds`.
-Outcome fly(const std::vector<Flight>& flights, double seconds = 40.0, const PipelineConfig& config = {}) {
-  Outcome run;
-  run.pipeline = std::make_unique<Pipeline>(config);
-  run.pipeline->set_alert_sink([&run](const AlertEvent& e) { run.events.push_back(e); });
-  for (double dt = 0.0; dt < seconds; dt += 4.0)
-    for (const Flight& f : flights) run.pipeline->process(f.at(kT0 + dt));
-  run.pipeline->set_alert_sink({});  // `run` is moved out: nothing may write to it after
-  return run;
-}
+using test_support::Flight;
+using test_support::fly;
+using test_support::kT0;
+using test_support::Outcome;
 
 // Two aircraft head-on 20 NM apart, closing at 900 kt: separation is lost in 60 s.
 std::vector<Flight> head_on(double alt_a = 35000.0, double alt_b = 35000.0) {

@@ -57,9 +57,9 @@ std::uint64_t alert_id_hash(const AlertParty& a, const AlertParty& b, double ope
 
 AlertManager::AlertManager(const AlertConfig& config, PartyNames names) : config_(config), names_(std::move(names)) {}
 
-Severity AlertManager::classify(bool lost_now, double t_los_s) const {
+Severity AlertManager::classify(bool lost_now, double t_los_s, double warning_s) const {
   if (lost_now) return Severity::Loss;
-  if (t_los_s <= config_.warning_s) return Severity::Warning;
+  if (t_los_s <= (warning_s < 0.0 ? config_.warning_s : warning_s)) return Severity::Warning;
   return Severity::Caution;
 }
 
@@ -83,14 +83,14 @@ void AlertManager::forget(Pairs::iterator it) {
   pairs_.erase(it);
 }
 
-void AlertManager::record_clear(Pairs::iterator it, double t, std::vector<AlertEvent>& out) {
+void AlertManager::record_clear(Pairs::iterator it, double t, int clear, std::vector<AlertEvent>& out) {
   PairState& s = it->second;
   s.conflicts_in_row = 0;
   if (!s.active) {
     forget(it);
     return;
   }
-  if (++s.clears_in_row < config_.clear) return;
+  if (++s.clears_in_row < clear) return;
   end(s, t, AlertEndReason::Cleared, out);
   forget(it);
 }
@@ -185,6 +185,8 @@ void AlertManager::remember(PairState& s, const AlertEvent& event) {
   last.number = event.number;
   last.state = event.state;
   last.severity = event.severity;
+  last.hypothesis = event.hypothesis;
+  if (last.region != event.region) last.region = event.region;
   last.acknowledged = event.acknowledged;
 }
 
@@ -196,6 +198,8 @@ AlertEvent AlertManager::recall(const PairState& s) const {
   event.seq = last.seq;
   event.state = last.state;
   event.severity = last.severity;
+  event.hypothesis = last.hypothesis;
+  event.region = last.region;
   event.t = last.t;
   event.opened_t = last.opened_t;
   AlertParty& lo = last.lo_is_a ? event.a : event.b;

@@ -46,8 +46,63 @@ Pipeline::Pipeline(const PipelineConfig& config)
         const track::Track& track = tracks_[slot];
         return alert::PartyName{track.source, track.id};
       }),
+      regions_(config.regions),
       rules_(config.eligibility, config.minima) {
   if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
+  // Each region's parameters resolved against the defaults once; the defaults last.
+  PairParameters defaults;
+  defaults.minima = config_.minima;
+  defaults.warning_s = config_.alerts.warning_s;
+  defaults.confirm = config_.alerts.confirm;
+  defaults.clear = config_.alerts.clear;
+  largest_horizontal_m_ = defaults.minima.horizontal_m;
+  largest_lookahead_s_ = defaults.minima.lookahead_s;
+  for (const region::Region& r : regions_.regions()) {
+    PairParameters p = defaults;
+    const region::RegionParameters& set = r.parameters;
+    p.minima.horizontal_m = set.horizontal_m.value_or(p.minima.horizontal_m);
+    p.minima.vertical_m = set.vertical_m.value_or(p.minima.vertical_m);
+    p.minima.lookahead_s = set.lookahead_s.value_or(p.minima.lookahead_s);
+    p.warning_s = set.warning_s.value_or(p.warning_s);
+    p.confirm = set.confirm.value_or(p.confirm);
+    p.clear = set.clear.value_or(p.clear);
+    p.region = &r.name;
+    p.inhibited = r.inhibit;
+    largest_horizontal_m_ = std::max(largest_horizontal_m_, p.minima.horizontal_m);
+    largest_lookahead_s_ = std::max(largest_lookahead_s_, p.minima.lookahead_s);
+    region_parameters_.push_back(p);
+  }
+  region_parameters_.push_back(defaults);
+}
+
+Pipeline::PairParameters Pipeline::pair_parameters(std::size_t ra, std::size_t rb) const {
+  const std::size_t none = region_parameters_.size() - 1;
+  const PairParameters& a = region_parameters_[ra == region::RegionMap::kNone ? none : ra];
+  const PairParameters& b = region_parameters_[rb == region::RegionMap::kNone ? none : rb];
+  if (&a == &b) return a;
+  // Different regions: the stricter of each parameter (design §4.8).
+  PairParameters p = a;
+  p.minima.horizontal_m = std::max(a.minima.horizontal_m, b.minima.horizontal_m);
+  p.minima.vertical_m = std::max(a.minima.vertical_m, b.minima.vertical_m);
+  p.minima.lookahead_s = std::max(a.minima.lookahead_s, b.minima.lookahead_s);
+  p.warning_s = std::max(a.warning_s, b.warning_s);
+  p.confirm = std::min(a.confirm, b.confirm);
+  p.clear = std::max(a.clear, b.clear);
+  p.region = a.region ? a.region : b.region;
+  if (a.region && b.region) p.region = *a.region < *b.region ? a.region : b.region;
+  p.inhibited = a.inhibited || b.inhibited;
+  return p;
+}
+
+Pipeline::PairParameters Pipeline::parameters_of(track::TrackSlot p, track::TrackSlot q) const {
+  return pair_parameters(probe_state_[p].region, probe_state_[q].region);
+}
+
+bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
+                                const probe::SeparationMinima& minima) const {
+  if (probe::in_conflict(kp, kq, minima)) return true;
+  return config_.turn.enabled && (kp.turn_rate_rps != 0.0 || kq.turn_rate_rps != 0.0) &&
+         probe::turn_conflict(kp, kq, minima).in_conflict;
 }
 
 double Pipeline::tolerance_bound_m() const {
@@ -61,8 +116,8 @@ double Pipeline::tolerance_bound_m() const {
 double Pipeline::search_radius(double speed_mps) const {
   const double k_max = projection_ ? projection_->max_scale() : 1.0;
   const double v_max = speeds_.empty() ? 0.0 : speeds_.top_key();
-  return config_.minima.horizontal_m * k_max + config_.minima.lookahead_s * (speed_mps + v_max) +
-         2.0 * tolerance_bound_m() + kSearchSlack_m;
+  return largest_horizontal_m_ * k_max + largest_lookahead_s_ * (speed_mps + v_max) + 2.0 * tolerance_bound_m() +
+         kSearchSlack_m;
 }
 
 void Pipeline::process(const TrackReport& report) {
@@ -281,7 +336,11 @@ void Pipeline::apply(track::TrackSlot slot) {
   speeds_.set(slot, geometry::norm(now.velocity));
   util::grow_to(probe_state_, slot + 1);
   util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
-  probe_state_[slot] = {track.kinematics, track.t, track.plane_scale};
+  ProbeState& state = probe_state_[slot];
+  state = {track.kinematics, track.t, track.plane_scale, track.intent.sel_t + config_.tracks.intent.max_age_s,
+           regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft)};
+  if (config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps)
+    state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
   probe_live_[slot] = 1;
   probe(slot);
 }
@@ -333,7 +392,8 @@ Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const 
   const ProbeState& other = probe_state_[other_slot];
   PairKinematics pair;
   pair.scale = geo::Projection::pair_scale(self.scale, other.scale);
-  pair.minima = config_.minima;
+  pair.parameters = parameters_of(slot, other_slot);
+  pair.minima = pair.parameters.minima;
   pair.minima.horizontal_m *= pair.scale;
   // The lower slot goes first so that a pair's figures do not depend on which of its
   // two tracks was updated.
@@ -372,10 +432,11 @@ void Pipeline::probe(track::TrackSlot slot) {
     // pair_kinematics() without its copies: this loop runs ~100 times per update.
     const ProbeState& them = probe_state_[other];
     const probe::Kinematics k_other = them.at(clock_);
-    probe::SeparationMinima minima = config_.minima;
+    probe::SeparationMinima minima =
+        regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;
     if (probe::vertically_apart_for_ever(k_self, k_other, minima)) continue;
     minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
-    if (slot < other ? probe::in_conflict(k_self, k_other, minima) : probe::in_conflict(k_other, k_self, minima))
+    if (slot < other ? pair_in_conflict(k_self, k_other, minima) : pair_in_conflict(k_other, k_self, minima))
       evaluated_.push_back(other);
   }
   std::sort(evaluated_.begin(), evaluated_.end());
@@ -383,19 +444,35 @@ void Pipeline::probe(track::TrackSlot slot) {
     const PairKinematics pair = pair_kinematics(slot, k_self, other);
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
-    if (probe::in_conflict(pair.kp, pair.kq, pair.minima) && !suppressed_by_rules(pair))
+    bool along_turn = false;
+    if (pair_in_conflict(pair.kp, pair.kq, pair.minima) && !suppressed_by_rules(pair)) {
       g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
+      if (!g.in_conflict) {  // only the turn hypothesis finds it
+        g = probe::turn_conflict(pair.kp, pair.kq, pair.minima);
+        along_turn = true;
+      }
+    }
     alert::Evaluation e;
     e.in_conflict = g.in_conflict;
+    e.confirm = pair.parameters.confirm;
+    e.clear = pair.parameters.clear;
     if (g.in_conflict) {
       if (conflict_tap_) conflict_tap_(pair.p, pair.q);
-      e.severity = alerts_.classify(g.lost_now, g.t_los_s);
+      e.severity = alerts_.classify(g.lost_now, g.t_los_s, pair.parameters.warning_s);
       e.t_los_s = g.t_los_s;
       e.cpa_h_m = g.cpa_h_m / pair.scale;
       e.cpa_v_ft = g.cpa_v_m / kFootToMetre;
     }
     alerts_.evaluate(
-        pair.p, pair.q, e, clock_, [&](AlertEvent& event) { fill_event(event, pair.p, pair.q, g, pair.kp, pair.kq); },
+        pair.p, pair.q, e, clock_,
+        [&](AlertEvent& event) {
+          fill_event(event, pair.p, pair.q, g, pair.kp, pair.kq, along_turn);
+          event.hypothesis = g.lost_now     ? Hypothesis::Proximity
+                             : along_turn   ? Hypothesis::Turn
+                             : g.level_off  ? Hypothesis::LevelOff
+                                            : Hypothesis::Linear;
+          event.region = pair.parameters.region ? *pair.parameters.region : std::string();
+        },
         pending_events_);
   }
   deliver();
@@ -413,6 +490,10 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
     return true;
   }
   if (alerts_.is_active(pair.p, pair.q)) return false;
+  if (pair.parameters.inhibited) {
+    suppressed_.reject("inhibited");
+    return true;
+  }
   // Codes are duplicated: two aircraft with one code that close in on each other must not
   // lose an open alert, so the code rule only keeps one from opening.
   const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
@@ -428,7 +509,7 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
 }
 
 void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
-                          const probe::Kinematics& kp, const probe::Kinematics& kq) const {
+                          const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const {
   const track::Track& tp = tracks_[p];
   const track::Track& tq = tracks_[q];
   const bool p_first = ordered_before(tp, tq);
@@ -444,7 +525,8 @@ void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlo
     return geo::Projection::geodesic_distance_m(projection.unproject(x), projection.unproject(y));
   };
   event.sep_h_m = geodesic(kp.position, kq.position);
-  event.cpa_h_m = geodesic(kp.position + g.t_cpa_s * kp.velocity, kq.position + g.t_cpa_s * kq.velocity);
+  event.cpa_h_m = along_turn ? geodesic(probe::position_along_turn(kp, g.t_cpa_s), probe::position_along_turn(kq, g.t_cpa_s))
+                             : geodesic(kp.position + g.t_cpa_s * kp.velocity, kq.position + g.t_cpa_s * kq.velocity);
 }
 
 void Pipeline::deliver() {

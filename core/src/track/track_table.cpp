@@ -1,6 +1,7 @@
 #include "kew/track/track_table.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <fmt/format.h>
@@ -173,6 +174,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     track.callsign.clear();
     track.mode3a.reset();
     track.address.reset();
+    track.intent = IntentState{};
+    track.has_turn_reference = false;
   }
   if (!r.callsign.empty()) track.callsign = r.callsign;
   if (r.mode3a) track.mode3a = r.mode3a;
@@ -196,6 +199,10 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     projection.velocity_from_plane(plane, velocity, speed, track.trk_deg);
     track.gs_kt = speed / kKnotToMps;
   }
+  track.level_off_ft = update_intent(track.intent, config_.intent, r.t, r.sel_ft, r.sel_src, r.alt_ft, track.vr_fpm);
+  track.kinematics.level_off_m =
+      track.level_off_ft ? *track.level_off_ft * kFootToMetre : std::numeric_limits<double>::quiet_NaN();
+  update_turn_rate(track, r, has_velocity);
   if (derived) ++velocities_derived_;
   if (result.velocity_reset) ++velocity_resets_;
   deadlines_.set(slot, r.t + config_.track_timeout_s);
@@ -203,6 +210,36 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   result.slot = slot;
   result.admission = has_velocity ? Admission::Accepted : Admission::AwaitingVelocity;
   return result;
+}
+
+void TrackTable::update_turn_rate(Track& track, const TrackReport& r, bool has_velocity) {
+  if (r.tar_dps) {
+    track.turn_rate_dps = r.tar_dps;
+    return;
+  }
+  if (!has_velocity) {
+    track.turn_rate_dps.reset();
+    track.has_turn_reference = false;
+    return;
+  }
+  const double baseline = r.t - track.turn_reference_t;
+  if (track.has_turn_reference && baseline > kTurnRateMaxBaseline_s) {
+    track.turn_rate_dps.reset();
+    track.has_turn_reference = false;
+  }
+  if (!track.has_turn_reference) {
+    track.turn_reference_t = r.t;
+    track.turn_reference_trk_deg = track.trk_deg;
+    track.has_turn_reference = true;
+    return;
+  }
+  if (baseline < kTurnRateBaseline_s) return;  // keep the last rate
+  double turned = std::fmod(track.trk_deg - track.turn_reference_trk_deg, 360.0);
+  if (turned > 180.0) turned -= 360.0;
+  if (turned < -180.0) turned += 360.0;
+  track.turn_rate_dps = turned / baseline;
+  track.turn_reference_t = r.t;
+  track.turn_reference_trk_deg = track.trk_deg;
 }
 
 static_assert(TrackIndex::kAbsent == kNoTrack, "find() hands the index's 'absent' on as kNoTrack");

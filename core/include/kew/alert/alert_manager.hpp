@@ -42,6 +42,10 @@ struct Evaluation {
   double t_los_s = 0.0;
   double cpa_h_m = 0.0;
   double cpa_v_ft = 0.0;
+  /// The pair's own confirm and clear counts (a parameter region's, design §4.8); 0: the
+  /// manager's configuration.
+  int confirm = 0;
+  int clear = 0;
 };
 
 /// How the track in a slot is named: the `source` and `id` of its AlertParty. Views stay
@@ -61,8 +65,9 @@ class AlertManager {
   using PartyNames = std::function<PartyName(Slot)>;
   AlertManager(const AlertConfig& config, PartyNames names);
 
-  /// Severity of a conflict from its geometry (loss now / t_los ≤ warning_s / later).
-  Severity classify(bool lost_now, double t_los_s) const;
+  /// Severity of a conflict from its geometry (loss now / t_los ≤ warning_s / later);
+  /// `warning_s` < 0: the configuration's.
+  Severity classify(bool lost_now, double t_los_s, double warning_s = -1.0) const;
 
   /// Records one evaluation of pair {p, q} at data time t. When an event is emitted,
   /// `build(AlertEvent&)` is called first to fill parties and figures (severity, ids,
@@ -72,14 +77,14 @@ class AlertManager {
     const std::uint64_t key = pair_key(p, q);
     auto it = pairs_.find(key);
     if (!e.in_conflict) {
-      if (it != pairs_.end()) record_clear(it, t, out);
+      if (it != pairs_.end()) record_clear(it, t, e.clear > 0 ? e.clear : config_.clear, out);
       return;
     }
     if (it == pairs_.end()) it = create(key);
     PairState& s = it->second;
     s.clears_in_row = 0;
     if (s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
-    if (!s.active && s.conflicts_in_row < config_.confirm) return;
+    if (!s.active && s.conflicts_in_row < (e.confirm > 0 ? e.confirm : config_.confirm)) return;
     if (s.active && !changed(s, e, t)) return;
     AlertEvent event;
     build(event);
@@ -153,6 +158,8 @@ class AlertManager {
     std::uint16_t number = 0;
     AlertState state = AlertState::New;
     Severity severity = Severity::None;
+    Hypothesis hypothesis = Hypothesis::Linear;
+    std::string region;
     bool acknowledged = false;
     bool lo_is_a = true;  // the lower slot's track is AlertEvent::a
   };
@@ -178,7 +185,7 @@ class AlertManager {
   }
   Pairs::iterator create(std::uint64_t key);
   void forget(Pairs::iterator it);
-  void record_clear(Pairs::iterator it, double t, std::vector<AlertEvent>& out);
+  void record_clear(Pairs::iterator it, double t, int clear, std::vector<AlertEvent>& out);
   bool changed(const PairState& s, const Evaluation& e, double t) const;
   void open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
   void update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);

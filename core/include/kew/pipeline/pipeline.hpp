@@ -31,6 +31,8 @@ struct PipelineConfig {
   kinetic::KineticConfig kinetic = default_kinetic();
   probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
   probe::SeparationMinima minima;
+  /// The turn hypothesis (design §4.4); off by default.
+  probe::TurnHypothesis turn;
   alert::AlertConfig alerts;
   eligibility::EligibilityConfig eligibility;
   /// Parameter regions and inhibition volumes (design §4.8), in precedence order; each
@@ -130,8 +132,20 @@ class Pipeline {
   const std::optional<geo::Projection>& projection() const { return projection_; }
 
   /// Search radius R_i of design §2.1 for a track moving at plane speed `speed_mps`, in
-  /// plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute bound).
+  /// plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute bound), with the
+  /// largest S_h and T of the defaults and every region (design §4.8).
   double search_radius(double speed_mps) const;
+
+  /// The parameters that judge a pair whose aircraft are in regions `ra` and `rb`
+  /// (region::RegionMap indices, kNone for none), by the rule of design §4.8.
+  struct PairParameters {
+    probe::SeparationMinima minima;  ///< S_h in metres on the ellipsoid (not yet scaled)
+    double warning_s = 0.0;
+    int confirm = 0, clear = 0;
+    const std::string* region = nullptr;  ///< the judging region's name; null: the defaults
+    bool inhibited = false;               ///< either aircraft in an inhibition volume
+  };
+  PairParameters pair_parameters(std::size_t ra, std::size_t rb) const;
 
  private:
   /// A young run (fewer than kYoungRun records accepted) restarts from the records it
@@ -160,8 +174,9 @@ class Pipeline {
   struct PairKinematics {
     track::TrackSlot p, q;
     probe::Kinematics kp, kq;
-    probe::SeparationMinima minima;
+    probe::SeparationMinima minima;  // S_h scaled for the pair
     double scale;  // the pair's projection scale
+    PairParameters parameters;
   };
   PairKinematics pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
                                  track::TrackSlot other_slot) const;
@@ -169,7 +184,13 @@ class Pipeline {
   /// the pair is to be treated as clear (counted in suppressed_).
   bool suppressed_by_rules(const PairKinematics& pair);
   void fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
-                  const probe::Kinematics& kp, const probe::Kinematics& kq) const;
+                  const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const;
+  /// The conflict test of one ordered pair: linear (with vertical intent), then, when
+  /// the turn hypothesis is on and either aircraft turns, along the arcs.
+  bool pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
+                        const probe::SeparationMinima& minima) const;
+  /// The parameters of the pair of probe states (slots) p and q.
+  PairParameters parameters_of(track::TrackSlot p, track::TrackSlot q) const;
   void deliver();
   double engine_time(double t) const { return t - epoch_; }
   double tolerance_bound_m() const;
@@ -196,12 +217,12 @@ class Pipeline {
     probe::Kinematics kinematics;  // at time t
     double t = 0.0;
     double scale = 1.0;
+    double level_off_until_t = 0.0;  // the selected altitude's age limit (UTC s)
+    std::size_t region = region::RegionMap::kNone;
     probe::Kinematics at(double at_t) const {
       probe::Kinematics k = kinematics;
-      const double dt = at_t - t;
-      k.position = k.position + dt * k.velocity;
-      k.altitude_m += dt * k.vertical_rate_mps;
-      return k;
+      if (at_t > level_off_until_t) k.level_off_m = std::numeric_limits<double>::quiet_NaN();
+      return probe::extrapolated(k, at_t - t);
     }
   };
   std::vector<ProbeState> probe_state_;
@@ -213,6 +234,10 @@ class Pipeline {
   std::vector<track::TrackSlot> partners_scratch_;
   std::vector<std::uint32_t> partner_mark_;      // by slot: == candidate_round_ for this probe's partners
   std::uint32_t candidate_round_ = 0;
+  region::RegionMap regions_;
+  std::vector<PairParameters> region_parameters_;  // by region index; the defaults last
+  double largest_horizontal_m_ = 0.0;              // S_h and T of the search radius
+  double largest_lookahead_s_ = 0.0;
   eligibility::Rules rules_;
   Rejections suppressed_;
   ConflictTap conflict_tap_;

@@ -8,6 +8,8 @@
 // intersection of the two open time intervals, each from a quadratic or linear
 // inequality solved in closed form, clipped to [0, T].
 
+#include <limits>
+
 #include "kew/geometry/vector2.hpp"
 
 namespace kew::probe {
@@ -18,7 +20,30 @@ struct Kinematics {
   geometry::Vector2 velocity;  ///< m/s
   double altitude_m = 0.0;
   double vertical_rate_mps = 0.0;
+  /// Vertical intent (design §4.4): the altitude (m) at which the climb or descent stops,
+  /// reached in (level_off_m − altitude_m) / vertical_rate_mps > 0 s; NaN: none, the
+  /// vertical prediction is linear. Set only for an aircraft moving towards it.
+  double level_off_m = std::numeric_limits<double>::quiet_NaN();
+  /// Turn hypothesis (design §4.4): rate at which the velocity turns in the plane (rad/s,
+  /// counter-clockwise positive); 0: none. Read only by turn_conflict().
+  double turn_rate_rps = 0.0;
+
+  bool levels_off() const { return level_off_m == level_off_m; }  // not NaN
 };
+
+/// `k` moved on by dt ≥ 0 s: horizontally in a straight line (as the kinetic engine
+/// moves its points), vertically up to the level-off altitude, where it stays.
+inline Kinematics extrapolated(const Kinematics& k, double dt) {
+  Kinematics out = k;
+  out.position = k.position + dt * k.velocity;
+  out.altitude_m += dt * k.vertical_rate_mps;
+  if (k.levels_off() && k.vertical_rate_mps != 0.0 && (out.altitude_m - k.level_off_m) * k.vertical_rate_mps >= 0.0) {
+    out.altitude_m = k.level_off_m;
+    out.vertical_rate_mps = 0.0;
+    out.level_off_m = std::numeric_limits<double>::quiet_NaN();  // levelled: plain level flight
+  }
+  return out;
+}
 
 struct SeparationMinima {
   double horizontal_m = 9260.0;  ///< S_h (> 0); default 5 NM
@@ -53,6 +78,8 @@ struct ConflictGeometry {
   double cpa_v_m = 0.0;  ///< vertical distance at t_cpa (m, ≥ 0)
   double sep_h_m = 0.0;  ///< horizontal distance now (m)
   double sep_v_m = 0.0;  ///< vertical distance now (m, ≥ 0)
+  /// The vertical prediction of either aircraft levels off within the look-ahead.
+  bool level_off = false;
 };
 
 /// Evaluates the pair (a, b). Symmetric: swapping a and b gives the same figures up to
@@ -64,14 +91,34 @@ ConflictGeometry evaluate_pair(const Kinematics& a, const Kinematics& b, const S
 /// path for the many pairs that are clear.
 bool in_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
 
-/// True when the pair keeps its vertical separation for ever: the same vertical rate and
-/// at least S_v apart. in_conflict() is then false, decided the same way (an empty
-/// vertical interval), so callers may skip it; inline because most candidate pairs of
-/// en-route traffic are level at different flight levels.
+/// The turn hypothesis (design §4.4): the pair under evaluate_pair()'s vertical model,
+/// with each aircraft whose turn_rate_rps ≠ 0 flying an arc at constant speed and rate of
+/// turn for the whole look-ahead instead of a straight line. The horizontal window is
+/// found by stepping with the bound |d/ds distance| ≤ |v_a| + |v_b|, never more than
+/// kTurnStep_s at a time where the distance is within that bound of S_h: a window shorter
+/// than kTurnStep_s can be missed. Figures: t_cpa to within 1 ms of the sampled minimum.
+ConflictGeometry turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
+inline constexpr double kTurnStep_s = 0.05;
+
+/// Position after s ≥ 0 seconds along the arc of turn_rate_rps (a straight line when 0).
+geometry::Point2 position_along_turn(const Kinematics& k, double s);
+
+/// When a turning aircraft is also predicted along its arc (design §4.4).
+struct TurnHypothesis {
+  bool enabled = false;
+  /// Turning: |rate of turn| at least this (deg/s, > 0). A rate-one turn is 3 deg/s; an
+  /// airliner banked 25° at cruise speed turns about 1.5 deg/s.
+  double min_rate_dps = 1.0;
+};
+
+/// True when the pair keeps its vertical separation for ever: the same vertical rate, no
+/// level-off, and at least S_v apart. in_conflict() is then false, decided the same way
+/// (an empty vertical interval), so callers may skip it; inline because most candidate
+/// pairs of en-route traffic are level at different flight levels.
 inline bool vertically_apart_for_ever(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
   const double dz = b.altitude_m - a.altitude_m;
   const double wz = b.vertical_rate_mps - a.vertical_rate_mps;
-  return wz == 0.0 && !(dz < minima.vertical_m && -dz < minima.vertical_m);
+  return wz == 0.0 && !a.levels_off() && !b.levels_off() && !(dz < minima.vertical_m && -dz < minima.vertical_m);
 }
 
 }  // namespace kew::probe

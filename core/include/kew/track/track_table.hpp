@@ -16,6 +16,7 @@
 #include "kew/probe/cpa.hpp"
 #include "kew/track/track_index.hpp"
 #include "kew/track/track_report.hpp"
+#include "kew/track/vertical_intent.hpp"
 #include "kew/util/chunked_vector.hpp"
 #include "kew/util/indexed_heap.hpp"
 #include "kew/util/rejections.hpp"
@@ -44,7 +45,14 @@ struct TrackTableConfig {
   double max_time_jump_s = 10.0;
   /// Velocity is derived from the previous position only when it is at most this old (s).
   double max_derivation_gap_s = 60.0;
+  /// When a selected altitude stops the vertical prediction (design §4.4).
+  IntentConfig intent;
 };
+
+/// A rate of turn is derived from track angles at least this far apart in time (s) ...
+inline constexpr double kTurnRateBaseline_s = 3.0;
+/// ... and at most this far (s): older angles say nothing of the present turn.
+inline constexpr double kTurnRateMaxBaseline_s = 20.0;
 
 /// Records held ahead of the clock, none contradicted, that show the data really jumped
 /// (TimeGuard): the first and two more.
@@ -78,17 +86,22 @@ struct Track {
   /// Point scale k of the projection at the position (plane length / ellipsoid
   /// length, ≥ 1): separations measured in the plane are divided by it.
   double plane_scale = 1.0;
+  /// Vertical intent: the selection and what the track did about it.
+  IntentState intent;
+  /// Altitude (ft) at which the vertical prediction levels off, as of the last record;
+  /// empty: linear (update_intent).
+  std::optional<double> level_off_ft;
+  /// Rate of turn (deg/s, positive right): reported, or derived from two track angles
+  /// kTurnRateBaseline_s to kTurnRateMaxBaseline_s apart; empty when unknown.
+  std::optional<double> turn_rate_dps;
+  double turn_reference_t = 0.0;          ///< the older track angle of the derivation
+  double turn_reference_trk_deg = 0.0;
+  bool has_turn_reference = false;
   probe::Kinematics kinematics;             ///< plane kinematics at t
   kinetic::PointId point = kinetic::kNoPoint;  ///< vertex in the kinetic engine, if any
 
-  /// Plane kinematics extrapolated linearly to time `at` (UTC s).
-  probe::Kinematics at(double at_t) const {
-    probe::Kinematics k = kinematics;
-    const double dt = at_t - t;
-    k.position = k.position + dt * k.velocity;
-    k.altitude_m += dt * k.vertical_rate_mps;
-    return k;
-  }
+  /// Plane kinematics extrapolated to time `at` (UTC s), probe::extrapolated.
+  probe::Kinematics at(double at_t) const { return probe::extrapolated(kinematics, at_t - t); }
 };
 
 /// What admit() decided about a record.
@@ -157,6 +170,8 @@ class TrackTable {
 
  private:
   TrackSlot allocate(const TrackReport& r);
+  /// The rate of turn after record `r` (Track::turn_rate_dps); track.trk_deg is r's.
+  static void update_turn_rate(Track& track, const TrackReport& r, bool has_velocity);
   /// Bits of the optional fields of `r` that are implausible.
   enum OptionalField : unsigned {
     kGroundSpeed = 1,
