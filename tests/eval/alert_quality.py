@@ -3,10 +3,12 @@
 
     python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR]
 
-Prints two markdown tables: each recording with every filter off (filters-off.toml, kew
+Prints four markdown tables: each recording with every filter off (filters-off.toml, kew
 before issue 17) and with the default configuration; then, summed over the recordings,
-what switching off each rule alone gives back. UPC is read with its [[radar]] table,
-switzerland with --sort, as tests/golden/run_golden.py replays them.
+what switching off each rule alone gives back; the turn hypothesis (off by default)
+switched on, recording by recording; and UPC with the Barcelona terminal-area example
+(deploy/examples/barcelona-tma.toml) beside the defaults. UPC is read with its [[radar]]
+table, switzerland with --sort, as tests/golden/run_golden.py replays them.
 """
 
 import argparse
@@ -44,15 +46,24 @@ RULES_OFF = [
     ("stale position 20 s", "[eligibility]\nmax_position_age_s = 3600\n"),
     ("vertical look-ahead 30 s + tolerance (T_v = T, tolerance 0)", "[probe]\nvertical_lookahead_s = 120\naltimetry_tolerance_ft = 0\n"),
     ("clear = 4 (2 instead)", "[alerts]\nclear = 2\n"),
+    ("vertical intent (selected altitude)", "[probe]\nvertical_intent = false\n"),
 ]
 
+# Off by default; measured switched on.
+TURN_ON = "[probe]\nturn_hypothesis = true\n"
+TERMINAL_AREA = os.path.join(ROOT, "deploy", "examples", "barcelona-tma.toml")
 
-def evaluate(kew_eval, recording, radar, extra, configs, workdir):
+
+def evaluate(kew_eval, recording, radar, extra, configs, workdir, files=()):
+    """kew-eval --json with one run per text of `configs` (the radar table appended when
+    `radar`), then one per path of `files` (used as they are)."""
     args = [kew_eval, "--json", *extra]
     for index, text in enumerate(configs):
         path = os.path.join(workdir, f"c{index}.toml")
         with open(path, "w") as f:
             f.write(text + (BARCELONA_RADAR if radar else ""))
+        args += ["-c", path]
+    for path in files:
         args += ["-c", path]
     out = subprocess.run(args + [recording], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, check=True)
     return json.loads(out.stdout)
@@ -67,6 +78,16 @@ def cell(run):
     return f"{run['alerts']} ({run['hit']} / {run['close_call']} / {run['nuisance']} / {run['ineligible']})"
 
 
+def warning(run):
+    w = run["warning_s"]
+    return "n/a" if w == "n/a" else f"{w['p10']:.0f} / {w['p50']:.0f}"
+
+
+def outcome(run):
+    return (f"{cell(run)} | {share(run)} | {run['detected']} / {run['missed']} / {run['unwarnable']} | "
+            f"{warning(run)}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--kew-eval", default=os.path.join(ROOT, "build", "replay", "kew-eval"))
@@ -76,6 +97,7 @@ def main():
         before = f.read()
     totals = {name: [0, 0, 0] for name, _ in RULES_OFF}  # alerts, undesirable, missed
     default_total = [0, 0, 0]
+    turn_rows, terminal_rows = [], []
     print("| recording | flight h | loss events | alerts before (hit / close / nuisance / inelig.) | undesirable before | "
           "alerts now | undesirable now | per 100 flight h now | detected / missed / unwarnable now | warning p10 / p50 (s) |")
     print("|---|---:|---:|---|---:|---|---:|---:|---|---|")
@@ -86,13 +108,20 @@ def main():
                 print(f"*** {path} is absent: not evaluated ***", file=sys.stderr)
                 continue
             result = evaluate(options.kew_eval, path, radar, extra,
-                              [before, ""] + [text for _, text in RULES_OFF], workdir)
+                              [before, ""] + [text for _, text in RULES_OFF] + [TURN_ON], workdir,
+                              [TERMINAL_AREA] if radar else [])
             old, now, *off = result["runs"]
-            w = now["warning_s"]
-            warning = "n/a" if w == "n/a" else f"{w['p10']:.0f} / {w['p50']:.0f}"
+            turn_rows.append((label, now, off[len(RULES_OFF)]))
+            if radar:
+                terminal_rows.append((label, now, off[len(RULES_OFF) + 1]))
+                # The truth at 3 NM: what the terminal area's own minimum calls a loss.
+                at_3nm = evaluate(options.kew_eval, path, radar, extra + ["--h-nm", "3"], [""], workdir,
+                                  [TERMINAL_AREA])["runs"]
+                terminal_rows.append((label + ", truth at 3 NM", *at_3nm))
+            off = off[:len(RULES_OFF)]
             print(f"| {label} | {result['truth']['flight_hours']:.1f} | {result['truth']['loss_events']} | {cell(old)} | "
                   f"{share(old)} | {cell(now)} | {share(now)} | {now['alerts_per_100_flight_hours']:.0f} | "
-                  f"{now['detected']} / {now['missed']} / {now['unwarnable']} | {warning} |")
+                  f"{now['detected']} / {now['missed']} / {now['unwarnable']} | {warning(now)} |")
             for total, run in [(default_total, now)] + list(zip(totals.values(), off)):
                 total[0] += run["alerts"]
                 total[1] += run["nuisance"] + run["ineligible"]
@@ -102,8 +131,16 @@ def main():
     print("|---|---:|---:|---:|")
     print(f"| none (default) | {default_total[0]} | {default_total[1]} | {default_total[2]} |")
     for name, (alerts, undesirable, missed) in totals.items():
-        print(f"| {name} | {alerts} (+{alerts - default_total[0]}) | {undesirable} (+{undesirable - default_total[1]}) | "
+        print(f"| {name} | {alerts} ({alerts - default_total[0]:+d}) | {undesirable} ({undesirable - default_total[1]:+d}) | "
               f"{missed} |")
+    header = ("alerts (hit / close / nuisance / inelig.) | undesirable | detected / missed / unwarnable | "
+              "warning p10 / p50 (s)")
+    for title, rows in (("turn hypothesis", turn_rows), ("terminal-area example", terminal_rows)):
+        print()
+        print(f"| recording | default: {header} | {title}: {header} |")
+        print("|---|---|---:|---|---|---|---:|---|---|")
+        for label, default, other in rows:
+            print(f"| {label} | {outcome(default)} | {outcome(other)} |")
 
 
 if __name__ == "__main__":
