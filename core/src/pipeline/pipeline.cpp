@@ -102,7 +102,7 @@ bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinema
                                 const probe::SeparationMinima& minima) const {
   if (probe::in_conflict(kp, kq, minima)) return true;
   return config_.turn.enabled && (kp.turn_rate_rps != 0.0 || kq.turn_rate_rps != 0.0) &&
-         probe::turn_conflict(kp, kq, minima).in_conflict;
+         probe::in_turn_conflict(kp, kq, minima);
 }
 
 double Pipeline::tolerance_bound_m() const {

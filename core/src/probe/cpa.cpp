@@ -251,34 +251,14 @@ double crossing(const Kinematics& a, const Kinematics& b, double r, double x, do
 
 }  // namespace
 
-ConflictGeometry turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
-  ConflictGeometry g;
+namespace {
+
+// The conflict window along the arcs: in_conflict, lost_now, t_los_s and t_end_s of `g`.
+void turn_window(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima, ConflictGeometry& g) {
   const double T = minima.lookahead_s;
   const double r = minima.horizontal_m;
-  const VerticalMotion va = vertical_motion(a), vb = vertical_motion(b);
-  g.sep_h_m = distance_after(a, b, 0.0);
-  g.sep_v_m = std::abs(vb.z - va.z);
-  g.level_off = std::min(va.stop, vb.stop) < T;
-  // Closest approach: 1 s samples, then the best one refined by golden-section search.
-  double best_s = 0.0, best_d = g.sep_h_m;
-  for (double s = 1.0; s <= T; s += 1.0) {
-    const double d = distance_after(a, b, s);
-    if (d < best_d) best_d = d, best_s = s;
-  }
-  double lo = std::max(0.0, best_s - 1.0), hi = std::min(T, best_s + 1.0);
-  while (hi - lo > 1e-3) {
-    const double m1 = lo + 0.382 * (hi - lo), m2 = hi - 0.382 * (hi - lo);
-    if (distance_after(a, b, m1) < distance_after(a, b, m2))
-      hi = m2;
-    else
-      lo = m1;
-  }
-  g.t_cpa_s = distance_after(a, b, 0.5 * (lo + hi)) < best_d ? 0.5 * (lo + hi) : best_s;
-  g.cpa_h_m = distance_after(a, b, g.t_cpa_s);
-  g.cpa_v_m = vertical_distance(va, vb, g.t_cpa_s);
-
   const Intervals v = vertical_window(a, b, minima);
-  g.lost_now = g.sep_h_m < r && contains_now(v);
+  g.lost_now = distance_after(a, b, 0.0) < r && contains_now(v);
   // |d/ds distance| ≤ the sum of the speeds: from a distance D ≥ r, nothing can come
   // within r sooner than (D − r) / that sum.
   const double closing_bound = geometry::norm(a.velocity) + geometry::norm(b.velocity);
@@ -314,6 +294,42 @@ ConflictGeometry turn_conflict(const Kinematics& a, const Kinematics& b, const S
     }
   }
   if (!g.in_conflict && g.lost_now) g.in_conflict = true;
+}
+
+}  // namespace
+
+bool in_turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
+  ConflictGeometry g;
+  turn_window(a, b, minima, g);
+  return g.in_conflict;
+}
+
+ConflictGeometry turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima) {
+  ConflictGeometry g;
+  const double T = minima.lookahead_s;
+  const VerticalMotion va = vertical_motion(a), vb = vertical_motion(b);
+  g.sep_h_m = distance_after(a, b, 0.0);
+  g.sep_v_m = std::abs(vb.z - va.z);
+  g.level_off = std::min(va.stop, vb.stop) < T;
+  turn_window(a, b, minima, g);
+  if (!g.in_conflict) return g;
+  // Closest approach: 1 s samples, then the best one refined by golden-section search.
+  double best_s = 0.0, best_d = g.sep_h_m;
+  for (double s = 1.0; s <= T; s += 1.0) {
+    const double d = distance_after(a, b, s);
+    if (d < best_d) best_d = d, best_s = s;
+  }
+  double lo = std::max(0.0, best_s - 1.0), hi = std::min(T, best_s + 1.0);
+  while (hi - lo > 1e-3) {
+    const double m1 = lo + 0.382 * (hi - lo), m2 = hi - 0.382 * (hi - lo);
+    if (distance_after(a, b, m1) < distance_after(a, b, m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  g.t_cpa_s = distance_after(a, b, 0.5 * (lo + hi)) < best_d ? 0.5 * (lo + hi) : best_s;
+  g.cpa_h_m = distance_after(a, b, g.t_cpa_s);
+  g.cpa_v_m = vertical_distance(va, vb, g.t_cpa_s);
   return g;
 }
 

@@ -98,6 +98,8 @@ bool in_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinim
 /// kTurnStep_s at a time where the distance is within that bound of S_h: a window shorter
 /// than kTurnStep_s can be missed. Figures: t_cpa to within 1 ms of the sampled minimum.
 ConflictGeometry turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
+/// turn_conflict(a, b, minima).in_conflict, decided the same way without the figures.
+bool in_turn_conflict(const Kinematics& a, const Kinematics& b, const SeparationMinima& minima);
 inline constexpr double kTurnStep_s = 0.05;
 
 /// Position after s ≥ 0 seconds along the arc of turn_rate_rps (a straight line when 0).
