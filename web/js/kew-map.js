@@ -332,6 +332,7 @@ window.Kew = window.Kew || {};
   }
   setInterval(renderHealth, 1000);
 
-  Kew.state = state; // for the browser's console
+  Kew.state = state; // for the browser's console and tests
+  Kew.map = map;
   connection.start();
 })(window.Kew);

@@ -199,7 +199,8 @@ window.Kew = window.Kew || {};
           entry.severity = a.severity;
           entry.ack = a.ack;
         }
-        const text = Kew.SEVERITY_SHORT[a.severity] + " " + Kew.alertSummary(a);
+        // A loss says so itself ("LoS now"); the others name their severity first.
+        const text = (a.severity === "loss" ? "" : Kew.SEVERITY_SHORT[a.severity] + " ") + Kew.alertSummary(a);
         if (text !== entry.text) {
           entry.line.setTooltipContent(text);
           const tip = entry.line.getTooltip().getElement();
