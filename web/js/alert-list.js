@@ -14,7 +14,7 @@ window.Kew = window.Kew || {};
       this.onAck = onAck;
     }
 
-    // `alerts`: Map id -> ALERT object; `tracks`: Map key -> track (for callsigns).
+    // `alerts`: Map id -> latest ALERT object; returns them sorted as shown.
     render(alerts) {
       const sorted = Array.from(alerts.values()).sort(Kew.compareAlerts);
       for (const [id, row] of this.rows) {
