@@ -16,7 +16,8 @@ packages=(build-essential cmake ccache
           libgtest-dev libgmock-dev libbenchmark-dev
           libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev
           mbpoll python3-pymodbus systemd
-          tshark clang-14 libclang-rt-14-dev)
+          tshark clang-14 libclang-rt-14-dev
+          libjs-leaflet chromium chromium-driver python3-selenium)
 
 install_dependencies() {
   local missing=()

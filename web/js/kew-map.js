@@ -1,0 +1,338 @@
+// kew live map: the page's state (tracks, alerts, feed health), fed by connection.js and
+// drawn by map-layers.js and alert-list.js. Updates mark what changed; one animation frame
+// then draws only that.
+//
+// Stable hooks for tests and tools: each aircraft marker has data-track-id (and
+// data-track-src), each alert line and each alert list row data-alert-id, each
+// acknowledge button data-ack-id; #aircraft-count and #alert-count hold what is drawn
+// (also as data-count); #connection-state has data-state (connecting, live, polling,
+// offline); #feed-health has data-health; #replay-clock is shown in replays.
+"use strict";
+window.Kew = window.Kew || {};
+
+(function (Kew) {
+  const REPLAY_THRESHOLD_S = 30; // |data time − wall time| beyond which the replay clock shows
+  const LABEL_MIN_ZOOM = 6;
+
+  const state = {
+    tracks: new Map(), // key -> track record
+    alerts: new Map(), // id -> latest ALERT object (not ended)
+    alive: null, // latest ALIVE object
+    status: null, // latest /api/status reply, with receivedAt (ms, local clock)
+  };
+  const dirty = new Set();
+  const removed = new Set();
+  let alertsDirty = false;
+  let frameRequested = false;
+  let fitted = false;
+  let userMoved = false;
+  let alertedBefore = new Map();
+
+  const $ = (id) => document.getElementById(id);
+
+  // --- the map -------------------------------------------------------------------------
+  const map = L.map("map", { worldCopyJump: true, minZoom: 2, maxZoom: 14, zoomSnap: 0.5 }).setView([48, 5], 5);
+  map.attributionControl.setPrefix("Leaflet");
+  map.attributionControl.addAttribution("Base map: Natural Earth (public domain)");
+  Kew.addBaseMap(map);
+  const aircraft = new Kew.AircraftLayer(map);
+  const alertLines = new Kew.AlertLines(map);
+  map.on("dragstart zoomstart", (e) => {
+    if (e.hard !== true && fitted) userMoved = true;
+  });
+  map.on("zoomend", updateLabelVisibility);
+
+  const connection = new Kew.Connection({
+    onSnapshot: (objects) => applySnapshot(objects),
+    onBatch: (objects) => objects.forEach(applyObject),
+    onPoll: ({ tracks, alerts, status }) => {
+      replaceTracks(tracks.tracks || []);
+      replaceAlerts(alerts.alerts || []);
+      applyStatus(status);
+    },
+    onStatus: (status) => applyStatus(status),
+    onReconcile: (reply) => forgetDroppedTracks(reply),
+    onState: (s, detail) => {
+      const el = $("connection-state");
+      el.dataset.state = s;
+      el.textContent = { connecting: "connecting", live: "live", polling: "polling", offline: "offline" }[s] || s;
+      el.title = detail;
+    },
+  });
+
+  const alertList = new Kew.AlertList($("alert-list"), $("no-alerts"), {
+    onSelect: (id) => centreOnAlert(id),
+    onAck: (id, button) => acknowledge({ id }, button),
+  });
+
+  $("ack-all").addEventListener("click", (e) => acknowledge({ all: true }, e.currentTarget));
+  $("show-labels").addEventListener("change", updateLabelVisibility);
+  $("show-trails").addEventListener("change", (e) => aircraft.showTrails(e.target.checked, state.tracks));
+
+  const legend = $("altitude-legend");
+  for (const band of Kew.ALTITUDE_BANDS.slice().reverse()) {
+    const li = document.createElement("li");
+    li.innerHTML = '<span class="swatch"></span>';
+    li.firstChild.style.background = band.color;
+    li.append(band.label);
+    legend.append(li);
+  }
+  const ground = document.createElement("li");
+  ground.innerHTML = '<span class="swatch"></span>on the ground / unknown';
+  ground.firstChild.style.background = Kew.GROUND_COLOR;
+  legend.append(ground);
+
+  // --- applying stream objects ---------------------------------------------------------
+  function applyObject(o) {
+    if (!o || typeof o !== "object") return;
+    switch (o.class) {
+      case "TRACK": applyTrack(o); break;
+      case "TRACKS": replaceTracks(o.tracks || []); break;
+      case "ALERT": applyAlert(o); break;
+      case "ALERTS": replaceAlerts(o.alerts || []); break;
+      case "ACK": markAcknowledged(o.ids || []); break;
+      case "ALIVE": applyAlive(o); break;
+      default: break; // VERSION, START, ERROR and classes this page does not know
+    }
+  }
+
+  // The first message after a (re)connect: every track and every active alert.
+  function applySnapshot(objects) {
+    const tracks = [];
+    const alerts = [];
+    for (const o of objects) {
+      if (!o) continue;
+      if (o.class === "TRACK") tracks.push(o);
+      else if (o.class === "TRACKS") tracks.push(...(o.tracks || []));
+      else if (o.class === "ALERT") alerts.push(o);
+      else if (o.class === "ALERTS") alerts.push(...(o.alerts || []));
+      else applyObject(o);
+    }
+    replaceTracks(tracks);
+    replaceAlerts(alerts);
+  }
+
+  function applyTrack(o) {
+    if (typeof o.lat !== "number" || typeof o.lon !== "number") return;
+    const key = Kew.trackKey(o.src, o.id);
+    let t = state.tracks.get(key);
+    if (!t) {
+      t = { key, trail: [] };
+      state.tracks.set(key, t);
+      removed.delete(key);
+    }
+    t.id = o.id;
+    t.src = o.src || "";
+    t.cs = o.cs || "";
+    t.lat = o.lat;
+    t.lon = o.lon;
+    t.alt_ft = o.alt_ft;
+    t.gs_kt = o.gs_kt; // absent when the report has none
+    t.trk_deg = o.trk_deg;
+    t.vr_fpm = o.vr_fpm;
+    t.gnd = o.gnd === true;
+    t.t = o.t;
+    if (o.tn !== undefined) t.tn = o.tn;
+    if (o.sq !== undefined) t.sq = o.sq;
+    Kew.pushTrail(t);
+    dirty.add(key);
+    requestFrame();
+  }
+
+  function removeTrack(key) {
+    if (!state.tracks.delete(key)) return;
+    dirty.delete(key);
+    removed.add(key);
+    requestFrame();
+  }
+
+  function replaceTracks(list) {
+    const keep = new Set();
+    for (const o of list) {
+      applyTrack(o);
+      keep.add(Kew.trackKey(o.src, o.id));
+    }
+    for (const key of Array.from(state.tracks.keys())) if (!keep.has(key)) removeTrack(key);
+  }
+
+  // /api/tracks during a live socket: tracks kewd no longer has are forgotten, unless the
+  // socket has brought a record newer than the reply meanwhile.
+  function forgetDroppedTracks(reply) {
+    const present = new Set((reply.tracks || []).map((o) => Kew.trackKey(o.src, o.id)));
+    for (const [key, t] of Array.from(state.tracks)) {
+      if (!present.has(key) && !(typeof reply.t === "number" && t.t > reply.t)) removeTrack(key);
+    }
+  }
+
+  function applyAlert(o) {
+    if (!o.id || !o.a || !o.b) return;
+    if (o.state === "end") state.alerts.delete(o.id);
+    else state.alerts.set(o.id, o);
+    alertsDirty = true;
+    requestFrame();
+  }
+
+  function replaceAlerts(list) {
+    state.alerts.clear();
+    for (const o of list) if (o.state !== "end" && o.id && o.a && o.b) state.alerts.set(o.id, o);
+    alertsDirty = true;
+    requestFrame();
+  }
+
+  function markAcknowledged(ids) {
+    for (const id of ids) {
+      const a = state.alerts.get(id);
+      if (a && !a.ack) {
+        state.alerts.set(id, Object.assign({}, a, { ack: true }));
+        alertsDirty = true;
+      }
+    }
+    requestFrame();
+  }
+
+  function applyAlive(o) {
+    state.alive = o;
+    if (typeof o.data_t === "number" && typeof o.wall_t === "number") applyStatus(o);
+    renderHealth();
+  }
+
+  function applyStatus(s) {
+    if (!s || typeof s !== "object") return;
+    state.status = Object.assign({}, s, { receivedAt: Date.now() });
+    if (s.class === "ALIVE" || s.rates) state.alive = s;
+    renderHealth();
+  }
+
+  // --- acknowledging ---------------------------------------------------------------------
+  function acknowledge(body, button) {
+    const error = $("ack-error");
+    if (button) button.disabled = true;
+    connection
+      .acknowledge(body)
+      .then((reply) => {
+        error.hidden = true;
+        markAcknowledged(reply.acknowledged || []);
+        if (button && button.id === "ack-all") button.disabled = false;
+      })
+      .catch((e) => {
+        error.textContent = e.message;
+        error.hidden = false;
+        if (button) button.disabled = false;
+      });
+  }
+
+  // --- drawing -------------------------------------------------------------------------
+  function requestFrame() {
+    if (frameRequested) return;
+    frameRequested = true;
+    requestAnimationFrame(render);
+  }
+
+  function render() {
+    frameRequested = false;
+    for (const key of removed) aircraft.remove(key);
+    const moved = dirty.size > 0 || removed.size > 0;
+    for (const key of dirty) {
+      const t = state.tracks.get(key);
+      if (t) aircraft.upsert(t);
+    }
+    dirty.clear();
+    removed.clear();
+    if (moved) aircraft.redrawTrails(state.tracks);
+    if (moved || alertsDirty) {
+      alertLines.update(state.alerts, state.tracks);
+      highlightAlerted();
+    }
+    if (alertsDirty) {
+      alertList.render(state.alerts);
+      alertsDirty = false;
+    }
+    setCount("aircraft-count", aircraft.count());
+    setCount("alert-count", alertLines.count());
+    fitOnce();
+  }
+
+  function setCount(id, n) {
+    const el = $(id);
+    if (el.dataset.count !== String(n)) {
+      el.dataset.count = String(n);
+      el.textContent = n.toLocaleString("en");
+    }
+  }
+
+  // A ring of the alert's colour around each aircraft of an alert pair.
+  function highlightAlerted() {
+    const now = new Map();
+    for (const a of state.alerts.values()) {
+      for (const p of [a.a, a.b]) {
+        const key = Kew.trackKey(p.src, p.id);
+        const prev = now.get(key);
+        if (!prev || Kew.SEVERITY_RANK[a.severity] > Kew.SEVERITY_RANK[prev]) now.set(key, a.severity);
+      }
+    }
+    for (const key of alertedBefore.keys()) if (!now.has(key)) aircraft.setAlerted(key, null);
+    for (const [key, severity] of now) aircraft.setAlerted(key, severity);
+    alertedBefore = now;
+  }
+
+  function fitOnce() {
+    if (fitted || userMoved || state.tracks.size === 0) return;
+    const bounds = L.latLngBounds(Array.from(state.tracks.values(), (t) => [t.lat, t.lon]));
+    map.fitBounds(bounds.pad(0.05), { maxZoom: 9, animate: false });
+    fitted = true;
+  }
+
+  function centreOnAlert(id) {
+    const a = state.alerts.get(id);
+    if (!a) return;
+    const bounds = L.latLngBounds(Kew.alertEnds(a, state.tracks));
+    userMoved = true;
+    map.fitBounds(bounds, { padding: [120, 120], maxZoom: Math.max(map.getZoom(), 9) });
+    for (const li of document.querySelectorAll("#alert-list .selected")) li.classList.remove("selected");
+    const row = document.querySelector('#alert-list [data-alert-id="' + CSS.escape(id) + '"]');
+    if (row) row.classList.add("selected");
+  }
+
+  function updateLabelVisibility() {
+    const show = $("show-labels").checked && map.getZoom() >= LABEL_MIN_ZOOM;
+    $("map").classList.toggle("hide-labels", !show);
+  }
+  updateLabelVisibility();
+
+  // The pipeline's clock now: /api/status's data_t moved on by the local time since.
+  function dataClock() {
+    const s = state.status;
+    if (!s || typeof s.data_t !== "number") return null;
+    return s.data_t + (Date.now() - s.receivedAt) / 1000;
+  }
+
+  function renderHealth() {
+    const alive = state.alive;
+    const s = state.status;
+    const health = $("feed-health");
+    if (alive) {
+      const name = alive.health || (alive.degraded ? "degraded" : "healthy");
+      health.textContent = name.replace(/_/g, " ");
+      health.dataset.health = name;
+      health.dataset.degraded = alive.degraded ? "true" : "false";
+      const rate = alive.rates && alive.rates.records_per_s;
+      $("feed-rate").textContent = typeof rate === "number" ? rate.toFixed(1) : "—";
+    }
+    const clock = dataClock();
+    const last = alive && typeof alive.t === "number" ? alive.t : null;
+    const ageFrom = clock !== null ? clock : Date.now() / 1000;
+    $("data-age").textContent = last !== null ? Kew.duration(ageFrom - last) : "no data";
+    $("data-time").textContent = Kew.utc(clock !== null ? clock : last);
+    const replay = s && typeof s.data_t === "number" && typeof s.wall_t === "number" &&
+      Math.abs(s.data_t - s.wall_t) > REPLAY_THRESHOLD_S;
+    const replayEl = $("replay-clock");
+    replayEl.hidden = !replay;
+    if (replay) $("replay-time").textContent = Kew.utc(clock);
+    document.body.classList.toggle("replay", !!replay);
+  }
+  setInterval(renderHealth, 1000);
+
+  Kew.state = state; // for the browser's console and tests
+  Kew.map = map;
+  connection.start();
+})(window.Kew);
