@@ -17,7 +17,9 @@
 
 #include "logging.hpp"
 #include "service.hpp"
+#include "kew/config/address.hpp"
 #include "kew/daemon/config.hpp"
+#include "kew/protocol/formats.hpp"
 #include "kew/protocol/version.hpp"
 
 namespace {
@@ -51,7 +53,26 @@ struct Flags {
   bool listen_any = false;
   bool check_config = false;
   std::string log_level;
+  // --replay FILE (design §5.6)
+  kew::daemon::ReplaySettings replay;
+  bool max_speed = false;
+  bool exit_at_end = false;
 };
+
+constexpr const char* kFooter = R"(Watching a recording:
+  kewd --replay FILE [--speed X | --max-speed] [--format F] [-c FILE] [--exit-at-end]
+       [--alert-listen HOST:PORT] [--alert-log FILE]
+replays FILE (any recording kew-replay reads) through kewd, paced by its data time at X
+times the recorded speed, with the alert stream on loopback; nothing to configure and no
+file written. It stays in the foreground and keeps serving the last state after the file
+ends (logging "replay of FILE ended") until SIGINT or SIGTERM, or exits with
+--exit-at-end. Without -c it uses the built-in defaults (not the installed file). With
+-c, the file's shared tables ([projection], [tracks], [kinetic], [probe], [alerts],
+[eligibility], [decoding], [[radar]], [[region]], [regions]) and its [service] limits
+apply; its [[input]] tables are replaced by FILE; CAT004, Modbus, the record file, the
+state directory and the alert log are off (--alert-log asks for one); every listener
+must be on loopback (--listen-any is refused). Data times are not checked against the
+wall clock ([service] max_future_s): a replay's clock is the recording's.)";
 
 /// Detaches from the terminal. Returns in the daemon process with the write end of a
 /// pipe on which it reports readiness; the original process waits for that report so
@@ -113,6 +134,29 @@ int main(int argc, char** argv) {
   app.add_option("-l,--log-level", flags.log_level,
                  "one of " + kew::daemon::kLogLevelNames.list() + " (overrides the file)")
       ->check(CLI::IsMember(kew::daemon::kLogLevelNames.names()));
+  auto* replay = app.add_option("--replay", flags.replay.file,
+                                "replay a recording with a built-in configuration on loopback (below)")
+                     ->check(CLI::ExistingFile)
+                     ->excludes("--listen-any");
+  // Every format but the live-only asterix-datagram, as kew-replay.
+  const auto file_formats = {kew::protocol::Format::AsterixDatagram};
+  std::string format = "auto";
+  app.add_option("--format", format, "with --replay: the recording's format (auto: detected, as kew-replay)")
+      ->check(CLI::IsMember(kew::protocol::kFormatNames.names(file_formats)))
+      ->needs(replay)
+      ->capture_default_str();
+  auto* speed = app.add_option("--speed", flags.replay.speed, "with --replay: multiple of recorded speed")
+                    ->check(CLI::Range(0.001, 1000.0))
+                    ->needs(replay)
+                    ->capture_default_str();
+  app.add_flag("--max-speed", flags.max_speed, "with --replay: as fast as kewd takes it")->excludes(speed)->needs(replay);
+  app.add_flag("--exit-at-end", flags.exit_at_end, "with --replay: exit 0 when the file ends")->needs(replay);
+  app.add_option("--alert-listen", flags.replay.alert_listen,
+                 "with --replay: the alert stream's loopback HOST:PORT (default: alert_listen, 127.0.0.1:4747)")
+      ->needs(replay);
+  app.add_option("--alert-log", flags.replay.alert_log, "with --replay: write the alert log here (default: none)")
+      ->needs(replay);
+  app.footer(kFooter);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -120,14 +164,31 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kUsageError;
   }
 
-  if (flags.config_path.empty() && std::filesystem::exists(kSystemConfig)) flags.config_path = kSystemConfig;
+  const bool replaying = !flags.replay.file.empty();
+  // A replay is reproducible from its command line: the installed file only when named.
+  if (!replaying && flags.config_path.empty() && std::filesystem::exists(kSystemConfig))
+    flags.config_path = kSystemConfig;
   kew::daemon::Config config;
   try {
     if (!flags.config_path.empty()) config = kew::daemon::load_config(flags.config_path);
+    if (replaying) {
+      flags.replay.format = *kew::protocol::kFormatNames.parse(format);
+      if (flags.max_speed) flags.replay.speed = 0.0;
+      if (!flags.replay.alert_listen.empty()) kew::config::require_host_port(flags.replay.alert_listen);
+      kew::daemon::apply_replay(config, flags.replay);
+    }
+  } catch (const kew::config::ConfigError& e) {
+    std::fprintf(stderr, "kewd: %s\n", e.what());
+    return kUsageError;
+  }
+  try {
     // Before starting as well: a file that passes --check-config must not fail at start.
     kew::daemon::check_config(config, flags.listen_any);
   } catch (const kew::config::ConfigError& e) {
-    std::fprintf(stderr, "kewd: %s\n", e.what());
+    // The check names allow_remote and --listen-any, which a replay overrides and refuses.
+    const bool listener = std::string_view(e.what()).find("loopback") != std::string_view::npos;
+    std::fprintf(stderr, "kewd: %s%s\n", e.what(),
+                 replaying && listener ? " (a replay serves on loopback only: --alert-listen 127.0.0.1:PORT)" : "");
     return kUsageError;
   }
   if (!flags.log_level.empty()) config.service.log_level = *kew::daemon::kLogLevelNames.parse(flags.log_level);
@@ -150,6 +211,8 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  // A replay is watched from a terminal: it never forks.
+  if (replaying) flags.foreground = true;
   const int ready_fd = flags.foreground ? -1 : daemonize();
   kew::daemon::setup_logging(flags.foreground ? kew::daemon::LogTarget::Stderr : kew::daemon::LogTarget::Syslog,
                              config.service.log_level);
@@ -157,6 +220,10 @@ int main(int argc, char** argv) {
     kew::daemon::ServiceOptions options;
     options.config_path = flags.config_path.empty() ? std::string() : std::filesystem::absolute(flags.config_path).string();
     options.listen_any = flags.listen_any;
+    options.replay = replaying;
+    options.replay_speed = flags.replay.speed;
+    options.exit_at_end = flags.exit_at_end;
+    if (replaying) options.config_path.clear();  // SIGHUP would reload a file the replay only partly uses
     kew::daemon::Service service(std::move(config), options);
     report_ready(ready_fd, true);
     if (!flags.foreground && ::chdir("/") != 0) spdlog::warn("kewd: cannot change directory to /");

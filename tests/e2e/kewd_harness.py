@@ -61,16 +61,21 @@ def with_free_ports(config_text):
 class Kewd:
     """One kewd process with its configuration in a temporary directory."""
 
-    def __init__(self, config_text, workdir, extra_args=()):
+    def __init__(self, config_text, workdir, extra_args=(), cwd=None):
+        """`config_text` None: no -c (kewd --replay's built-in configuration); `cwd`: the
+        directory kewd runs in."""
         self.workdir = workdir
         self.config_path = os.path.join(workdir, "kew.toml")
-        with open(self.config_path, "w") as f:
-            f.write(with_free_ports(config_text))
+        config_args = []
+        if config_text is not None:
+            with open(self.config_path, "w") as f:
+                f.write(with_free_ports(config_text))
+            config_args = ["-c", self.config_path]
         self.log_lines = []
         self._log_lock = threading.Lock()
         self.process = subprocess.Popen(
-            [KEWD, "-N", "-c", self.config_path, *extra_args],
-            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+            [KEWD, "-N", *config_args, *extra_args],
+            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, cwd=cwd)
         self._reader = threading.Thread(target=self._read_log, daemon=True)
         self._reader.start()
         self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,

@@ -341,6 +341,64 @@ address = "192.0.2.1:30003"
   EXPECT_NO_THROW(check_config(load_config(std::string(KEW_DEPLOY_DIR) + "/kew.toml"), false));
 }
 
+// kewd --replay (design §5.6): the file's shared tables and [service] limits stay; its
+// inputs are replaced by one paced file input; nothing reaches a live output or a file;
+// every listener must be loopback, whatever the file allowed.
+TEST(ConfigChecks, ReplayKeepsTheSharedTablesAndTurnsOutputsOff) {
+  Config c = parse_config(R"(
+[service]
+alert_listen = "0.0.0.0:4747"
+allow_remote = true
+alert_log = "/var/log/kew/alerts.jsonl"
+record_file = "/var/log/kew/records.ndjson"
+state_directory = "/var/lib/kew"
+max_subscribers = 7
+[alerts]
+confirm = 3
+[cat004]
+enabled = true
+[modbus]
+enabled = true
+listen = "0.0.0.0:1502"
+allow_remote = true
+[[input]]
+transport = "udp"
+address = "239.1.2.3:8600"
+allow_remote = true
+[[input]]
+transport = "tcp-client"
+address = "192.0.2.1:30003"
+)", "site.toml");
+  ReplaySettings replay;
+  replay.file = "incident.ast";
+  replay.format = protocol::Format::AsterixRaw;
+  replay.speed = 4.0;
+  apply_replay(c, replay);
+  ASSERT_EQ(c.inputs.size(), 1u);
+  EXPECT_EQ(c.inputs[0].name, "replay");
+  EXPECT_EQ(c.inputs[0].transport, Transport::File);
+  EXPECT_EQ(c.inputs[0].format, protocol::Format::AsterixRaw);
+  EXPECT_EQ(c.inputs[0].address, std::filesystem::absolute("incident.ast").string());
+  EXPECT_TRUE(c.inputs[0].pace);
+  EXPECT_EQ(c.inputs[0].speed, 4.0);
+  EXPECT_EQ(c.pipeline.alerts.confirm, 3);
+  EXPECT_EQ(c.service.max_subscribers, 7u);
+  EXPECT_TRUE(c.service.alert_log.empty());
+  EXPECT_TRUE(c.service.record_file.empty());
+  EXPECT_TRUE(state_directory(c.service).empty());
+  EXPECT_FALSE(c.cat004.enabled);
+  EXPECT_FALSE(c.modbus.enabled);
+  EXPECT_THROW(check_config(c, false), ConfigError);  // the file's 0.0.0.0 is no longer allowed
+  replay.alert_listen = "127.0.0.1:4848";
+  replay.speed = 0.0;  // --max-speed
+  replay.alert_log = "replay.jsonl";
+  apply_replay(c, replay);
+  EXPECT_FALSE(c.inputs[0].pace);
+  EXPECT_EQ(c.service.alert_listen, "127.0.0.1:4848");
+  EXPECT_EQ(c.service.alert_log, std::filesystem::absolute("replay.jsonl").string());
+  EXPECT_NO_THROW(check_config(c, false));
+}
+
 TEST(ConfigChecks, ListeningPortsAreDistinctPerProtocolAndFamily) {
   expect_check_error("[service]\nalert_listen = \"127.0.0.1:4748\"\n[[input]]\ntransport = \"tcp-server\"\n"
                      "address = \"127.0.0.1:4748\"\n",

@@ -321,6 +321,7 @@ class FileInput final : public Input {
     log_rejections(reader_->rejections());
     if (!reader_->is_open()) {
       spdlog::error("input {}: cannot open {}", config_.name, config_.address);
+      if (end_handler_) end_handler_();
       return;
     }
     asio::post(io_, [this] { step(); });
@@ -347,6 +348,7 @@ class FileInput final : public Input {
         figures_.bytes = reader_->bytes_read();
         if (!more) {
           spdlog::info("input {}: {} read to the end ({} reports)", config_.name, config_.address, figures_.reports);
+          if (end_handler_) end_handler_();
           return;
         }
         ++figures_.reports;

@@ -27,6 +27,9 @@ class Input {
   /// Closes sockets and files; pending handlers finish with operation_aborted.
   virtual void stop() = 0;
   const InputConfig& config() const { return config_; }
+  /// Called once when a file input has read its file to the end (or could not open it);
+  /// other inputs never end.
+  void set_end_handler(std::function<void()> handler) { end_handler_ = std::move(handler); }
   /// The port actually bound (servers and UDP; useful with port 0 in tests).
   virtual std::uint16_t bound_port() const { return 0; }
   /// Figures so far; `rejected` holds ended streams' and the open streams' rejections.
@@ -61,6 +64,7 @@ class Input {
   InputConfig config_;
   protocol::DecoderOptions options_;
   ReportHandler handler_;
+  std::function<void()> end_handler_;
   /// `rejected`: the rejections of streams that ended; `name` is filled by statistics().
   protocol::InputStatistics figures_;
 };

@@ -98,7 +98,8 @@ Service::Service(Config config, ServiceOptions options)
     alert_log_ = std::make_unique<LineFile>(config_.service.alert_log, config_.service.alert_log_max_bytes,
                                             config_.service.alert_log_keep,
                                             config_.service.alert_log_sync == AlertLogSync::Every);
-  if (const std::string directory = state_directory(config_.service); !directory.empty())
+  // A replay's numbering starts at 1 each time and is kept nowhere (design §5.6).
+  if (const std::string directory = state_directory(config_.service); !directory.empty() && !options_.replay)
     state_file_ = std::make_unique<StateFile>(directory);
   if (!config_.service.record_file.empty())
     record_file_ = std::make_unique<LineFile>(config_.service.record_file, 0, 0);
@@ -136,6 +137,7 @@ Service::Service(Config config, ServiceOptions options)
     inputs_.push_back(open_listener(fmt::format("[input {}] address", i + 1), input.address, [&] {
       return make_input(io_, input, config_.decoding, [this](const TrackReport& r) { on_report(r); });
     }));
+    if (options_.replay) inputs_.back()->set_end_handler([this] { asio::post(io_, [this] { end_replay(); }); });
   }
 }
 
@@ -196,9 +198,13 @@ void Service::on_report(const TrackReport& report) {
   }
   if (subscribers_->anyone_wants_tracks()) subscribers_->broadcast_track(report);
   // No record may carry the clock past the wall clock (a host synchronised by NTP is the
-  // best time kewd has; recordings replayed by kewd are in the past).
-  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  pipeline_.set_time_ceiling(wall + config_.service.max_future_s);
+  // best time kewd has; recordings played into a live input are in the past). A replay
+  // (--replay) has no such ceiling: its clock is the recording's, and the pipeline's time
+  // guard still holds a lone record dated ahead of the others, as in kew-replay.
+  if (!options_.replay) {
+    const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    pipeline_.set_time_ceiling(wall + config_.service.max_future_s);
+  }
   const std::uint64_t accepted = pipeline_.statistics().accepted;
   pipeline_.process(report);
   if (pipeline_.statistics().accepted != accepted) health_.accepted(std::chrono::steady_clock::now());
@@ -342,9 +348,13 @@ void Service::acknowledge(std::string_view by, std::string_view client) {
 
 double Service::data_clock_now() const {
   // Live mode: the data clock runs on with the wall clock between records, so that
-  // tracks of a silent feed time out and kinetic events happen on time.
+  // tracks of a silent feed time out and kinetic events happen on time. A replay's runs
+  // at its speed while the file is read, and stops at its end: the last state stays on
+  // show; as fast as possible, only records move it (as in kew-replay).
+  const double last = pipeline_.statistics().last_data_time;
+  if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return last;
   const double idle = health_.seconds_since_accepted(std::chrono::steady_clock::now()).value_or(0.0);
-  return pipeline_.statistics().last_data_time + idle;
+  return last + idle * (options_.replay ? options_.replay_speed : 1.0);
 }
 
 void Service::schedule_tick() {
@@ -361,6 +371,8 @@ void Service::tick() {
   const std::optional<double> idle = health_.seconds_since_accepted(std::chrono::steady_clock::now());
   // While records are accepted, their own times drive the clock; only a feed silent (or
   // wholly refused) for a whole tick moves it on, so its tracks time out.
+  // A replay's clock stands still at its end, or when only its records move it.
+  if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return;
   if (idle && *idle >= config_.service.tick_interval_s) pipeline_.advance_to(data_clock_now());
 }
 
@@ -480,6 +492,17 @@ void Service::shutdown() {
   });
   if (subscribers_->sessions() == 0) shutdown_timer_.cancel();
   subscribers_->on_empty([this] { shutdown_timer_.cancel(); });
+}
+
+void Service::end_replay() {
+  if (replay_ended_ || stopping_) return;
+  replay_ended_ = true;
+  pipeline_.end_of_input();
+  const auto& input = inputs_.front()->config();
+  spdlog::info("replay of {} ended: {} records, {} alerts opened, {} active; {}", input.address,
+               pipeline_.statistics().records, pipeline_.alerts().counters().opened, pipeline_.alerts().active_count(),
+               options_.exit_at_end ? "exiting (--exit-at-end)" : "serving the last state until SIGINT or SIGTERM");
+  if (options_.exit_at_end) shutdown();
 }
 
 std::string Service::stats_json() const {

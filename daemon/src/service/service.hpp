@@ -32,6 +32,13 @@ struct ServiceOptions {
   /// Serve subscribers, Modbus and loopback inputs on every interface (check_config has
   /// allowed any listen address).
   bool listen_any = false;
+  /// kewd --replay: the configuration's one input is the recording (apply_replay). No
+  /// wall-clock ceiling on data times and no state file; the data clock runs at
+  /// `replay_speed` × wall time between records (0: records alone move it, as in
+  /// kew-replay) and stops when the file ends.
+  bool replay = false;
+  double replay_speed = 1.0;
+  bool exit_at_end = false;  ///< with replay: shut down when the file ends
 };
 
 class Service {
@@ -67,6 +74,9 @@ class Service {
   void wait_for_signal();
   void reload();
   void shutdown();
+  /// The replayed file ended: applies what the time guard holds, as kew-replay does at
+  /// its end, and keeps serving (or shuts down with exit_at_end).
+  void end_replay();
   std::string stats_json() const;
   double data_clock_now() const;
 
@@ -105,6 +115,7 @@ class Service {
   double records_per_s_ = 0.0;
   double updates_per_s_ = 0.0;
   bool stopping_ = false;
+  bool replay_ended_ = false;
 };
 
 }  // namespace kew::daemon

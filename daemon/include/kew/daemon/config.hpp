@@ -137,6 +137,24 @@ Config parse_config(std::string_view toml_text, std::string_view origin = "confi
 /// Reads and parses a file. Throws config::ConfigError.
 Config load_config(const std::string& path);
 
+/// `kewd --replay FILE` (design §5.6): what the command line says about the replay.
+struct ReplaySettings {
+  std::string file;                                   ///< the recording
+  protocol::Format format = protocol::Format::Auto;
+  double speed = 1.0;                                 ///< multiple of recorded speed; 0: as fast as possible
+  std::string alert_listen;                           ///< "" = the configuration's alert_listen
+  std::string alert_log;                              ///< "" = none (nothing is written unless asked)
+};
+
+/// Turns `config` (built-in defaults, or the file of -c) into the configuration of a
+/// replay: its shared tables and [service] limits stay; its [[input]] tables are replaced
+/// by one paced `file` input named "replay" reading `replay.file`; every listener is on
+/// loopback (allow_remote cleared: check_config then refuses any other address); the
+/// outputs that reach other systems or write files (CAT004, Modbus, record_file, the
+/// state directory, the alert log unless `replay.alert_log`) are off. Relative paths
+/// are made absolute.
+void apply_replay(Config& config, const ReplaySettings& replay);
+
 /// One socket kewd listens on, as configured.
 struct Listener {
   std::string name;     ///< "[service] alert_listen", "[modbus] listen", "[input 2] address"
