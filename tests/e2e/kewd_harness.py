@@ -64,6 +64,10 @@ class Kewd:
     def __init__(self, config_text, workdir, extra_args=()):
         self.workdir = workdir
         self.config_path = os.path.join(workdir, "kew.toml")
+        if not re.search(r"^\[http\]", config_text, re.M):
+            # The HTTP server is on by default: a free port, not 8747, for every kewd here.
+            config_text += '\n[http]\nlisten = "127.0.0.1:0"\n'
+
         with open(self.config_path, "w") as f:
             f.write(with_free_ports(config_text))
         self.log_lines = []
@@ -75,6 +79,8 @@ class Kewd:
         self._reader.start()
         self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,
                                          "kewd to listen").split("alerts on port ")[1].split()[0])
+        http_line = self._find_log("HTTP (map, API, metrics) on port ")
+        self.http_port = int(http_line.split("on port ")[1].split(",")[0]) if http_line else None
 
     def _read_log(self):
         for line in self.process.stderr:
