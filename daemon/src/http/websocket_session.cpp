@@ -27,6 +27,7 @@ void WebSocketSession::start(beast::http::request<beast::http::string_body> upgr
   timeout.keep_alive_pings = true;
   ws_.set_option(timeout);
   ws_.read_message_max(kMaxClientMessageBytes);
+  ws_.auto_fragment(false);  // one frame per batch
   ws_.set_option(websocket::stream_base::decorator(
       [](websocket::response_type& response) { response.set(beast::http::field::server, "kewd"); }));
   ws_.async_accept(upgrade, [self = shared_from_this()](beast::error_code ec) {
