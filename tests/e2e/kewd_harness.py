@@ -66,7 +66,8 @@ class Kewd:
         self.config_path = os.path.join(workdir, "kew.toml")
         if not re.search(r"^\[http\]", config_text, re.M):
             # The HTTP server is on by default: a free port, not 8747, for every kewd here.
-            config_text += '\n[http]\nlisten = "127.0.0.1:0"\n'
+            # First, so that a test appending keys to the file's last table still does.
+            config_text = '[http]\nlisten = "127.0.0.1:0"\n\n' + config_text
 
         with open(self.config_path, "w") as f:
             f.write(with_free_ports(config_text))

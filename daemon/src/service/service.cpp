@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -157,7 +158,11 @@ int Service::run() {
   for (auto& input : inputs_) input->start();
   if (http_) {
     http_->start();
-    spdlog::info("HTTP (map, API, metrics) on port {}, files from {}", http_->port(), http_->router().web().root());
+    const std::string& root = http_->router().web().root();
+    spdlog::info("HTTP (map, API, metrics) on port {}, files from {}", http_->port(), root);
+    std::error_code ec;
+    if (!std::filesystem::is_directory(root, ec))
+      spdlog::warn("[http] web_root {} is not a directory: the map is not served (the API is)", root);
   }
   spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
                inputs_.size());
