@@ -15,7 +15,7 @@ packages=(build-essential cmake ccache
           libboost-dev libsimdjson-dev libfmt-dev zlib1g-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev
-          mbpoll python3-pymodbus systemd
+          mbpoll python3-pymodbus systemd prometheus
           tshark clang-14 libclang-rt-14-dev
           libjs-leaflet chromium chromium-driver python3-selenium)
 

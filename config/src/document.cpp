@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <cctype>
 #include <filesystem>
 #include <optional>
 
@@ -75,6 +76,18 @@ void TableReader::ip_list(std::string_view key, std::vector<std::string>& out) {
   string_list(key, "IP addresses (\"127.0.0.1\")",
               "an IPv4 or IPv6 address without port or brackets (\"127.0.0.1\", \"::1\")", out,
               [](const std::string& text) { return canonical_ip(text); });
+}
+
+void TableReader::host_name_list(std::string_view key, std::vector<std::string>& out) {
+  string_list(key, "host names (\"kew.example\")", "a host name of letters, digits, '-' and '.'", out,
+              [](std::string text) -> std::optional<std::string> {
+                if (text.empty() || text.size() > 253) return std::nullopt;
+                for (char& c : text) {
+                  if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') return std::nullopt;
+                  c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                }
+                return text;
+              });
 }
 
 void TableReader::path(std::string_view key, std::string& out) {

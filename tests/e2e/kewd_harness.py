@@ -68,6 +68,10 @@ class Kewd:
         self.config_path = os.path.join(workdir, "kew.toml")
         config_args = []
         if config_text is not None:
+            if not re.search(r"^\[http\]", config_text, re.M):
+                # The HTTP server is on by default: a free port, not 8747, for every kewd
+                # here. First, so that a test appending keys to the file's last table still does.
+                config_text = '[http]\nlisten = "127.0.0.1:0"\n\n' + config_text
             with open(self.config_path, "w") as f:
                 f.write(with_free_ports(config_text))
             config_args = ["-c", self.config_path]
@@ -80,6 +84,8 @@ class Kewd:
         self._reader.start()
         self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,
                                          "kewd to listen").split("alerts on port ")[1].split()[0])
+        http_line = self._find_log("HTTP (map, API, metrics) on port ")
+        self.http_port = int(http_line.split("on port ")[1].split(",")[0]) if http_line else None
 
     def _read_log(self):
         for line in self.process.stderr:

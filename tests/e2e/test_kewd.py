@@ -482,7 +482,7 @@ class Operations(E2eCase):
         busy.close()
         pidfile_config = self.path("ok.toml")
         with open(pidfile_config, "w") as f:
-            f.write(with_free_ports('[service]\nalert_listen = "127.0.0.1:0"\n'))
+            f.write(with_free_ports('[service]\nalert_listen = "127.0.0.1:0"\n[http]\nlisten = "127.0.0.1:0"\n'))
         self.assertEqual(subprocess.run([KEWD, "-c", pidfile_config], timeout=20).returncode, 0)
         # The daemon is running in the background: find it by its command line and stop it.
         pids = subprocess.run(["pgrep", "-f", f"{KEWD} -c {pidfile_config}"], stdout=subprocess.PIPE,

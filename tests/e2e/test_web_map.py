@@ -52,17 +52,6 @@ web_root = "{web_root}"
 NOT_CHECKED = "the live map was NOT checked"  # ctest reports the test as skipped on this text
 
 
-# ---------------------------------------------------------------------------------------
-# THE ONE SKIP FOR A kewd WITHOUT ITS HTTP SERVER (issue 20). Until the server lands kewd
-# refuses the [http] table, and this test skips, loudly, instead of failing. Remove this
-# function and its one call in start_kewd() (and SKIP_REGULAR_EXPRESSION's purpose in
-# tests/CMakeLists.txt narrows to a missing browser) once kewd serves HTTP.
-def skip_if_kewd_lacks_http(error):
-    if 'unknown section or key "http"' in str(error):
-        message = f"KEWD HAS NO HTTP SERVER (it refuses the [http] table): {NOT_CHECKED}"
-        print("\n*** " + message + " ***\n", file=sys.stderr)
-        raise unittest.SkipTest(message)
-# ---------------------------------------------------------------------------------------
 
 
 def browser_missing():
@@ -112,11 +101,7 @@ class WebMap(unittest.TestCase):
         self._dir.cleanup()
 
     def start_kewd(self):
-        try:
-            self.kewd = Kewd(CONFIG.format(workdir=self.workdir, web_root=WEB_ROOT), self.workdir)
-        except AssertionError as error:  # kewd exited at start-up; the message holds its log
-            skip_if_kewd_lacks_http(error)
-            raise
+        self.kewd = Kewd(CONFIG.format(workdir=self.workdir, web_root=WEB_ROOT), self.workdir)
         with open(self.kewd.config_path, "rb") as f:
             listen = tomllib.load(f)["http"]["listen"]  # the harness chose the free port
         self.base = "http://" + listen

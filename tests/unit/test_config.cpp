@@ -105,6 +105,18 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.modbus.allow_remote, defaults.modbus.allow_remote);
   EXPECT_EQ(file.modbus.acknowledge_from, defaults.modbus.acknowledge_from);
   EXPECT_EQ(file.service.allow_remote, defaults.service.allow_remote);
+  EXPECT_EQ(file.http.enabled, defaults.http.enabled);
+  EXPECT_EQ(file.http.listen, defaults.http.listen);
+  EXPECT_EQ(file.http.allow_remote, defaults.http.allow_remote);
+  EXPECT_EQ(file.http.web_root, defaults.http.web_root);
+  EXPECT_EQ(file.http.leaflet_root, defaults.http.leaflet_root);
+  EXPECT_EQ(file.http.host_names, defaults.http.host_names);
+  EXPECT_EQ(file.http.max_connections, defaults.http.max_connections);
+  EXPECT_EQ(file.http.max_header_bytes, defaults.http.max_header_bytes);
+  EXPECT_EQ(file.http.max_body_bytes, defaults.http.max_body_bytes);
+  EXPECT_EQ(file.http.request_timeout_s, defaults.http.request_timeout_s);
+  EXPECT_EQ(file.http.write_timeout_s, defaults.http.write_timeout_s);
+  EXPECT_EQ(file.http.client_queue_bytes, defaults.http.client_queue_bytes);
   for (const InputConfig& input : file.inputs) EXPECT_EQ(input.allow_remote, InputConfig{}.allow_remote);
   EXPECT_EQ(file.decoding.sbs_utc_offset_s, defaults.decoding.sbs_utc_offset_s);
   EXPECT_EQ(file.decoding.max_line_bytes, defaults.decoding.max_line_bytes);
@@ -292,6 +304,9 @@ TEST(ConfigChecks, ListenersBindLoopbackUnlessAllowed) {
   expect_check_error("[service]\nalert_listen = \"0.0.0.0:4747\"\n",
                      "t.toml: [service] alert_listen = \"0.0.0.0:4747\" listens on every interface");
   expect_check_error("[service]\nalert_listen = \"[::]:4747\"\n", "alert_listen = \"[::]:4747\" listens on every");
+  expect_check_error("[http]\nlisten = \"0.0.0.0:8747\"\n",
+                     "t.toml: [http] listen = \"0.0.0.0:8747\" listens on every interface");
+  expect_check_error("[http]\nlisten = \"127.0.0.1:4747\"\n", "[http] listen = \"127.0.0.1:4747\" uses TCP port 4747");
   expect_check_error("[modbus]\nenabled = true\nlisten = \"192.0.2.1:1502\"\n",
                      "[modbus] listen = \"192.0.2.1:1502\" is not a loopback address");
   expect_check_error("[[input]]\ntransport = \"udp\"\naddress = \"0.0.0.0:8600\"\n",

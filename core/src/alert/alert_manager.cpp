@@ -272,6 +272,16 @@ std::vector<std::string> AlertManager::acknowledge_all() {
   return ids;
 }
 
+std::vector<std::string> AlertManager::acknowledge(std::string_view id) {
+  for (auto& [key, s] : pairs_) {
+    if (!s.active || format_alert_id(s.last.id_hash) != id) continue;
+    if (s.last.acknowledged) return {};
+    s.last.acknowledged = true;
+    return {std::string(id)};
+  }
+  return {};
+}
+
 std::size_t AlertManager::unacknowledged_count() const {
   std::size_t n = 0;
   for (const auto& [key, s] : pairs_)

@@ -11,6 +11,7 @@ void Rejections::reject(std::string_view reason, std::string_view message) {
   auto it = counts_.find(reason);
   if (it == counts_.end()) it = counts_.emplace(std::string(reason), 0).first;
   const std::uint64_t n = ++it->second;
+  last_.assign(reason);
   if (!reporter_) return;
   const bool in_burst = n <= burst_;
   const bool sampled = burst_ > 0 && n % burst_ == 0 && is_power_of_two(n / burst_);

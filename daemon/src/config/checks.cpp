@@ -94,6 +94,7 @@ std::vector<Listener> listeners(const Config& c) {
   std::vector<Listener> all;
   all.push_back({"[service] alert_listen", c.service.alert_listen, false, c.service.allow_remote});
   if (c.modbus.enabled) all.push_back({"[modbus] listen", c.modbus.listen, false, c.modbus.allow_remote});
+  if (c.http.enabled) all.push_back({"[http] listen", c.http.listen, false, c.http.allow_remote});
   for (std::size_t i = 0; i < c.inputs.size(); ++i) {
     const InputConfig& in = c.inputs[i];
     if (in.transport != Transport::Udp && in.transport != Transport::TcpServer) continue;

@@ -54,6 +54,21 @@ void read_modbus(TableReader& r, ModbusConfig& m) {
   r.ip_list("acknowledge_from", m.acknowledge_from);
 }
 
+void read_http(TableReader& r, HttpConfig& h) {
+  r.boolean("enabled", h.enabled);
+  r.address("listen", h.listen);
+  r.boolean("allow_remote", h.allow_remote);
+  r.path("web_root", h.web_root);
+  r.path("leaflet_root", h.leaflet_root);
+  r.host_name_list("host_names", h.host_names);
+  r.integer("max_connections", h.max_connections, 1, 10000);
+  r.integer("max_header_bytes", h.max_header_bytes, 1024, 1 << 20);
+  r.integer("max_body_bytes", h.max_body_bytes, 64, 1 << 20);
+  r.number("request_timeout_s", h.request_timeout_s, 0.1, 3600.0);
+  r.number("write_timeout_s", h.write_timeout_s, 0.1, 3600.0);
+  r.integer("client_queue_bytes", h.client_queue_bytes, 65536, std::int64_t{1} << 36);
+}
+
 void read_input(TableReader& r, InputConfig& in) {
   r.string("name", in.name);
   r.choice("format", in.format, protocol::kFormatNames);
@@ -83,6 +98,7 @@ Config read_config(const config::Document& document) {
   document.section("service", [&](TableReader& r) { read_service(r, c.service); });
   document.section("cat004", [&](TableReader& r) { read_cat004(r, c.cat004); });
   document.section("modbus", [&](TableReader& r) { read_modbus(r, c.modbus); });
+  document.section("http", [&](TableReader& r) { read_http(r, c.http); });
   document.each_table("input", [&](TableReader& r, std::size_t i) {
     InputConfig input;
     input.name = "input" + std::to_string(i + 1);

@@ -28,6 +28,8 @@ void apply_replay(Config& config, const ReplaySettings& replay) {
   config.cat004.enabled = false;
   config.modbus.enabled = false;
   config.modbus.allow_remote = false;
+  // The map and API stay (they are how a replay is watched), on loopback like the rest.
+  config.http.allow_remote = false;
 }
 
 }  // namespace kew::daemon

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -64,13 +65,13 @@ tcp::endpoint resolve_listen(asio::io_context& io, const std::string& address) {
   return *resolver.resolve(listen.host, std::to_string(listen.port), tcp::resolver::passive).begin();
 }
 
-/// Resident set size of this process (bytes) from /proc/self/statm, or nullopt when it
-/// cannot be read (not Linux, /proc not mounted).
-std::optional<std::uint64_t> resident_bytes() {
-  std::ifstream statm("/proc/self/statm");
-  std::uint64_t pages_total = 0, pages_resident = 0;
-  if (!(statm >> pages_total >> pages_resident)) return std::nullopt;
-  return pages_resident * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+/// Calls f(track) for every live track (in the kinetic engine), in slot order.
+template <class F>
+void for_each_live_track(const Pipeline& pipeline, F&& f) {
+  for (track::TrackSlot slot = 0; slot < pipeline.tracks().slot_end(); ++slot) {
+    const track::Track& track = pipeline.tracks()[slot];
+    if (track.in_use && track.point != kinetic::kNoPoint) f(track);
+  }
 }
 
 }  // namespace
@@ -89,6 +90,7 @@ Service::Service(Config config, ServiceOptions options)
       started_(std::chrono::steady_clock::now()),
       health_(config_.pipeline.tracks.track_timeout_s),
       last_alive_(started_) {
+  started_unix_s_ = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   pipeline_.set_alert_sink([this](const AlertEvent& e) { on_alert(e); });
   pipeline_.rejections().set_reporter([](std::string_view reason, std::string_view message) {
     spdlog::warn("record rejected ({}): {}", reason, message);
@@ -135,9 +137,18 @@ Service::Service(Config config, ServiceOptions options)
     if (options_.listen_any && (input.transport == Transport::TcpServer || input.transport == Transport::Udp))
       input.address = widen_if_loopback(input.address);
     inputs_.push_back(open_listener(fmt::format("[input {}] address", i + 1), input.address, [&] {
-      return make_input(io_, input, config_.decoding, [this](const TrackReport& r) { on_report(r); });
+      return make_input(io_, input, config_.decoding, [this, i](const TrackReport& r) { on_report(r, i); });
     }));
     if (options_.replay) inputs_.back()->set_end_handler([this] { asio::post(io_, [this] { end_replay(); }); });
+  }
+  input_figures_.resize(inputs_.size());
+
+  if (config_.http.enabled) {
+    std::string http_listen = config_.http.listen;
+    if (options_.listen_any) http_listen = widen_if_loopback(http_listen);
+    http_ = open_listener("[http] listen", http_listen, [&] {
+      return std::make_unique<http::HttpServer>(io_, resolve_listen(io_, http_listen), config_.http, http_source());
+    });
   }
 }
 
@@ -147,6 +158,14 @@ int Service::run() {
   begin_run();
   subscribers_->start();
   for (auto& input : inputs_) input->start();
+  if (http_) {
+    http_->start();
+    const std::string& root = http_->router().web().root();
+    spdlog::info("HTTP (map, API, metrics) on port {}, files from {}", http_->port(), root);
+    std::error_code ec;
+    if (!std::filesystem::is_directory(root, ec))
+      spdlog::warn("[http] web_root {} is not a directory: the map is not served (the API is)", root);
+  }
   spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
                inputs_.size());
   // Paths as resolved (design §5.7: relative to the working directory kewd started in).
@@ -188,8 +207,10 @@ int Service::run() {
   return 0;
 }
 
-void Service::on_report(const TrackReport& report) {
+void Service::on_report(const TrackReport& report, std::size_t input) {
   if (stopping_) return;
+  const auto arrival = std::chrono::steady_clock::now();
+  record_arrival_ = arrival;
   if (record_file_) {
     line_.clear();
     protocol::append_ndjson(line_, report);
@@ -201,13 +222,26 @@ void Service::on_report(const TrackReport& report) {
   // best time kewd has; recordings played into a live input are in the past). A replay
   // (--replay) has no such ceiling: its clock is the recording's, and the pipeline's time
   // guard still holds a lone record dated ahead of the others, as in kew-replay.
-  if (!options_.replay) {
-    const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    pipeline_.set_time_ceiling(wall + config_.service.max_future_s);
-  }
+  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  if (!options_.replay) pipeline_.set_time_ceiling(wall + config_.service.max_future_s);
+  InputFigures& figures = input_figures_[input];
+  figures.last_record_unix_s = wall;
   const std::uint64_t accepted = pipeline_.statistics().accepted;
+  const std::uint64_t refused = pipeline_.rejections().total();
   pipeline_.process(report);
-  if (pipeline_.statistics().accepted != accepted) health_.accepted(std::chrono::steady_clock::now());
+  record_arrival_.reset();
+  if (pipeline_.rejections().total() != refused) figures.pipeline_refused.reject(pipeline_.rejections().last_reason());
+  if (pipeline_.statistics().accepted == accepted) return;
+  health_.accepted(std::chrono::steady_clock::now());
+  if (http_ && http_->has_websockets()) {
+    const track::TrackSlot slot = pipeline_.tracks().find(report.source, report.id);
+    if (slot == track::kNoTrack) return;
+    if (ws_track_marked_.size() <= slot) ws_track_marked_.resize(slot + 1, false);
+    if (!ws_track_marked_[slot]) {
+      ws_track_marked_[slot] = true;
+      ws_tracks_.push_back(slot);
+    }
+  }
 }
 
 void Service::begin_run() {
@@ -287,6 +321,8 @@ protocol::HealthReason Service::health(std::chrono::steady_clock::time_point now
 
 void Service::on_alert(const AlertEvent& event) {
   last_alert_seq_ = event.seq;
+  if (record_arrival_)
+    latency_.observe(std::chrono::duration<double>(std::chrono::steady_clock::now() - *record_arrival_).count());
   if (alert_log_) {
     // Written per alert: an alert nobody was subscribed to must survive a crash. While
     // the file cannot take it, the event waits in memory and each event retries.
@@ -298,6 +334,11 @@ void Service::on_alert(const AlertEvent& event) {
     if (was_failing != alert_log_->failing()) modbus_dirty_ = true;
   }
   subscribers_->broadcast_alert(event);
+  if (http_ && http_->has_websockets()) {
+    line_.clear();
+    protocol::append_alert_json(line_, event, event.seq);
+    http_->push(line_);
+  }
   if (cat004_) cat004_->send_alert(event);
   modbus_dirty_ = true;
 }
@@ -329,11 +370,12 @@ void Service::publish_modbus() {
   last_modbus_publish_ = now;
 }
 
-void Service::acknowledge(std::string_view by, std::string_view client) {
-  if (stopping_) return;
-  const std::vector<std::string> ids = pipeline_.alerts().acknowledge_all();
+std::vector<std::string> Service::acknowledge(std::string_view by, std::string_view client,
+                                              std::optional<std::string_view> id) {
+  if (stopping_) return {};
+  const std::vector<std::string> ids = id ? pipeline_.alerts().acknowledge(*id) : pipeline_.alerts().acknowledge_all();
   spdlog::info("{} client {} acknowledged {} alerts", by, client, ids.size());
-  if (ids.empty()) return;
+  if (ids.empty()) return ids;
   const protocol::Acknowledgement ack{ids, pipeline_.statistics().last_data_time, by, client};
   if (alert_log_) {
     line_.clear();
@@ -342,8 +384,14 @@ void Service::acknowledge(std::string_view by, std::string_view client) {
     alert_log_->flush();
   }
   subscribers_->broadcast_ack(ack);
+  if (http_ && http_->has_websockets()) {
+    line_.clear();
+    protocol::append_ack_json(line_, ack, last_alert_seq_);
+    http_->push(line_);
+  }
   modbus_dirty_ = true;
   publish_modbus();
+  return ids;
 }
 
 double Service::data_clock_now() const {
@@ -368,6 +416,7 @@ void Service::schedule_tick() {
 
 void Service::tick() {
   if (record_file_) record_file_->flush();
+  flush_websockets();
   const std::optional<double> idle = health_.seconds_since_accepted(std::chrono::steady_clock::now());
   // While records are accepted, their own times drive the clock; only a feed silent (or
   // wholly refused) for a whole tick moves it on, so its tracks time out.
@@ -401,16 +450,14 @@ void Service::alive() {
   updates_at_last_alive_ = updates;
   last_alive_ = now;
 
-  protocol::AliveStatus status;
-  const bool any_accepted = health_.seconds_since_accepted(now).has_value();
-  if (any_accepted) status.last_data_t = s.last_data_time;
-  status.tracks = pipeline_.live_tracks();
-  status.alerts = pipeline_.alerts().active_count();
-  status.records_per_s = records_per_s_;
-  status.updates_per_s = updates_per_s_;
-  status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
-  status.health = health(now);
+  const protocol::AliveStatus status = alive_status(now);
+  const bool any_accepted = status.last_data_t.has_value();
   subscribers_->broadcast_alive(status);
+  if (http_ && http_->has_websockets()) {
+    line_.clear();
+    protocol::append_alive_json(line_, status, last_alert_seq_);
+    http_->push(line_);
+  }
   if (cat004_) {
     protocol::Cat004Alive a;
     a.t = any_accepted ? data_clock_now() : static_cast<double>(std::time(nullptr));
@@ -486,6 +533,7 @@ void Service::shutdown() {
   // Subscribers get what is queued for them, then the connection closes; io_.run()
   // returns when the last one is done, or the grace period ends it.
   subscribers_->shutdown();
+  if (http_) http_->shutdown();
   shutdown_timer_.expires_after(kShutdownGrace);
   shutdown_timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) io_.stop();
@@ -505,7 +553,7 @@ void Service::end_replay() {
   if (options_.exit_at_end) shutdown();
 }
 
-std::string Service::stats_json() const {
+protocol::ServiceStatistics Service::service_statistics() const {
   protocol::ServiceStatistics service;
   service.seq = last_alert_seq_;
   service.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
@@ -519,8 +567,128 @@ std::string Service::stats_json() const {
     service.alert_log_queued_bytes = alert_log_->pending_bytes();
     service.alert_log_dropped = alert_log_->dropped_lines();
   }
-  service.resident_bytes = resident_bytes();
-  return protocol::stats_json(pipeline_, service);
+  service.resident_bytes = http::resident_bytes();
+  return service;
+}
+
+std::string Service::stats_json() const { return protocol::stats_json(pipeline_, service_statistics()); }
+
+protocol::AliveStatus Service::alive_status(std::chrono::steady_clock::time_point now) const {
+  protocol::AliveStatus status;
+  const PipelineStatistics& s = pipeline_.statistics();
+  if (health_.seconds_since_accepted(now)) status.last_data_t = s.last_data_time;
+  status.tracks = pipeline_.live_tracks();
+  status.alerts = pipeline_.alerts().active_count();
+  status.records_per_s = records_per_s_;
+  status.updates_per_s = updates_per_s_;
+  status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
+  status.health = health(now);
+  return status;
+}
+
+std::string Service::metrics_text() const {
+  http::MetricsSources m;
+  m.pipeline = &pipeline_;
+  const protocol::ServiceStatistics service = service_statistics();
+  for (std::size_t i = 0; i < service.inputs.size(); ++i) {
+    const protocol::InputStatistics& in = service.inputs[i];
+    http::InputMetrics metrics{in.name, in.reports, in.bytes, in.rejected, input_figures_[i].last_record_unix_s};
+    metrics.rejected.merge(input_figures_[i].pipeline_refused);
+    m.inputs.push_back(std::move(metrics));
+  }
+  m.subscribers = subscribers_->sessions();
+  m.subscriber_queued_bytes = subscribers_->queued_bytes();
+  m.subscriber_figures = service.subscribers;
+  if (http_) {
+    m.http = &http_->statistics();
+    m.http_connections = http_->connections();
+    m.websockets = http_->websockets();
+    m.websocket_queued_bytes = http_->queued_bytes();
+  }
+  m.alert_log_queued_bytes = service.alert_log_queued_bytes;
+  m.latency = &latency_;
+  m.start_time_unix_s = started_unix_s_;
+  return http::metrics_text(m);
+}
+
+void Service::flush_websockets() {
+  if (!http_) return;
+  if (http_->has_websockets()) {
+    const double now = pipeline_.now();
+    for (const track::TrackSlot slot : ws_tracks_) {
+      ws_track_marked_[slot] = false;
+      const track::Track& track = pipeline_.tracks()[slot];
+      if (!track.in_use || track.point == kinetic::kNoPoint) continue;
+      line_.clear();
+      protocol::append_live_track_json(line_, track, now, last_alert_seq_);
+      http_->push(line_);
+    }
+  } else {
+    for (const track::TrackSlot slot : ws_tracks_) ws_track_marked_[slot] = false;
+  }
+  ws_tracks_.clear();
+  http_->flush();
+}
+
+http::HttpSource Service::http_source() {
+  http::HttpSource source;
+  source.tracks = [this] {
+    const double now = pipeline_.now();
+    std::string out = fmt::format("{{\"class\":\"TRACKS\",\"seq\":{},\"t\":{:.3f},\"tracks\":[", last_alert_seq_, now);
+    bool first = true;
+    for_each_live_track(pipeline_, [&](const track::Track& track) {
+      if (!first) out.push_back(',');
+      first = false;
+      protocol::append_live_track_json(out, track, now, last_alert_seq_);
+    });
+    out += "]}\n";
+    return out;
+  };
+  source.alerts = [this] {
+    std::vector<AlertEvent> active = pipeline_.alerts().snapshot();
+    std::stable_sort(active.begin(), active.end(),
+                     [](const AlertEvent& a, const AlertEvent& b) { return a.severity > b.severity; });
+    std::string out;
+    protocol::append_alerts_json(out, active, last_alert_seq_, pipeline_.now());
+    return out;
+  };
+  source.status = [this] {
+    std::string out;
+    const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    protocol::append_status_json(out, alive_status(std::chrono::steady_clock::now()), last_alert_seq_,
+                                 data_clock_now(), wall);
+    return out;
+  };
+  source.metrics = [this] { return metrics_text(); };
+  source.snapshot = [this] {
+    const double now = pipeline_.now();
+    std::string out = "[";
+    std::string line;
+    const auto add = [&](std::string_view object) {
+      if (out.size() > 1) out.push_back(',');
+      if (!object.empty() && object.back() == '\n') object.remove_suffix(1);
+      out.append(object);
+    };
+    for_each_live_track(pipeline_, [&](const track::Track& track) {
+      line.clear();
+      protocol::append_live_track_json(line, track, now, last_alert_seq_);
+      add(line);
+    });
+    for (const AlertEvent& event : pipeline_.alerts().snapshot()) {
+      line.clear();
+      protocol::append_alert_json(line, event, event.seq);
+      add(line);
+    }
+    line.clear();
+    protocol::append_alive_json(line, alive_status(std::chrono::steady_clock::now()), last_alert_seq_);
+    add(line);
+    out.push_back(']');
+    return out;
+  };
+  source.acknowledge = [this](const protocol::AckRequest& request, std::string_view client) {
+    return acknowledge("web", client, request.all ? std::nullopt : std::optional<std::string_view>(request.id));
+  };
+  return source;
 }
 
 }  // namespace kew::daemon

@@ -13,6 +13,8 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "../http/http_server.hpp"
+#include "../http/metrics.hpp"
 #include "cat004_sender.hpp"
 #include "continuity.hpp"
 #include "feed_health.hpp"
@@ -50,7 +52,8 @@ class Service {
   int run();
 
  private:
-  void on_report(const TrackReport& report);
+  /// A record decoded by inputs_[input].
+  void on_report(const TrackReport& report, std::size_t input);
   void on_alert(const AlertEvent& event);
   /// Before the inputs start: the run id, the START line, the End ("restart") of every
   /// alert the last run left open, and the numbering continued (design §4.7).
@@ -68,9 +71,18 @@ class Service {
   void alive();
   void schedule_modbus_publish();
   void publish_modbus();
-  /// Coil 0 written 1 (posted from the Modbus thread) through interface `by` by `client`
-  /// ("HOST:PORT" of its socket).
-  void acknowledge(std::string_view by, std::string_view client);
+  /// Coil 0 written 1 (posted from the Modbus thread), or POST /api/ack, through interface
+  /// `by` by `client` ("HOST:PORT" of its socket): every active alert, or only `id`.
+  /// Returns the ids acknowledged.
+  std::vector<std::string> acknowledge(std::string_view by, std::string_view client,
+                                       std::optional<std::string_view> id = std::nullopt);
+  /// The HTTP server's view of the service (design §5.8).
+  http::HttpSource http_source();
+  /// Sends the tracks updated since the last tick and the batch to WebSocket clients.
+  void flush_websockets();
+  protocol::AliveStatus alive_status(std::chrono::steady_clock::time_point now) const;
+  protocol::ServiceStatistics service_statistics() const;
+  std::string metrics_text() const;
   void wait_for_signal();
   void reload();
   void shutdown();
@@ -102,6 +114,21 @@ class Service {
   std::uint64_t state_errors_ = 0;
   std::unique_ptr<Cat004Sender> cat004_;
   std::unique_ptr<ModbusServer> modbus_;
+  std::unique_ptr<http::HttpServer> http_;
+  /// Per input: what /metrics says of it beyond its own statistics.
+  struct InputFigures {
+    Rejections pipeline_refused;  ///< the pipeline's refusals of its records
+    std::optional<double> last_record_unix_s;
+  };
+  std::vector<InputFigures> input_figures_;
+  http::LatencyHistogram latency_;
+  /// While a record is processed: when it reached on_report (alert events it causes are
+  /// measured from there).
+  std::optional<std::chrono::steady_clock::time_point> record_arrival_;
+  /// Tracks updated since the last tick, for the WebSocket clients (only while any).
+  std::vector<track::TrackSlot> ws_tracks_;
+  std::vector<bool> ws_track_marked_;
+  double started_unix_s_ = 0.0;
   bool modbus_dirty_ = true;  // alarm state changed since the last publish
   std::chrono::steady_clock::time_point last_modbus_publish_{};
   std::string line_;  // scratch for encoding

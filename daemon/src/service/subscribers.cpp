@@ -403,4 +403,10 @@ void SubscriberServer::broadcast_track(const TrackReport& report) {
   }
 }
 
+std::size_t SubscriberServer::queued_bytes() const {
+  std::size_t n = 0;
+  for (const auto& session : sessions_) n += session->queued_bytes();
+  return n;
+}
+
 }  // namespace kew::daemon

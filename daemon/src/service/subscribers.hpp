@@ -64,6 +64,7 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   bool wants(const AlertEvent& event);
   std::uint64_t id() const { return id_; }
   bool admin() const { return admin_; }
+  std::size_t queued_bytes() const { return queued_bytes_; }
 
  private:
   void read_request();
@@ -131,6 +132,8 @@ class SubscriberServer {
   const SubscriberLimits& limits() const { return limits_; }
   bool tracks_allowed() const { return tracks_allowed_; }
   std::size_t sessions() const { return sessions_.size(); }
+  /// Bytes queued for every session together.
+  std::size_t queued_bytes() const;
   const protocol::SubscriberStatistics& figures() const { return figures_; }
   protocol::SubscriberStatistics& figures() { return figures_; }
   std::uint16_t port() const { return acceptor_.local_endpoint().port(); }

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "kew/protocol/version.hpp"
+#include "kew/track/track_table.hpp"
 
 namespace kew::protocol {
 namespace {
@@ -130,10 +131,11 @@ void append_alert_object(std::string& out, const AlertEvent& e, std::uint64_t se
 
 template <typename Element, typename Deref>
 void append_snapshot(std::string& out, std::span<Element> active, std::uint64_t seq,
-                     Deref deref) {
+                     Deref deref, std::optional<double> t = std::nullopt) {
   ObjectWriter o(out);
   o.text("class", "ALERTS");
   o.integer("seq", seq);
+  if (t) o.fixed("t", *t, kTimeDecimals);
   o.key("alerts");
   out.push_back('[');
   bool first = true;
@@ -187,8 +189,10 @@ void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent* c
                   [](const AlertEvent* e) -> const AlertEvent& { return *e; });
 }
 
-void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq) {
-  ObjectWriter o(out);
+namespace {
+
+/// The members of ALIVE; the caller closes the object.
+void write_alive_members(ObjectWriter& o, std::string& out, const AliveStatus& status, std::uint64_t seq) {
   o.text("class", "ALIVE");
   o.integer("seq", seq);
   if (status.last_data_t) {
@@ -208,6 +212,27 @@ void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_
   o.integer("uptime_s", status.uptime_s);
   o.boolean("degraded", status.degraded());
   o.text("health", kHealthReasonNames.name(status.health));
+}
+
+}  // namespace
+
+void append_alerts_json(std::string& out, std::span<const AlertEvent> active, std::uint64_t seq, double t) {
+  append_snapshot(out, active, seq, [](const AlertEvent& e) -> const AlertEvent& { return e; }, t);
+}
+
+void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq) {
+  ObjectWriter o(out);
+  write_alive_members(o, out, status, seq);
+  o.close();
+  out.push_back('\n');
+}
+
+void append_status_json(std::string& out, const AliveStatus& status, std::uint64_t seq, double data_t,
+                        double wall_t) {
+  ObjectWriter o(out);
+  write_alive_members(o, out, status, seq);
+  o.fixed("data_t", data_t, kTimeDecimals);
+  o.fixed("wall_t", wall_t, kTimeDecimals);
   o.close();
   out.push_back('\n');
 }
@@ -251,6 +276,24 @@ void append_track_json(std::string& out, const TrackReport& report, std::uint64_
   if (report.on_ground) o.boolean("gnd", true);
   o.close();
   out.push_back('\n');
+}
+
+void append_live_track_json(std::string& out, const track::Track& track, double now, std::uint64_t seq) {
+  ObjectWriter o(out);
+  o.text("class", "TRACK");
+  o.integer("seq", seq);
+  o.fixed("t", track.t, kTimeDecimals);
+  write_identity_and_position(o, track);
+  o.fixed("gs_kt", track.gs_kt, kSpeedAngleDecimals);
+  o.fixed("trk_deg", track.trk_deg, kSpeedAngleDecimals);
+  o.fixed("vr_fpm", track.vr_fpm, kFeetDecimals);
+  o.integer("tn", track.number);
+  if (track.mode3a) {
+    o.key("sq");
+    fmt::format_to(std::back_inserter(out), "\"{:04o}\"", *track.mode3a);
+  }
+  o.fixed("age_s", now - track.t, kMetreSecondDecimals);
+  o.close();
 }
 
 }  // namespace kew::protocol

@@ -379,4 +379,27 @@ WatchParseResult parse_watch_request(std::string_view line) {
   return result;
 }
 
+AckParseResult parse_ack_request(std::string_view body) {
+  AckParseResult result;
+  if (body.size() > kMaxAckRequestBytes) {
+    result.error = "body longer than " + std::to_string(kMaxAckRequestBytes) + " bytes";
+    return result;
+  }
+  JsonObjectParser parser(kMaxAckRequestBytes);
+  dom::object object;
+  if (!parser.parse_object(body, object, result.error)) return result;
+  Members m(object, result.error);
+  std::string_view id;
+  if (!m.optional("all", result.request.all) || !m.optional("id", id)) return result;
+  const bool has_id = object.at_key("id").error() == simdjson::SUCCESS;
+  const bool has_all = object.at_key("all").error() == simdjson::SUCCESS;
+  if (has_id == has_all || (has_all && !result.request.all) || (has_id && id.empty())) {
+    result.error = R"(expected {"id":"<alert id>"} or {"all":true})";
+    return result;
+  }
+  result.request.id = std::string(id);
+  result.ok = true;
+  return result;
+}
+
 }  // namespace kew::protocol

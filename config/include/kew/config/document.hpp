@@ -68,6 +68,8 @@ class TableReader {
   /// A list of IPv4 or IPv6 addresses without ports (["127.0.0.1", "::1"]), each checked
   /// and kept in canonical_ip form (address.hpp), so that they compare as text.
   void ip_list(std::string_view key, std::vector<std::string>& out);
+  /// A list of host names (["kew.example"]): letters, digits, '-' and '.', kept lower-case.
+  void host_name_list(std::string_view key, std::vector<std::string>& out);
   /// A file path. A relative path is resolved against the working directory kewd was
   /// started in and kept absolute and normalised ("../log/a" → "/srv/log/a"), so that
   /// what is checked, reported and opened is one file even after the daemon changes

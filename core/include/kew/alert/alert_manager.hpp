@@ -120,6 +120,9 @@ class AlertManager {
   /// that were not yet, in alert-number order. An alert whose severity later rises
   /// becomes unacknowledged again.
   std::vector<std::string> acknowledge_all();
+  /// Marks the active alert `id` acknowledged (the map's button); returns {id} when it
+  /// was active and not yet acknowledged, else nothing.
+  std::vector<std::string> acknowledge(std::string_view id);
   std::size_t unacknowledged_count() const;
 
   struct Counters {

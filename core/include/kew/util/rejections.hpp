@@ -28,6 +28,9 @@ class Rejections {
 
   /// Rejections of `reason` so far.
   std::uint64_t count(std::string_view reason) const;
+  /// The reason of the latest reject() call ("" before the first): lets a caller that
+  /// feeds one stage from several sources count each source's refusals.
+  std::string_view last_reason() const { return last_; }
   /// All rejections so far, across reasons.
   std::uint64_t total() const { return total_; }
   /// Reason → count, in reason order (deterministic for statistics output).
@@ -42,6 +45,7 @@ class Rejections {
   std::uint64_t total_ = 0;
   std::map<std::string, std::uint64_t, std::less<>> counts_;
   Reporter reporter_;
+  std::string last_;  // assigned, so its capacity is reused
 };
 
 }  // namespace kew

@@ -1,6 +1,6 @@
 #pragma once
 // kewd's configuration (design §5.7): the tables every tool shares (config::SharedConfig,
-// read by kew_config) and kewd's own [service], [cat004], [modbus] and [[input]] tables,
+// read by kew_config) and kewd's own [service], [cat004], [modbus], [http] and [[input]] tables,
 // read here. Every key, its unit and its default is documented in deploy/kew.toml.
 
 #include <cstdint>
@@ -119,11 +119,32 @@ struct ModbusConfig {
   std::vector<std::string> acknowledge_from;
 };
 
+/// The HTTP server of design §5.8: map, JSON API, WebSocket, acknowledgement, metrics.
+struct HttpConfig {
+  bool enabled = true;
+  std::string listen = "127.0.0.1:8747";
+  bool allow_remote = false;  ///< `listen` may be other than loopback
+  /// The map's files; "" = the installed share/kew/web (the source tree's web/ when kewd
+  /// runs from its build tree).
+  std::string web_root;
+  /// Served under /leaflet/ (Debian's libjs-leaflet).
+  std::string leaflet_root = "/usr/share/javascript/leaflet";
+  /// Host names (besides localhost and IP literals) a POST /api/ack may name in Host.
+  std::vector<std::string> host_names;
+  std::size_t max_connections = 64;       ///< HTTP and WebSocket connections at once
+  std::size_t max_header_bytes = 8192;    ///< request line and headers; beyond: 431
+  std::size_t max_body_bytes = 4096;      ///< request body; beyond: 413
+  double request_timeout_s = 10.0;        ///< a request must arrive whole within this
+  double write_timeout_s = 30.0;          ///< a reply or WebSocket client that stalls this long is closed
+  std::size_t client_queue_bytes = 16u << 20;  ///< WebSocket bytes queued per client before cut-off
+};
+
 /// A kewd file: the shared tables (pipeline, decoding) and kewd's own.
 struct Config : config::SharedConfig {
   ServiceConfig service;
   Cat004Config cat004;
   ModbusConfig modbus;
+  HttpConfig http;
   std::vector<InputConfig> inputs;
   std::string origin;  ///< the file's name in messages ("" for the built-in defaults)
 };
@@ -162,7 +183,7 @@ struct Listener {
   bool udp = false;
   bool allow_remote = false;
 };
-/// Every listening socket of `config`: the subscriber port, Modbus when enabled, and the
+/// Every listening socket of `config`: the subscriber port, Modbus and HTTP when enabled, and the
 /// udp and tcp-server inputs.
 std::vector<Listener> listeners(const Config& config);
 

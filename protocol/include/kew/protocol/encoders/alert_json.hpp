@@ -26,6 +26,10 @@
 #include "kew/protocol/ndjson_writer.hpp"  // append_json_string(), for callers of this header too
 #include "kew/track/track_report.hpp"
 
+namespace kew::track {
+struct Track;
+}
+
 namespace kew::protocol {
 
 /// Why kewd's picture cannot be trusted now (design §6.6); Healthy when it can.
@@ -93,9 +97,18 @@ void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent> a
 void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent* const> active,
                                  std::uint64_t seq);
 
+/// {"class":"ALERTS","seq":…,"t":…,"alerts":[…]}: the snapshot above with the data time
+/// `t` it was taken at (HTTP /api/alerts, design §5.8); elements in the caller's order.
+void append_alerts_json(std::string& out, std::span<const AlertEvent> active, std::uint64_t seq, double t);
+
 /// {"class":"ALIVE","seq":…,"t":…|null,"tracks":…,"alerts":…,
 ///  "rates":{"records_per_s":…,"updates_per_s":…},"uptime_s":…,"degraded":…}
 void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq);
+
+/// The ALIVE object with the pipeline clock and the wall clock (UTC s) added:
+/// {"class":"ALIVE",…,"health":…,"data_t":…,"wall_t":…} (HTTP /api/status, design §5.8).
+void append_status_json(std::string& out, const AliveStatus& status, std::uint64_t seq, double data_t,
+                        double wall_t);
 
 /// An operator acknowledged these active alerts (their later events carry "ack":true).
 struct Acknowledgement {
@@ -117,5 +130,11 @@ void append_error_json(std::string& out, std::string_view message, std::uint64_t
 ///  "gs_kt":…,"trk_deg":…,"vr_fpm":…}; gs_kt, trk_deg and vr_fpm are left out when the
 /// report does not have them, and "gnd":true is added for targets on the ground.
 void append_track_json(std::string& out, const TrackReport& report, std::uint64_t seq);
+
+/// A live track of the track table as a TRACK object (HTTP /api/tracks and /ws, design
+/// §5.8), without the line end: the members of a report's TRACK (t is the track's last
+/// record), then "tn" (track number), "sq" (Mode 3/A, 4 octal digits, when known) and
+/// "age_s" (`now` − t).
+void append_live_track_json(std::string& out, const track::Track& track, double now, std::uint64_t seq);
 
 }  // namespace kew::protocol

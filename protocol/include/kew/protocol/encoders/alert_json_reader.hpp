@@ -27,11 +27,14 @@ struct WatchRequest {
   bool tracks = false;
 };
 
-struct WatchParseResult {
+/// A request read from a client: what it asked, or why it was refused.
+template <class Request>
+struct RequestParse {
   bool ok = false;
-  WatchRequest request;  ///< meaningful when ok
-  std::string error;     ///< why the request was refused, when !ok
+  Request request;    ///< meaningful when ok
+  std::string error;  ///< why the request was refused, when !ok
 };
+using WatchParseResult = RequestParse<WatchRequest>;
 
 /// Longest request line accepted, bytes (the server bounds its read buffer by it too).
 inline constexpr std::size_t kMaxWatchRequestBytes = 4096;
@@ -43,6 +46,21 @@ inline constexpr std::size_t kMaxWatchRequestBytes = 4096;
 /// member of the wrong type, an unknown severity, malformed JSON or any other command is
 /// an error.
 WatchParseResult parse_watch_request(std::string_view line);
+
+/// What POST /api/ack asked (design §5.8): one alert, or all of them.
+struct AckRequest {
+  bool all = false;
+  std::string id;  ///< when !all
+};
+
+using AckParseResult = RequestParse<AckRequest>;
+
+/// Longest acknowledgement body accepted, bytes.
+inline constexpr std::size_t kMaxAckRequestBytes = 4096;
+
+/// Parses the body of POST /api/ack: {"id":"<alert id>"} or {"all":true}. Anything else
+/// (both, neither, "all" not true, wrong types, malformed JSON) is an error.
+AckParseResult parse_ack_request(std::string_view body);
 
 /// Class of one object of the stream.
 enum class StreamObjectClass : std::uint8_t { Version, Alert, Alerts, Alive, Error, Track, Ack, Start };

@@ -1,0 +1,50 @@
+#pragma once
+// One HTTP connection (design §5.8): reads requests within the header, body and time
+// limits, answers each through the Router, and hands an upgrade of /ws over to a
+// WebSocketSession. Owned by the HttpServer while it lives; runs on the I/O thread.
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <boost/beast/core/flat_buffer.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/http/message.hpp>
+#include <boost/beast/http/parser.hpp>
+#include <boost/beast/http/string_body.hpp>
+
+namespace kew::daemon::http {
+
+class HttpServer;
+struct Reply;
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(boost::asio::ip::tcp::socket socket, HttpServer& server);
+  void start();
+  /// Closes the connection at once (eviction, shutdown).
+  void close();
+  /// Waiting for a request of which no byte has arrived (may be evicted when full).
+  bool idle() const { return reading_ && parser_ && !parser_->got_some(); }
+  std::chrono::steady_clock::time_point since() const { return since_; }
+
+ private:
+  void read();
+  void on_read(boost::beast::error_code ec);
+  /// Answers a request the parser refused (431, 413, 400), then closes.
+  void refuse(unsigned status, std::string_view reason, std::string_view message);
+  void send(const Reply& reply, bool keep_alive, bool head);
+
+  boost::beast::tcp_stream stream_;
+  HttpServer& server_;
+  boost::beast::flat_buffer buffer_;
+  std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
+  std::shared_ptr<boost::beast::http::response<boost::beast::http::string_body>> response_;
+  std::string client_;  ///< "HOST:PORT" of the peer
+  std::chrono::steady_clock::time_point since_;
+  bool reading_ = false;
+  bool closed_ = false;
+};
+
+}  // namespace kew::daemon::http

@@ -1,0 +1,27 @@
+#pragma once
+// What the HTTP server asks of the service (design §5.8). Every function runs on the I/O
+// thread, so it reads the pipeline as it is between two records.
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kew/protocol/encoders/alert_json_reader.hpp"
+
+namespace kew::daemon::http {
+
+struct HttpSource {
+  std::function<std::string()> tracks;    ///< GET /api/tracks: the TRACKS object
+  std::function<std::string()> alerts;    ///< GET /api/alerts: the ALERTS object
+  std::function<std::string()> status;    ///< GET /api/status: ALIVE with data_t, wall_t
+  std::function<std::string()> metrics;   ///< GET /metrics: the Prometheus exposition
+  /// The first WebSocket message: a JSON array of every live track, every active alert
+  /// and ALIVE.
+  std::function<std::string()> snapshot;
+  /// POST /api/ack from `client` ("HOST:PORT"): the same acknowledgement as Modbus coil 0,
+  /// reported "by":"web". Returns the ids acknowledged.
+  std::function<std::vector<std::string>(const protocol::AckRequest& request, std::string_view client)> acknowledge;
+};
+
+}  // namespace kew::daemon::http

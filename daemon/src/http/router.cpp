@@ -1,0 +1,178 @@
+#include "router.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include <boost/asio/ip/address.hpp>
+#include <boost/beast/http/field.hpp>
+#include <boost/beast/http/verb.hpp>
+#include <fmt/format.h>
+
+#include "kew/protocol/ndjson_writer.hpp"
+
+namespace kew::daemon::http {
+
+namespace beast = boost::beast;
+namespace bhttp = boost::beast::http;
+
+namespace {
+
+std::string lower(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+struct HostHeader {
+  std::string host;  ///< without brackets, lower-case
+  std::uint16_t port = 80;
+};
+
+/// "name:port", "1.2.3.4:port", "[::1]:port" or without ":port"; nullopt if malformed.
+std::optional<HostHeader> parse_host(std::string_view text) {
+  HostHeader h;
+  std::string_view port_text;
+  if (!text.empty() && text.front() == '[') {
+    const std::size_t close = text.find(']');
+    if (close == std::string_view::npos) return std::nullopt;
+    h.host = lower(text.substr(1, close - 1));
+    const std::string_view rest = text.substr(close + 1);
+    if (!rest.empty()) {
+      if (rest.front() != ':') return std::nullopt;
+      port_text = rest.substr(1);
+    }
+  } else {
+    const std::size_t colon = text.find(':');
+    h.host = lower(text.substr(0, colon));
+    if (colon != std::string_view::npos) port_text = text.substr(colon + 1);
+  }
+  if (h.host.empty()) return std::nullopt;
+  if (!port_text.empty() || text.find(':') != std::string_view::npos) {
+    if (port_text.empty() || port_text.size() > 5 ||
+        !std::all_of(port_text.begin(), port_text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return std::nullopt;
+    const unsigned long port = std::stoul(std::string(port_text));
+    if (port == 0 || port > 65535) return std::nullopt;
+    h.port = static_cast<std::uint16_t>(port);
+  }
+  return h;
+}
+
+bool is_ip_literal(const std::string& host) {
+  boost::system::error_code ec;
+  boost::asio::ip::make_address(host, ec);
+  return !ec;
+}
+
+std::string_view path_of(std::string_view target) { return target.substr(0, target.find('?')); }
+
+}  // namespace
+
+Router::Router(std::string web_root, std::string leaflet_root, std::vector<std::string> host_names,
+               const HttpSource& source, Rejections& refusals)
+    : web_(std::move(web_root)),
+      leaflet_(std::move(leaflet_root)),
+      host_names_(std::move(host_names)),
+      source_(source),
+      refusals_(refusals) {}
+
+Reply Router::refuse(unsigned status, std::string_view reason, std::string_view message) {
+  refusals_.reject(reason, message);
+  Reply reply{status, "application/json", {}};
+  reply.body = "{\"error\":";
+  protocol::append_json_string(reply.body, message);
+  reply.body += "}\n";
+  return reply;
+}
+
+Reply Router::handle(const Request& request, std::string_view client, std::uint16_t port) {
+  const std::string_view path = path_of(std::string_view(request.target().data(), request.target().size()));
+  if (path == "/api/ack") return acknowledge(request, client, port);
+  if (request.method() != bhttp::verb::get && request.method() != bhttp::verb::head)
+    return refuse(405, "method_not_allowed", "only GET and HEAD here (POST for /api/ack)");
+  if (path == "/api/tracks") return {200, "application/json", source_.tracks()};
+  if (path == "/api/alerts") return {200, "application/json", source_.alerts()};
+  if (path == "/api/status") return {200, "application/json", source_.status()};
+  if (path == "/metrics") return {200, "text/plain; version=0.0.4; charset=utf-8", source_.metrics()};
+  if (path == "/ws") return refuse(426, "not_websocket", "/ws is a WebSocket: send an upgrade request");
+  constexpr std::string_view kLeaflet = "/leaflet";
+  if (path.substr(0, kLeaflet.size()) == kLeaflet && (path.size() == kLeaflet.size() || path[kLeaflet.size()] == '/'))
+    return file(leaflet_, path.size() == kLeaflet.size() ? "/" : path.substr(kLeaflet.size()));
+  return file(web_, path);
+}
+
+Reply Router::file(const StaticFiles& files, std::string_view path) {
+  StaticFile f;
+  switch (files.read(path, f)) {
+    case StaticResult::Found:
+      return {200, std::move(f.content_type), std::move(f.body)};
+    case StaticResult::NotFound:
+      return refuse(404, "not_found", "no such file");
+    case StaticResult::TooLarge:
+      return refuse(403, "file_too_large", "file larger than the server sends");
+    case StaticResult::Forbidden:
+      break;
+  }
+  return refuse(403, "forbidden_path", "path outside the served files");
+}
+
+bool Router::same_origin(const Request& request, std::uint16_t port, std::string& why) const {
+  const auto host_field = request.find(bhttp::field::host);
+  if (host_field == request.end()) {
+    why = "no Host header";
+    return false;
+  }
+  const std::string_view host_text(host_field->value().data(), host_field->value().size());
+  const std::optional<HostHeader> host = parse_host(host_text);
+  if (!host) {
+    why = "malformed Host header";
+    return false;
+  }
+  const bool known = host->host == "localhost" || is_ip_literal(host->host) ||
+                     std::find(host_names_.begin(), host_names_.end(), host->host) != host_names_.end();
+  if (!known || host->port != port) {
+    why = fmt::format("Host {} does not name this server", host_text);
+    return false;
+  }
+  const auto origin = request.find(bhttp::field::origin);
+  if (origin != request.end()) {
+    const std::string_view origin_text(origin->value().data(), origin->value().size());
+    if (lower(origin_text) != "http://" + lower(host_text)) {
+      why = fmt::format("Origin {} is not this server", origin_text);
+      return false;
+    }
+  }
+  return true;
+}
+
+bool Router::websocket_allowed(const Request& request, std::uint16_t port) {
+  std::string why;
+  if (request.find(bhttp::field::origin) == request.end() || same_origin(request, port, why)) return true;
+  refusals_.reject("websocket_foreign_origin", why);
+  return false;
+}
+
+Reply Router::acknowledge(const Request& request, std::string_view client, std::uint16_t port) {
+  if (request.method() != bhttp::verb::post) return refuse(405, "method_not_allowed", "/api/ack takes POST");
+  const auto header = request.find("X-Kew-Ack");
+  if (header == request.end() || header->value() != "1") return refuse(403, "ack_no_header", "X-Kew-Ack: 1 missing");
+  std::string why;
+  if (!same_origin(request, port, why)) return refuse(403, "ack_foreign_origin", why);
+  const auto type = request.find(bhttp::field::content_type);
+  const std::string media =
+      type == request.end() ? std::string() : lower(std::string_view(type->value().data(), type->value().size()));
+  if (media.substr(0, media.find(';')) != "application/json")
+    return refuse(400, "ack_not_json", "Content-Type must be application/json");
+  const protocol::AckParseResult parsed = protocol::parse_ack_request(request.body());
+  if (!parsed.ok) return refuse(400, "ack_bad_body", parsed.error);
+  const std::vector<std::string> ids = source_.acknowledge(parsed.request, client);
+  Reply reply{200, "application/json", "{\"acknowledged\":["};
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (i) reply.body.push_back(',');
+    protocol::append_json_string(reply.body, ids[i]);
+  }
+  reply.body += "]}\n";
+  return reply;
+}
+
+}  // namespace kew::daemon::http
