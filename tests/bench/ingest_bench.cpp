@@ -4,9 +4,12 @@
 // percentiles: for every ALERT, the time from sending the record that triggered it (the
 // record of track a or b at the alert's data time) to receiving the line.
 //
-//   kew_ingest_bench --kewd build/daemon/kewd --records traffic.ndjson --transport tcp [--rate R] [--json FILE]
+//   kew_ingest_bench --kewd build/daemon/kewd --records traffic.ndjson --transport tcp [--rate R]
+//                    [--map-clients N] [--json FILE]
 //
 // It starts its own kewd (loopback, ephemeral ports) and stops it with SIGTERM.
+// --map-clients N connects N clients to kewd's HTTP server as the live map does (issue 20):
+// each reads the /ws WebSocket, polls /api/status every 2 s and /api/tracks every 10 s.
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -30,6 +33,9 @@
 #include <boost/asio/read_until.hpp>
 #include <boost/asio/streambuf.hpp>
 #include <boost/asio/write.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -48,6 +54,7 @@ struct Options {
   std::string records;
   std::string transport = "tcp";
   double rate = 0.0;  // records per second; 0 = as fast as possible
+  std::size_t map_clients = 0;
   std::string json;
 };
 
@@ -79,12 +86,14 @@ std::vector<Record> load_records(const std::string& path) {
 /// kewd as a child process with its stderr in a pipe; learns its ports from its log.
 class Daemon {
  public:
-  Daemon(const std::string& binary, const std::string& transport, const std::string& config_path) {
+  Daemon(const std::string& binary, const std::string& transport, const std::string& config_path)
+      : http_address_(kew::testing::free_loopback_address()) {
+    // The map's clients are batched per service tick: 1 s, as kewd's default.
     std::ofstream(config_path) << fmt::format(
-        "[service]\nalert_listen = \"{}\"\ntick_interval_s = 60\nsubscriber_queue = 1000000\n"
-        "log_level = \"info\"\n[[input]]\nname = \"bench\"\nformat = \"ndjson\"\ntransport = \"{}\"\n"
-        "address = \"{}\"\n",
-        kew::testing::free_loopback_address(), transport == "udp" ? "udp" : "tcp-server",
+        "[service]\nalert_listen = \"{}\"\ntick_interval_s = 1\nsubscriber_queue = 1000000\n"
+        "log_level = \"info\"\n[http]\nlisten = \"{}\"\n[[input]]\nname = \"bench\"\nformat = \"ndjson\"\n"
+        "transport = \"{}\"\naddress = \"{}\"\n",
+        kew::testing::free_loopback_address(), http_address_, transport == "udp" ? "udp" : "tcp-server",
         kew::testing::free_loopback_address());
     int err[2];
     if (::pipe(err) != 0) throw std::runtime_error("pipe");
@@ -121,6 +130,8 @@ class Daemon {
     std::fclose(log_);
   }
   std::uint16_t alert_port() const { return alert_port_; }
+  /// HOST:PORT of kewd's HTTP server.
+  const std::string& http_address() const { return http_address_; }
   std::uint16_t input_port() const { return input_port_; }
 
   /// Records the pipeline has been offered so far (from ?STATS).
@@ -141,11 +152,97 @@ class Daemon {
   }
 
  private:
+  std::string http_address_;
   pid_t pid_ = -1;
   std::FILE* log_ = nullptr;
   std::thread drain_;
   std::uint16_t alert_port_ = 0;
   std::uint16_t input_port_ = 0;
+};
+
+/// One client of kewd's HTTP server behaving as the live map: the /ws WebSocket read on
+/// one thread, /api/status every 2 s and /api/tracks every 10 s on another.
+class MapClient {
+ public:
+  explicit MapClient(const std::string& address) : address_(address) {
+    const auto colon = address.rfind(':');
+    host_ = address.substr(0, colon);
+    port_ = address.substr(colon + 1);
+    reader_ = std::thread([this] { read_websocket(); });
+    poller_ = std::thread([this] { poll(); });
+  }
+  ~MapClient() {
+    stop_ = true;
+    {
+      std::lock_guard lock(socket_mutex_);
+      if (ws_) {
+        boost::system::error_code ec;
+        ws_->next_layer().shutdown(tcp::socket::shutdown_both, ec);
+      }
+    }
+    reader_.join();
+    poller_.join();
+  }
+  std::uint64_t messages() const { return messages_; }
+  std::uint64_t bytes() const { return bytes_; }
+
+ private:
+  void read_websocket() {
+    namespace websocket = boost::beast::websocket;
+    boost::system::error_code ec;
+    {
+      std::lock_guard lock(socket_mutex_);
+      ws_ = std::make_unique<websocket::stream<tcp::socket>>(ws_io_);
+      tcp::resolver resolver(ws_io_);
+      asio::connect(ws_->next_layer(), resolver.resolve(host_, port_), ec);
+    }
+    if (!ec) ws_->handshake(address_, "/ws", ec);
+    if (ec) {
+      std::fprintf(stderr, "map client: WebSocket: %s\n", ec.message().c_str());
+      return;
+    }
+    boost::beast::flat_buffer buffer;
+    while (!stop_) {
+      ws_->read(buffer, ec);
+      if (ec) return;
+      ++messages_;
+      bytes_ += buffer.size();
+      buffer.consume(buffer.size());
+    }
+  }
+  void get(const std::string& target) {
+    namespace http = boost::beast::http;
+    asio::io_context io;
+    tcp::resolver resolver(io);
+    tcp::socket socket(io);
+    asio::connect(socket, resolver.resolve(host_, port_));
+    http::request<http::empty_body> request{http::verb::get, target, 11};
+    request.set(http::field::host, address_);
+    http::write(socket, request);
+    boost::beast::flat_buffer buffer;
+    http::response<http::string_body> response;
+    http::read(socket, buffer, response);
+    bytes_ += response.body().size();
+  }
+  void poll() {
+    for (int second = 0; !stop_; ++second) {
+      try {
+        if (second % 2 == 0) get("/api/status");
+        if (second % 10 == 0) get("/api/tracks");
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "map client: HTTP: %s\n", e.what());
+      }
+      for (int i = 0; i < 10 && !stop_; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+
+  std::string address_, host_, port_;
+  asio::io_context ws_io_;  // outlives ws_, which the destructor shuts down
+  std::mutex socket_mutex_;
+  std::unique_ptr<boost::beast::websocket::stream<tcp::socket>> ws_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> messages_{0}, bytes_{0};
+  std::thread reader_, poller_;
 };
 
 double percentile(std::vector<double> v, double p) {
@@ -165,12 +262,17 @@ int main(int argc, char** argv) {
       CLI::ExistingFile);
   app.add_option("--transport", options.transport, "tcp or udp")->check(CLI::IsMember({"tcp", "udp"}));
   app.add_option("--rate", options.rate, "records per second to send (0: as fast as possible)");
+  app.add_option("--map-clients", options.map_clients,
+                 "clients of the HTTP server acting as the live map (WebSocket + polling)");
   app.add_option("--json", options.json, "write the results as one JSON object");
   CLI11_PARSE(app, argc, argv);
 
   const std::vector<Record> records = load_records(options.records);
   const std::string config = fmt::format("/tmp/kew_ingest_bench_{}.toml", ::getpid());
   Daemon daemon(options.kewd, options.transport, config);
+  std::vector<std::unique_ptr<MapClient>> map_clients;
+  for (std::size_t i = 0; i < options.map_clients; ++i)
+    map_clients.push_back(std::make_unique<MapClient>(daemon.http_address()));
 
   // Subscriber: every ALERT line's receive time and the records it may come from.
   struct Received {
@@ -259,6 +361,12 @@ int main(int argc, char** argv) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // last alerts in flight
   subscriber.shutdown(tcp::socket::shutdown_both);
   reader.join();
+  std::uint64_t map_messages = 0, map_bytes = 0;
+  for (const auto& client : map_clients) {
+    map_messages += client->messages();
+    map_bytes += client->bytes();
+  }
+  map_clients.clear();
   std::remove(config.c_str());
 
   std::vector<double> latencies_us;
@@ -277,10 +385,12 @@ int main(int argc, char** argv) {
   const std::string result = fmt::format(
       "{{\"bench\":\"ingest\",\"host\":\"{}\",\"transport\":\"{}\",\"target_rate\":{},\"records\":{},"
       "\"processed\":{},\"lost\":{},\"send_s\":{:.3f},\"seconds\":{:.3f},\"records_per_s\":{:.0f},"
-      "\"alerts\":{},\"latency_us\":{{\"p50\":{:.0f},\"p90\":{:.0f},\"p99\":{:.0f},\"max\":{:.0f}}}}}\n",
+      "\"alerts\":{},\"latency_us\":{{\"p50\":{:.0f},\"p90\":{:.0f},\"p99\":{:.0f},\"max\":{:.0f}}},"
+      "\"map_clients\":{},\"map_messages\":{},\"map_bytes\":{}}}\n",
       host, options.transport, options.rate, records.size(), processed, records.size() - processed, send_seconds,
       seconds, static_cast<double>(processed) / seconds, latencies_us.size(), percentile(latencies_us, 0.5),
-      percentile(latencies_us, 0.9), percentile(latencies_us, 0.99), percentile(latencies_us, 1.0));
+      percentile(latencies_us, 0.9), percentile(latencies_us, 0.99), percentile(latencies_us, 1.0),
+      options.map_clients, map_messages, map_bytes);
   std::fputs(result.c_str(), stdout);
   if (!options.json.empty()) std::ofstream(options.json) << result;
   return 0;
