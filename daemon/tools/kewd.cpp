@@ -61,7 +61,7 @@ struct Flags {
 
 constexpr const char* kFooter = R"(Watching a recording:
   kewd --replay FILE [--speed X | --max-speed] [--format F] [-c FILE] [--exit-at-end]
-       [--alert-listen HOST:PORT] [--alert-log FILE]
+       [--alert-listen HOST:PORT] [--http-listen HOST:PORT] [--alert-log FILE]
 replays FILE (any recording kew-replay reads) through kewd, paced by its data time at X
 times the recorded speed, with the alert stream on loopback; nothing to configure and no
 file written. It stays in the foreground and keeps serving the last state after the file
@@ -154,6 +154,9 @@ int main(int argc, char** argv) {
   app.add_option("--alert-listen", flags.replay.alert_listen,
                  "with --replay: the alert stream's loopback HOST:PORT (default: alert_listen, 127.0.0.1:4747)")
       ->needs(replay);
+  app.add_option("--http-listen", flags.replay.http_listen,
+                 "with --replay: the map and HTTP API's loopback HOST:PORT (default: [http] listen, 127.0.0.1:8747)")
+      ->needs(replay);
   app.add_option("--alert-log", flags.replay.alert_log, "with --replay: write the alert log here (default: none)")
       ->needs(replay);
   app.footer(kFooter);
@@ -175,6 +178,7 @@ int main(int argc, char** argv) {
       flags.replay.format = *kew::protocol::kFormatNames.parse(format);
       if (flags.max_speed) flags.replay.speed = 0.0;
       if (!flags.replay.alert_listen.empty()) kew::config::require_host_port(flags.replay.alert_listen);
+      if (!flags.replay.http_listen.empty()) kew::config::require_host_port(flags.replay.http_listen);
       kew::daemon::apply_replay(config, flags.replay);
     }
   } catch (const kew::config::ConfigError& e) {
@@ -188,7 +192,7 @@ int main(int argc, char** argv) {
     // The check names allow_remote and --listen-any, which a replay overrides and refuses.
     const bool listener = std::string_view(e.what()).find("loopback") != std::string_view::npos;
     std::fprintf(stderr, "kewd: %s%s\n", e.what(),
-                 replaying && listener ? " (a replay serves on loopback only: --alert-listen 127.0.0.1:PORT)" : "");
+                 replaying && listener ? " (a replay serves on loopback only: --alert-listen or --http-listen 127.0.0.1:PORT)" : "");
     return kUsageError;
   }
   if (!flags.log_level.empty()) config.service.log_level = *kew::daemon::kLogLevelNames.parse(flags.log_level);

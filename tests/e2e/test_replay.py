@@ -10,6 +10,7 @@ import shutil
 import stat
 import subprocess
 import time
+import urllib.request
 import unittest
 
 from kewd_harness import (KEWD, KEW_GEN, KEW_REPLAY, Kewd, Subscriber, active_at_end, count_lines, free_port,
@@ -103,9 +104,10 @@ class Replay(E2eCase):
         offline = subprocess.run([KEW_REPLAY, recording], check=True, stdout=subprocess.PIPE,
                                  stderr=subprocess.DEVNULL, text=True).stdout.splitlines()
         self.assertGreater(len(offline), 0, "the scenario must have conflicts")
-        port = free_port()
+        port, http_port = free_port(), free_port()
         began = time.monotonic()
-        kewd = self.start(None, "--replay", recording, "--speed", "10", "--alert-listen", f"127.0.0.1:{port}")
+        kewd = self.start(None, "--replay", recording, "--speed", "10", "--alert-listen", f"127.0.0.1:{port}",
+                          "--http-listen", f"127.0.0.1:{http_port}")
         self.assertEqual(kewd.alert_port, port)
         reader = Subscriber(kewd.alert_port)
         kewd.wait_log(f"replay of {recording} ended", 40)
@@ -122,12 +124,19 @@ class Replay(E2eCase):
                          (before["tracks"], before["alerts_active"], before["data_time_last"]),
                          "the last state stays on show")
         self.assertIn("serving the last state until SIGINT or SIGTERM", kewd.log())
+        # The map and its API are how a replay is watched (issue 20).
+        http = f"http://127.0.0.1:{http_port}"
+        with urllib.request.urlopen(http + "/api/tracks", timeout=10) as reply:
+            self.assertEqual(len(json.loads(reply.read())["tracks"]), after["tracks"])
+        with urllib.request.urlopen(http + "/", timeout=10) as reply:
+            self.assertIn(b"<html", reply.read())
         self.assertEqual(kewd.terminate(), 0)
 
     def test_refuses_listen_any_and_remote_addresses(self):
         recording = os.path.join(DATA, "text", "canonical_sample.ndjson")
         for args, why in ((["--listen-any"], "--listen-any"),
-                          (["--alert-listen", f"0.0.0.0:{free_port()}"], "loopback")):
+                          (["--alert-listen", f"0.0.0.0:{free_port()}"], "loopback"),
+                          (["--http-listen", f"0.0.0.0:{free_port()}"], "loopback")):
             result = subprocess.run([KEWD, "--replay", recording, *args], stdout=subprocess.PIPE,
                                     stderr=subprocess.PIPE, text=True, timeout=20)
             self.assertEqual(result.returncode, 64, result.stderr)
@@ -148,7 +157,8 @@ class Replay(E2eCase):
         before = sorted(os.listdir(directory))
         kewd = os.path.abspath(KEWD) if os.sep in KEWD else KEWD  # run from another directory
         result = subprocess.run([kewd, "--replay", "recording.ndjson", "--max-speed", "--exit-at-end",
-                                 "--alert-listen", f"127.0.0.1:{free_port()}"],
+                                 "--alert-listen", f"127.0.0.1:{free_port()}",
+                                 "--http-listen", f"127.0.0.1:{free_port()}"],
                                 cwd=directory, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=60)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("replay of " + os.path.join(directory, "recording.ndjson") + " ended", result.stderr)

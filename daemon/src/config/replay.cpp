@@ -30,6 +30,7 @@ void apply_replay(Config& config, const ReplaySettings& replay) {
   config.modbus.allow_remote = false;
   // The map and API stay (they are how a replay is watched), on loopback like the rest.
   config.http.allow_remote = false;
+  if (!replay.http_listen.empty()) config.http.listen = replay.http_listen;
 }
 
 }  // namespace kew::daemon

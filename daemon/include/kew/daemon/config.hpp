@@ -164,6 +164,7 @@ struct ReplaySettings {
   protocol::Format format = protocol::Format::Auto;
   double speed = 1.0;                                 ///< multiple of recorded speed; 0: as fast as possible
   std::string alert_listen;                           ///< "" = the configuration's alert_listen
+  std::string http_listen;                            ///< "" = the configuration's [http] listen
   std::string alert_log;                              ///< "" = none (nothing is written unless asked)
 };
 
