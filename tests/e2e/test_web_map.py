@@ -174,8 +174,13 @@ class WebMap(unittest.TestCase):
         self.assertGreater(len(by_id), 3, "the scenario must leave alerts active")
 
         # The feed's health and, as the recording's data time is not now, the replay clock.
-        status = self.get("/api/status")
-        self.assertEqual(self.js("return document.getElementById('feed-health').dataset.health"), status["health"])
+        # The page reads /api/status every 2 s and health moves (no_data, then healthy):
+        # compare until one reading of each agrees.
+        def health_matches():
+            status = self.get("/api/status")
+            shown = self.js("return document.getElementById('feed-health').dataset.health")
+            return status if shown == status["health"] else None
+        status = wait_until(health_matches, 10, "the page to show the feed's health as /api/status says")
         replay = abs(status["data_t"] - status["wall_t"]) > 30
         self.assertEqual(self.js("return !document.getElementById('replay-clock').hidden"), replay)
 
