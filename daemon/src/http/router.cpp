@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 
-#include <boost/asio/ip/address.hpp>
 #include <boost/beast/http/field.hpp>
 #include <boost/beast/http/verb.hpp>
 #include <fmt/format.h>
 
+#include "kew/config/address.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 
 namespace kew::daemon::http {
@@ -23,45 +23,14 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-struct HostHeader {
-  std::string host;  ///< without brackets, lower-case
-  std::uint16_t port = 80;
-};
-
-/// "name:port", "1.2.3.4:port", "[::1]:port" or without ":port"; nullopt if malformed.
-std::optional<HostHeader> parse_host(std::string_view text) {
-  HostHeader h;
-  std::string_view port_text;
-  if (!text.empty() && text.front() == '[') {
-    const std::size_t close = text.find(']');
-    if (close == std::string_view::npos) return std::nullopt;
-    h.host = lower(text.substr(1, close - 1));
-    const std::string_view rest = text.substr(close + 1);
-    if (!rest.empty()) {
-      if (rest.front() != ':') return std::nullopt;
-      port_text = rest.substr(1);
-    }
-  } else {
-    const std::size_t colon = text.find(':');
-    h.host = lower(text.substr(0, colon));
-    if (colon != std::string_view::npos) port_text = text.substr(colon + 1);
-  }
-  if (h.host.empty()) return std::nullopt;
-  if (!port_text.empty() || text.find(':') != std::string_view::npos) {
-    if (port_text.empty() || port_text.size() > 5 ||
-        !std::all_of(port_text.begin(), port_text.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      return std::nullopt;
-    const unsigned long port = std::stoul(std::string(port_text));
-    if (port == 0 || port > 65535) return std::nullopt;
-    h.port = static_cast<std::uint16_t>(port);
-  }
-  return h;
-}
-
-bool is_ip_literal(const std::string& host) {
-  boost::system::error_code ec;
-  boost::asio::ip::make_address(host, ec);
-  return !ec;
+/// A Host header ("name", "name:port", "[::1]:port"; the port may be left out, 80) read
+/// by the one HOST:PORT reader; the host lower-cased. nullopt if malformed.
+std::optional<config::HostPort> parse_host_header(std::string_view text) {
+  const bool bracketed = !text.empty() && text.front() == '[';
+  const bool has_port = text.find(bracketed ? "]:" : ":") != std::string_view::npos;
+  std::optional<config::HostPort> host = config::parse_host_port(has_port ? std::string(text) : std::string(text) + ":80");
+  if (host) host->host = lower(host->host);
+  return host;
 }
 
 std::string_view path_of(std::string_view target) { return target.substr(0, target.find('?')); }
@@ -123,12 +92,12 @@ bool Router::same_origin(const Request& request, std::uint16_t port, std::string
     return false;
   }
   const std::string_view host_text(host_field->value().data(), host_field->value().size());
-  const std::optional<HostHeader> host = parse_host(host_text);
+  const std::optional<config::HostPort> host = parse_host_header(host_text);
   if (!host) {
     why = "malformed Host header";
     return false;
   }
-  const bool known = host->host == "localhost" || is_ip_literal(host->host) ||
+  const bool known = host->host == "localhost" || config::canonical_ip(host->host) ||
                      std::find(host_names_.begin(), host_names_.end(), host->host) != host_names_.end();
   if (!known || host->port != port) {
     why = fmt::format("Host {} does not name this server", host_text);
