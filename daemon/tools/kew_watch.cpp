@@ -78,7 +78,7 @@ void print_alert(const kew::AlertEvent& e, const char* state) {
 int main(int argc, char** argv) {
   Flags flags;
   CLI::App app{"kew-watch: follow kewd's conflict alerts"};
-  app.set_version_flag("--version", std::string("kew-watch ") + std::string(kew::protocol::release()));
+  app.set_version_flag("--version", kew::protocol::version_line("kew-watch"));
   app.add_option("address", flags.address, "kewd's alert stream, HOST:PORT")->default_val(flags.address);
   app.add_option("-s,--min-severity", flags.min_severity, kew::kSeverityNames.list({kew::Severity::None}))
       ->check(CLI::IsMember(kew::kSeverityNames.names({kew::Severity::None})))
@@ -134,7 +134,8 @@ int main(int argc, char** argv) {
     if (flags.json) {
       std::fputs(line.c_str(), stdout);
     } else if (kind == StreamObjectClass::Version) {
-      std::printf("connected to kewd %s (protocol %d) at %s\n", reader.text().c_str(), reader.proto(),
+      std::printf("connected to kewd %s (%s, protocol %d) at %s\n", reader.text().c_str(),
+                  reader.revision().empty() ? "revision unknown" : reader.revision().c_str(), reader.proto(),
                   flags.address.c_str());
     } else if (kind == StreamObjectClass::Start) {
       // kewd (re)started: a new run id; alerts open before it ended with reason "restart".

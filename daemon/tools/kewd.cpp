@@ -123,7 +123,7 @@ void report_ready(int fd, bool ok) {
 int main(int argc, char** argv) {
   Flags flags;
   CLI::App app{"kewd: kinetic early warning of losses of separation between aircraft"};
-  app.set_version_flag("--version", std::string("kewd ") + std::string(kew::protocol::release()));
+  app.set_version_flag("--version", kew::protocol::version_line("kewd"));
   app.add_option("-c,--config", flags.config_path,
                  std::string("configuration file (default: ") + kSystemConfig + " if present, else built-in defaults)")
       ->check(CLI::ExistingFile);

@@ -495,7 +495,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "kew-eval: score kew's alerts on recordings in hindsight (hits, close calls, nuisances, ineligible; "
       "detected, missed and unwarnable losses; warning times)"};
-  app.set_version_flag("--version", std::string("kew-eval ") + std::string(kew::protocol::release()));
+  app.set_version_flag("--version", kew::protocol::version_line("kew-eval"));
   const auto file_formats = {kew::protocol::Format::AsterixDatagram};
   app.add_option("--format", options.format, "input format: " + kew::protocol::kFormatNames.list(file_formats))
       ->default_val("auto")

@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
       "track records (one JSON object per line) to stdout or -o FILE. The same options give "
       "byte-identical output.",
       "kew-gen"};
-  app.set_version_flag("--version", std::string("kew-gen ") + std::string(kew::protocol::release()));
+  app.set_version_flag("--version", kew::protocol::version_line("kew-gen"));
   app.add_option("--scenario", scenario, kew::replay::kScenarioNames.list())->capture_default_str();
   app.add_option("--aircraft", config.aircraft, "aircraft airborne at every instant, 1 to 1000000")
       ->check(reject_negative)

@@ -164,9 +164,11 @@ TEST(AlertJson, SnapshotHoldsCompleteAlertObjectsWithTheirOwnSeq) {
 TEST(AlertJson, VersionAliveErrorAndTrackObjectsAreByteExact) {
   std::string out;
   append_version_json(out, 0);
-  EXPECT_EQ(out, R"({"class":"VERSION","seq":0,"release":")" + std::string(release()) +
-                     R"(","proto":1})" "\n");
+  EXPECT_EQ(out, R"({"class":"VERSION","seq":0,"release":")" + std::string(release()) + R"(","revision":")" +
+                     std::string(revision()) + R"(","proto":1})" "\n");
 
+  const std::string provenance = R"("release":")" + std::string(release()) + R"(","revision":")" +
+                                 std::string(revision()) + R"("})" "\n";
   AliveStatus alive;
   alive.last_data_t = 1714400000.25;
   alive.tracks = 123;
@@ -178,12 +180,12 @@ TEST(AlertJson, VersionAliveErrorAndTrackObjectsAreByteExact) {
   append_alive_json(out, alive, 5);
   EXPECT_EQ(out, R"({"class":"ALIVE","seq":5,"t":1714400000.250,"tracks":123,"alerts":2,)"
                  R"("rates":{"records_per_s":250.0,"updates_per_s":200.1},"uptime_s":3600,)"
-                 R"("degraded":false,"health":"healthy"})" "\n");
+                 R"("degraded":false,"health":"healthy",)" + provenance);
   out.clear();
   append_alive_json(out, AliveStatus{}, 6);
   EXPECT_EQ(out, R"({"class":"ALIVE","seq":6,"t":null,"tracks":0,"alerts":0,)"
                  R"("rates":{"records_per_s":0.0,"updates_per_s":0.0},"uptime_s":0,)"
-                 R"("degraded":false,"health":"healthy"})" "\n");
+                 R"("degraded":false,"health":"healthy",)" + provenance);
 
   out.clear();
   append_error_json(out, "queue full: \"slow\" subscriber", 7);
@@ -359,17 +361,20 @@ TEST(AlertStreamReader, ReadsEveryObjectClassBack) {
   ASSERT_TRUE(reader.read(line)) << reader.error();
   EXPECT_EQ(reader.object_class(), StreamObjectClass::Version);
   EXPECT_EQ(reader.text(), release());
+  EXPECT_EQ(reader.revision(), revision());
   EXPECT_EQ(reader.proto(), kAlertStreamProtocol);
 
   line.clear();
   append_start_json(line, StartInfo{"00112233445566778899aabbccddeeff", 1714400000.25}, 41);
   EXPECT_EQ(line, std::string(R"({"class":"START","seq":41,"run":"00112233445566778899aabbccddeeff","release":")") +
-                      std::string(release()) + R"(","t":1714400000.250})" + "\n");
+                      std::string(release()) + R"(","revision":")" + std::string(revision()) +
+                      R"(","t":1714400000.250})" + "\n");
   ASSERT_TRUE(reader.read(line)) << reader.error();
   EXPECT_EQ(reader.object_class(), StreamObjectClass::Start);
   EXPECT_EQ(reader.seq(), 41u);
   EXPECT_EQ(reader.run(), "00112233445566778899aabbccddeeff");
   EXPECT_EQ(reader.text(), release());
+  EXPECT_EQ(reader.revision(), revision());
   EXPECT_EQ(reader.start_t(), 1714400000.25);
 
   line.clear();

@@ -195,7 +195,7 @@ void LatencyHistogram::observe(double seconds) {
 std::string metrics_text(const MetricsSources& s) {
   Exposition e;
   e.family("kew_build_info", "gauge", "kewd's release and source revision (value 1).");
-  e.sample("kew_build_info", {{"version", protocol::release()}, {"revision", KEW_REVISION}}, 1);
+  e.sample("kew_build_info", {{"version", protocol::release()}, {"revision", protocol::revision()}}, 1);
   write_inputs(e, s.inputs);
   if (s.pipeline) write_pipeline(e, *s.pipeline);
   if (s.latency) write_latency(e, *s.latency);

@@ -157,6 +157,7 @@ void append_version_json(std::string& out, std::uint64_t seq) {
   o.text("class", "VERSION");
   o.integer("seq", seq);
   o.text("release", release());
+  o.text("revision", revision());
   o.integer("proto", static_cast<std::uint64_t>(kAlertStreamProtocol));
   o.close();
   out.push_back('\n');
@@ -168,6 +169,7 @@ void append_start_json(std::string& out, const StartInfo& start, std::uint64_t s
   o.integer("seq", seq);
   o.text("run", start.run);
   o.text("release", release());
+  o.text("revision", revision());
   o.fixed("t", start.t, kTimeDecimals);
   o.close();
   out.push_back('\n');
@@ -212,6 +214,8 @@ void write_alive_members(ObjectWriter& o, std::string& out, const AliveStatus& s
   o.integer("uptime_s", status.uptime_s);
   o.boolean("degraded", status.degraded());
   o.text("health", kHealthReasonNames.name(status.health));
+  o.text("release", release());
+  o.text("revision", revision());
 }
 
 }  // namespace

@@ -322,10 +322,13 @@ bool AlertStreamReader::read(std::string_view line) {
     ok = m.required("message", text_);
   } else if (cls == "START") {
     parsed_class = StreamObjectClass::Start;
-    ok = m.required("run", run_) && m.required("release", text_) && m.required("t", start_t_);
+    revision_.clear();
+    ok = m.required("run", run_) && m.required("release", text_) && m.optional("revision", revision_) &&
+         m.required("t", start_t_);
   } else if (cls == "VERSION") {
     parsed_class = StreamObjectClass::Version;
-    ok = m.required("release", text_) && m.required("proto", proto_);
+    revision_.clear();
+    ok = m.required("release", text_) && m.optional("revision", revision_) && m.required("proto", proto_);
   } else {
     return m.fail("unknown class " + quoted(cls));
   }

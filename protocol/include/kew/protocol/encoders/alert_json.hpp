@@ -68,7 +68,8 @@ struct AliveStatus {
   bool degraded() const { return health != HealthReason::Healthy; }
 };
 
-/// {"class":"VERSION","seq":…,"release":"MAJOR.MINOR.PATCH","proto":1}
+/// {"class":"VERSION","seq":…,"release":"MAJOR.MINOR.PATCH","revision":"…","proto":1}
+/// (revision: protocol::revision()).
 void append_version_json(std::string& out, std::uint64_t seq);
 
 /// The start of one run of kewd (design §4.7): first in the alert log of each run and
@@ -80,7 +81,7 @@ struct StartInfo {
   double t = 0.0;
 };
 
-/// {"class":"START","seq":…,"run":"…","release":"MAJOR.MINOR.PATCH","t":…}; `seq` is the
+/// {"class":"START","seq":…,"run":"…","release":"MAJOR.MINOR.PATCH","revision":"…","t":…}; `seq` is the
 /// last sequence number before this run (0 for the first run).
 void append_start_json(std::string& out, const StartInfo& start, std::uint64_t seq);
 
@@ -102,7 +103,8 @@ void append_alerts_snapshot_json(std::string& out, std::span<const AlertEvent* c
 void append_alerts_json(std::string& out, std::span<const AlertEvent> active, std::uint64_t seq, double t);
 
 /// {"class":"ALIVE","seq":…,"t":…|null,"tracks":…,"alerts":…,
-///  "rates":{"records_per_s":…,"updates_per_s":…},"uptime_s":…,"degraded":…}
+///  "rates":{"records_per_s":…,"updates_per_s":…},"uptime_s":…,"degraded":…,"health":…,
+///  "release":…,"revision":…}
 void append_alive_json(std::string& out, const AliveStatus& status, std::uint64_t seq);
 
 /// The ALIVE object with the pipeline clock and the wall clock (UTC s) added:

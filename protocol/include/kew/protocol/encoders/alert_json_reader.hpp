@@ -97,6 +97,8 @@ class AlertStreamReader {
   const std::string& acknowledging_client() const { return acknowledging_client_; }
   /// ERROR: the message. VERSION, START: the release.
   const std::string& text() const { return text_; }
+  /// VERSION, START: the source revision ("" from servers before it was sent).
+  const std::string& revision() const { return revision_; }
   /// START: the run id and the wall clock time of the start (UTC s).
   const std::string& run() const { return run_; }
   double start_t() const { return start_t_; }
@@ -117,6 +119,7 @@ class AlertStreamReader {
   TrackReport track_;
   std::string text_;
   std::string run_;
+  std::string revision_;
   double start_t_ = 0.0;
   std::vector<std::string> acknowledged_;
   std::string acknowledging_client_;
