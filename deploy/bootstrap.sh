@@ -32,10 +32,23 @@ install_dependencies() {
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 }
 
-configure_and_build() {
-  export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+# ccache: one cache for every clone (CI builds a fresh clone each time): paths below the
+# clone are hashed relative to it, and the working directory is left out of the hash of
+# objects with debug information.
+export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
+export CCACHE_BASEDIR=$here
+export CCACHE_NOHASHDIR=true
+
+configure_and_build() {  # [CMAKE_ARGS...]
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
   cmake --build "$build" -j "$jobs"
+}
+
+# A Release tree with the defaults (and -Werror), built only: a build type other than the
+# suite's must keep building with every warning on (README "Build").
+build_release() {
+  cmake -S "$here" -B "$build-release" -DCMAKE_BUILD_TYPE=Release -DKEW_WERROR=ON >/dev/null
+  cmake --build "$build-release" -j "$jobs"
 }
 
 # Second build with clang, ASan + UBSan and libFuzzer: the decoder and encoder unit tests
@@ -49,7 +62,7 @@ sanitize_and_fuzz() {
   fi
   local sanitize_build="$build-sanitize"
   CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF >/dev/null
+    -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF -DKEW_WERROR=ON >/dev/null
   # kew_decoder_tests: the decoder and encoder unit tests of kew_unit_tests, without the
   # core tests and their CGAL oracle (tests/fuzz/CMakeLists.txt).
   cmake --build "$sanitize_build" -j "$jobs" --target kew_decoder_tests kew_fuzzers
@@ -88,14 +101,17 @@ run_demo() {
 }
 
 install_dependencies
-configure_and_build
 case "$mode" in
   test)
-    # Tests labelled "long" (hours: 100,000 aircraft) are run by hand: ctest -L long.
-    ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE long
+    # Warnings are errors in CI only: a user's compiler may warn where this one does not.
+    configure_and_build -DKEW_WERROR=ON
+    build_release
+    # Tests that take hours are not registered here (KEW_LONG_TESTS, README "Tests").
+    ctest --test-dir "$build" --output-on-failure -j "$jobs"
     sanitize_and_fuzz
     ;;
   run)
+    configure_and_build
     run_demo
     ;;
   *)

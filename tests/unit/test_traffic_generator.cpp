@@ -23,7 +23,6 @@ namespace kew::replay {
 namespace {
 
 constexpr double kMetresPerNm = 1852.0;
-constexpr double kMetresPerFoot = 0.3048;
 constexpr double kMpsPerKnot = kMetresPerNm / 3600.0;
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Mean Earth radius: enough for distances of a few km between nearby aircraft (the local
