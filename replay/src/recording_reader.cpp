@@ -8,7 +8,7 @@ constexpr std::size_t kChunkBytes = 256 * 1024;
 
 RecordingReader::RecordingReader(std::string path, protocol::Format format, const protocol::DecoderOptions& options)
     : path_(std::move(path)) {
-  file_ = std::fopen(path_.c_str(), "rb");
+  file_ = path_ == kStandardInput ? stdin : std::fopen(path_.c_str(), "rb");
   if (!file_) {
     own_rejections_.reject("file_unreadable", path_);
     finished_ = true;
@@ -19,7 +19,7 @@ RecordingReader::RecordingReader(std::string path, protocol::Format format, cons
 }
 
 RecordingReader::~RecordingReader() {
-  if (file_) std::fclose(file_);
+  if (file_ && file_ != stdin) std::fclose(file_);
 }
 
 bool RecordingReader::refill() {

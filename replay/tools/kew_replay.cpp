@@ -204,7 +204,7 @@ int run_offline(const Options& options, const kew::config::SharedConfig& config,
 int main(int argc, char** argv) {
   Options options;
   CLI::App app{"kew-replay: run kew's conflict detection over recordings, or stream them to kewd"};
-  app.set_version_flag("--version", std::string("kew-replay ") + std::string(kew::protocol::release()));
+  app.set_version_flag("--version", kew::protocol::version_line("kew-replay"));
   // Every format but the live-only asterix-datagram (one UDP datagram per read).
   const auto file_formats = {kew::protocol::Format::AsterixDatagram};
   app.add_option("--format", options.format, "input format: " + kew::protocol::kFormatNames.list(file_formats))
@@ -222,8 +222,9 @@ int main(int argc, char** argv) {
   app.add_flag("--audit", options.audit, "audit the triangulation every 60 s of data and at the end");
   app.add_option("--probe", options.probe, "candidate search: " + kew::probe::kProbeModeNames.list())
       ->check(CLI::IsMember(kew::probe::kProbeModeNames.names()));
-  app.add_option("files", options.files, "recordings (merged in time order)")->required()->check(
-      CLI::ExistingFile);
+  app.add_option("files", options.files, "recordings (merged in time order; - reads standard input)")
+      ->required()
+      ->check(CLI::ExistingFile | CLI::IsMember({std::string(kew::replay::kStandardInput)}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

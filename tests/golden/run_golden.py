@@ -13,6 +13,10 @@ diff before committing:
 Binaries come from KEW_REPLAY and KEW_GEN (ctest sets them), else from build/.
 --shared additionally replays every real recording of ../shared/data/recordings that a
 decoder supports, with --audit: exit 0, statistics printed, no unrepaired violation.
+
+Every recording (bundled or shared, not the generated ones, which are NDJSON already) is
+also converted by kew-decode (KEW_DECODE) and the conversion replayed: its alerts must be
+byte-identical to the original's (issue 21).
 """
 
 import argparse
@@ -30,6 +34,7 @@ EXPECTED = os.path.join(HERE, "expected")
 SHARED = os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings")
 KEW_REPLAY = os.environ.get("KEW_REPLAY", os.path.join(ROOT, "build", "replay", "kew-replay"))
 KEW_GEN = os.environ.get("KEW_GEN", os.path.join(ROOT, "build", "replay", "kew-gen"))
+KEW_DECODE = os.environ.get("KEW_DECODE", os.path.join(ROOT, "build", "replay", "kew-decode"))
 
 # name → recording: a bundled file (relative to tests/data), or "gen:" and kew-gen flags.
 CASES = {
@@ -96,6 +101,23 @@ def replay(recording, workdir, *extra):
         return result.stdout, json.load(f), result.stderr.decode()
 
 
+def decoded_alerts_differ(name, recording, workdir, alerts, extra):
+    """kew-decode RECORDING, replay the NDJSON with the same flags: a failure message when
+    its alerts are not the original's byte for byte, else None."""
+    decoded = os.path.join(workdir, "decoded.ndjson")
+    config = [extra[i + 1] for i, flag in enumerate(extra) if flag == "--config"]
+    with open(decoded, "wb") as out:
+        result = subprocess.run([KEW_DECODE, "--quiet", *(["--config", config[0]] if config else []), recording],
+                                stdout=out, stderr=subprocess.PIPE)
+    if result.returncode != 0 or b"kew-decode: " not in result.stderr:
+        return f"kew-decode exited {result.returncode}: {result.stderr.decode()[-400:]}"
+    again, _, _ = replay(decoded, workdir, *extra)
+    if again != alerts:
+        show_difference(f"{name} via kew-decode", alerts, again)
+        return "alerts replayed from kew-decode's NDJSON differ from the original's"
+    return None
+
+
 def stable(stats):
     return json.dumps({k: stats[k] for k in STABLE_STATS}, indent=1, sort_keys=True) + "\n"
 
@@ -136,8 +158,15 @@ def run_goldens(regen):
                     print(f"FAIL {name}: {filename} differs from the golden")
                     show_difference(filename, expected, actual)
                     failures += 1
+            if not spec.startswith("gen:"):
+                problem = decoded_alerts_differ(name, recording, workdir, alerts, [])
+                if problem:
+                    print(f"FAIL {name}: {problem}")
+                    failures += 1
+                    continue
             lines = alerts.count(b"\n")
-            print(f"{'REGEN' if regen else 'ok  '} {name}: {stats['records']} records, {lines} alert lines")
+            print(f"{'REGEN' if regen else 'ok  '} {name}: {stats['records']} records, {lines} alert lines"
+                  f"{'' if spec.startswith('gen:') else ', the same through kew-decode'}")
     return failures
 
 
@@ -174,12 +203,16 @@ def run_shared():
                 problems.append("no record decoded and no rejection counted")
             if "kew-replay: " not in summary:
                 problems.append("no statistics printed")
+            problem = decoded_alerts_differ(relative, path, workdir, alerts, extra)
+            if problem:
+                problems.append(problem)
             if problems:
                 print(f"FAIL {relative}: " + "; ".join(problems))
                 failures += 1
             else:
                 print(f"ok   {relative}: {stats['records']} records, {stats['tracks_max']} tracks at most, "
-                      f"{stats['alerts_new']} alerts, audit clean; rejected {stats['rejected']}")
+                      f"{stats['alerts_new']} alerts, audit clean, the same through kew-decode; "
+                      f"rejected {stats['rejected']}")
     return failures
 
 

@@ -7,15 +7,20 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "kew/protocol/formats.hpp"
 
 namespace kew::replay {
 
+/// The path that names standard input (a recording piped in).
+inline constexpr std::string_view kStandardInput = "-";
+
 class RecordingReader {
  public:
-  /// Opens `path` (auto-detects the format when `format` is Auto; gzip is transparent).
+  /// Opens `path`, or reads standard input when it is kStandardInput (auto-detects the
+  /// format when `format` is Auto; gzip is transparent).
   /// A file that cannot be opened yields no records and counts "file_unreadable".
   RecordingReader(std::string path, protocol::Format format, const protocol::DecoderOptions& options);
   ~RecordingReader();
