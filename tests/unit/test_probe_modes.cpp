@@ -53,12 +53,12 @@ std::vector<AlertEvent> run(probe::ProbeMode mode) {
     const double middle[3][2] = {{33000.0, 300.0}, {37000.0, -300.0}, {39000.0, 0.0}};
     for (int m = 0; m < 3; ++m) {
       place(-200.0 + 200.0 * m + advance, &lat, &lon, middle[m][1]);
-      pipeline.process(at("M" + std::to_string(m), t, lat, lon, middle[m][0], gs, 90.0));
+      pipeline.process(at(std::string("M") + std::to_string(m), t, lat, lon, middle[m][0], gs, 90.0));
     }
     for (int k = 0; k < 8; ++k) {
       double rlat, rlon;
       wgs84.Direct(50.0, 8.0, 45.0 * k + 10.0, 120000.0 + 128.6 * 4.0 * period, rlat, rlon);
-      pipeline.process(at("R" + std::to_string(k), t, rlat, rlon, 20000.0, 250.0, 45.0 * k));
+      pipeline.process(at(std::string("R") + std::to_string(k), t, rlat, rlon, 20000.0, 250.0, 45.0 * k));
     }
     // A and B come last in each period, so the aircraft between them are already there.
     place(-8000.0 + advance, &lat, &lon);

@@ -187,7 +187,7 @@ TEST(RunStart, AnEstablishedRunIsNeverRestarted) {
   Feed run;
   run.fly(0.0, 12.0, 0.0);
   for (int i = 0; i < 20; ++i) {
-    TrackReport far = head_on("F" + std::to_string(i), kT0 + 12.0, 0.0);
+    TrackReport far = head_on(std::string("F") + std::to_string(i), kT0 + 12.0, 0.0);
     far.lat_deg = -45.0;
     run.pipeline.process(far);
   }
