@@ -17,7 +17,8 @@ packages=(build-essential cmake ccache
           libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev
           mbpoll python3-pymodbus systemd prometheus
           tshark clang-14 libclang-rt-14-dev
-          libjs-leaflet chromium chromium-driver python3-selenium)
+          libjs-leaflet chromium chromium-driver python3-selenium
+          debhelper dpkg-dev fakeroot lintian scdoc man-db git)
 
 install_dependencies() {
   local missing=()
@@ -71,6 +72,16 @@ sanitize_and_fuzz() {
   bash "$here/tests/fuzz/run_fuzzers.sh" "$sanitize_build/tests/fuzz" "${KEW_FUZZ_SECONDS:-15}"
 }
 
+# The Debian package: built and linted; installed, checked and purged only when CI=true
+# (tests/package/test_deb.sh). KEW_SKIP_PACKAGE=1 skips the stage.
+package() {
+  if [ "${KEW_SKIP_PACKAGE:-0}" = 1 ]; then
+    echo "bootstrap: package stage skipped (KEW_SKIP_PACKAGE=1)"
+    return 0
+  fi
+  bash "$here/tests/package/test_deb.sh"
+}
+
 # The main job: kewd replays a bundled CAT062 recording (deploy/demo.toml) and kew-watch
 # shows its alerts as they happen; after KEW_DEMO_SECONDS (default 80: the recording at
 # 4x, then the last tracks time out) kewd is stopped with SIGTERM.
@@ -108,6 +119,7 @@ case "$mode" in
     build_release
     # Tests that take hours are not registered here (KEW_LONG_TESTS, README "Tests").
     ctest --test-dir "$build" --output-on-failure -j "$jobs"
+    package
     sanitize_and_fuzz
     ;;
   run)
