@@ -50,7 +50,12 @@ dpkg-deb -e "$deb" "$control"
 grep -qx /etc/kew/kew.toml "$control/conffiles" || fail "/etc/kew/kew.toml is not a conffile"
 grep -q 'deb-systemd-helper' "$control/postinst" || fail "postinst does not enable the unit"
 grep -q 'purge' "$control/postrm" || fail "postrm does not clean up on purge"
-echo "test_deb: contents, conffile and maintainer scripts as expected"
+# The package's version is the release the binaries report (debian/changelog and
+# project(VERSION) in CMakeLists.txt move together), with the revision it was built from.
+dpkg-deb -x "$deb" "$work/root"
+reported=$("$work/root/usr/bin/kewd" --version)
+[ "$reported" = "kewd $version ($revision)" ] || fail "kewd --version says '$reported', the package is $version of $revision"
+echo "test_deb: contents, conffile, maintainer scripts and version ($reported) as expected"
 
 # lintian, pedantic tags included: any finding fails unless debian/kew.lintian-overrides
 # justifies it (README "Debian package").
