@@ -224,6 +224,7 @@ int main(int argc, char** argv) {
     kew::daemon::ServiceOptions options;
     options.config_path = flags.config_path.empty() ? std::string() : std::filesystem::absolute(flags.config_path).string();
     options.listen_any = flags.listen_any;
+    if (!flags.log_level.empty()) options.log_level_override = config.service.log_level;
     options.replay = replaying;
     options.replay_speed = flags.replay.speed;
     options.exit_at_end = flags.exit_at_end;

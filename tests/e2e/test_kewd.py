@@ -470,6 +470,14 @@ class Operations(E2eCase):
         self.assertTrue(kewd.running())
         self.assertEqual(kewd.terminate(), 0)
 
+    def test_sighup_keeps_the_log_level_given_on_the_command_line(self):
+        # -l overrides the file's log_level (design §5.6), on a reload too.
+        kewd = self.start(SERVICE.format(queue=1000, workdir=self.workdir) + 'log_level = "warn"\n', "-l", "info")
+        kewd.process.send_signal(signal.SIGHUP)
+        line = kewd.wait_log("SIGHUP: reloaded")
+        self.assertIn("log level info", line)
+        self.assertEqual(kewd.terminate(), 0)
+
     def test_background_start_reports_failure_and_success(self):
         busy = socket.socket()
         busy.bind(("127.0.0.1", 0))

@@ -496,9 +496,10 @@ void Service::reload() {
   }
   sd_notify(0, "RELOADING=1");
   try {
-    const Config fresh = load_config(options_.config_path);
+    Config fresh = load_config(options_.config_path);
     // What can change in flight: logging, subscriber limits, timers. Inputs, outputs and
     // pipeline parameters would change results mid-stream: they need a restart.
+    if (options_.log_level_override) fresh.service.log_level = *options_.log_level_override;
     set_log_level(fresh.service.log_level);
     config_.service.log_level = fresh.service.log_level;
     subscribers_->set_limits(subscriber_limits(fresh.service));

@@ -34,6 +34,8 @@ struct ServiceOptions {
   /// Serve subscribers, Modbus and loopback inputs on every interface (check_config has
   /// allowed any listen address).
   bool listen_any = false;
+  /// kewd -l: the log level stays this one whatever a reloaded file says.
+  std::optional<LogLevel> log_level_override;
   /// kewd --replay: the configuration's one input is the recording (apply_replay). No
   /// wall-clock ceiling on data times and no state file; the data clock runs at
   /// `replay_speed` × wall time between records (0: records alone move it, as in
