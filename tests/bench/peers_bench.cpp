@@ -283,6 +283,7 @@ struct PeriodResult {
   std::uint64_t fallbacks = 0;     // (c): periods needing a full rebuild
   std::uint64_t flips = 0;         // (c)
   std::uint64_t audit_violations = 0;
+  kew::PhaseTimes phases;          // kew only: where the period's time went
 };
 
 struct MethodResult {
@@ -306,9 +307,16 @@ struct MethodResult {
 // ---------------------------------------------------------------------------------
 // (a) kew
 
-MethodResult run_kew(const Params& prm, const Workload& w) {
-  MethodResult result{"kew", "kew: KDT updates + exact BFS probe (Pipeline)", 1, {}, 0, 0};
-  kew::Pipeline pipeline(w.config);
+// kew's time per period, then (time_phases) a second run for the split of print_split:
+// timing the parts costs about 1 µs per update, kept out of the first.
+MethodResult run_kew(const Params& prm, const Workload& w, bool search_ahead = true, bool time_phases = false) {
+  MethodResult result = search_ahead
+      ? MethodResult{"kew", "kew: KDT updates + exact BFS probe around p + v·T (Pipeline)", 1, {}, 0, 0}
+      : MethodResult{"kew-centred", "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)", 1, {}, 0, 0};
+  kew::PipelineConfig config = w.config;
+  config.search_ahead = search_ahead;
+  config.time_phases = time_phases;
+  kew::Pipeline pipeline(config);
   std::uint32_t current = 0;
   std::vector<Conflict>* sink = nullptr;
   pipeline.set_conflict_tap([&](Slot p, Slot q) {
@@ -319,6 +327,7 @@ MethodResult run_kew(const Params& prm, const Workload& w) {
     PeriodResult out;
     sink = measured ? &out.conflicts : nullptr;
     const std::uint64_t probes0 = pipeline.statistics().probes, pairs0 = pipeline.statistics().candidates;
+    const kew::PhaseTimes phases0 = pipeline.phase_times();
     const Stopwatch clock;
     for (std::size_t i = w.period_first_record[period]; i < w.period_first_record[period + 1]; ++i) {
       current = static_cast<std::uint32_t>(i);
@@ -327,6 +336,9 @@ MethodResult run_kew(const Params& prm, const Workload& w) {
     out.seconds = out.measured_seconds = clock.seconds();
     out.queries = pipeline.statistics().probes - probes0;
     out.pairs_tested = pipeline.statistics().candidates - pairs0;
+    const kew::PhaseTimes& phases = pipeline.phase_times();
+    out.phases = {phases.maintenance_s - phases0.maintenance_s, phases.search_s - phases0.search_s,
+                  phases.tests_s - phases0.tests_s};
     if (measured) result.periods.push_back(std::move(out));
   }
   return result;
@@ -820,6 +832,7 @@ struct FleetResult {
   std::size_t records = 0;
   std::uint64_t rejected = 0;
   std::vector<MethodResult> methods;  // kew first
+  std::vector<MethodResult> split;    // kew and kew-centred with their parts timed
 };
 
 void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
@@ -844,6 +857,29 @@ void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
                 << " | " << (m.missing + m.extra) << " |\n";
     }
   }
+}
+
+// kew's time per period split by part (PipelineConfig::time_phases; "other" is the track
+// table, projection and what the parts do not cover).
+void print_split(const Params& prm, const std::vector<FleetResult>& fleets) {
+  std::cout << "\n| aircraft | method | maintenance ms (%) | search ms (%) | CPA tests ms (%) | other ms (%) |\n"
+               "|---|---|---|---|---|---|\n";
+  for (const FleetResult& fleet : fleets)
+    for (const MethodResult& m : fleet.split) {
+      kew::PhaseTimes sum;
+      for (const PeriodResult& p : m.periods) {
+        sum.maintenance_s += p.phases.maintenance_s;
+        sum.search_s += p.phases.search_s;
+        sum.tests_s += p.phases.tests_s;
+      }
+      const double n = static_cast<double>(prm.periods), total = m.mean_seconds();
+      const auto cell = [&](double seconds) {
+        return fixed(1e3 * seconds / n, 1) + " (" + fixed(100.0 * seconds / n / total, 0) + ")";
+      };
+      std::cout << "| " << fleet.aircraft << " | " << m.name << " | " << cell(sum.maintenance_s) << " | "
+                << cell(sum.search_s) << " | " << cell(sum.tests_s) << " | "
+                << cell(total * n - sum.maintenance_s - sum.search_s - sum.tests_s) << " |\n";
+    }
 }
 
 void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
@@ -892,6 +928,21 @@ void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
       j.end_object();
     }
     j.end_object();
+    // The runs with their parts timed (CPU seconds per period).
+    j.key("split").begin_object();
+    for (const MethodResult& m : fleet.split) {
+      j.key(m.name).begin_array();
+      for (const PeriodResult& p : m.periods) {
+        j.begin_object();
+        j.key("measured_s").value(p.measured_seconds);
+        j.key("maintenance_s").value(p.phases.maintenance_s);
+        j.key("search_s").value(p.phases.search_s);
+        j.key("tests_s").value(p.phases.tests_s);
+        j.end_object();
+      }
+      j.end_array();
+    }
+    j.end_object();
     j.end_object();
   }
   j.end_array();
@@ -916,10 +967,17 @@ int main(int argc, char** argv) {
   for (const std::size_t n : prm.aircraft) {
     std::cerr << n << " aircraft: generating...\n";
     const Workload w = make_workload(prm, n);
-    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}};
+    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}, {}};
     std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
               << fixed(w.radius_km, 0) << " km; (a) kew...\n";
     fleet.methods.push_back(run_kew(prm, w));
+    std::cerr << "  kew-centred...\n";
+    fleet.methods.push_back(run_kew(prm, w, false));
+    compare(fleet.methods.front(), fleet.methods.back());
+    all_agree = all_agree && fleet.methods.back().missing == 0 && fleet.methods.back().extra == 0;
+    std::cerr << "  kew and kew-centred again, timing their parts...\n";
+    fleet.split.push_back(run_kew(prm, w, true, true));
+    fleet.split.push_back(run_kew(prm, w, false, true));
 
     const double r_max = w.config.minima.horizontal_m * w.k_max + 2.0 * w.config.minima.lookahead_s * w.v_max;
     const auto run = [&](const char* name, const char* label, auto& index, std::size_t stride) {
@@ -953,6 +1011,7 @@ int main(int argc, char** argv) {
     fleets.push_back(std::move(fleet));
   }
   print_table(prm, fleets);
+  print_split(prm, fleets);
   if (!prm.json_path.empty()) write_json(prm, fleets);
   if (!all_agree) std::cerr << "kew_peers_bench: a baseline disagrees with kew (see MISMATCH lines)\n";
   return all_agree ? 0 : 1;

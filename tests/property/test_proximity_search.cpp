@@ -1,5 +1,6 @@
 // ProximitySearch::within() returns exactly the points a brute-force scan finds in the
-// disk, on moving point sets that include what the face walk must not trip over: exact
+// disk, and so does within_around() for disks around any point (inside or outside the
+// hull, holding the center or not), on moving point sets that include what the face walk must not trip over: exact
 // duplicates (twins, which are not triangulation vertices), all points on one line (a
 // flat triangulation with no finite face), one or two points, and points leaving and
 // rejoining through removal and reinsertion.
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -50,17 +52,22 @@ Point2 place(Layout layout, std::mt19937_64& rng, const std::vector<Point2>& ear
   return {coordinate(rng), coordinate(rng)};
 }
 
-/// What within() must return: every other live point whose position now is within the
-/// radius, plus at most twins slightly farther (within twice their release distance).
+/// What within() (no target) or within_around(target) must return: every other live
+/// point whose position now is within the radius of the target (else of the center),
+/// plus at most twins slightly farther (within twice their release distance).
 void expect_same_as_brute_force(const KineticDelaunay& kdt, ProximitySearch& search, const std::vector<PointId>& live,
-                                PointId center, double radius) {
+                                PointId center, double radius, std::optional<Point2> target = std::nullopt) {
   std::vector<PointId> found;
-  search.within(kdt, center, radius, found);
+  if (target) {
+    search.within_around(kdt, center, *target, radius, found);
+  } else {
+    search.within(kdt, center, radius, found);
+  }
   std::vector<PointId> sorted = found;
   std::sort(sorted.begin(), sorted.end());
   ASSERT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a point was returned twice";
   ASSERT_EQ(std::count(sorted.begin(), sorted.end(), center), 0) << "the center was returned";
-  const Point2 c = kdt.position_now(center);
+  const Point2 c = target ? *target : kdt.position_now(center);
   const double slack = radius + 2.0 * kdt.config().twin_release_distance_m;
   for (const PointId p : live) {
     if (p == center) continue;
@@ -111,8 +118,14 @@ TEST_P(ProximitySearchProperty, WithinEqualsBruteForce) {
       placed.push_back(place(param.layout, rng, placed));
       live[k] = kdt.insert(t, placed.back(), {speed(rng), on_line ? 0.0 : speed(rng)});
     }
+    std::uniform_real_distribution<double> offset(-60'000.0, 60'000.0);
     for (const PointId center : live) {
       expect_same_as_brute_force(kdt, search, live, center, radius(rng));
+      // A disk ahead of the center (the probe's predicted position, design §2.1), up to
+      // 60 km off: often beyond the hull, sometimes holding no point at all.
+      const Point2 here = kdt.position_now(center);
+      const Point2 ahead{here.x + offset(rng), on_line ? here.y : here.y + offset(rng)};
+      expect_same_as_brute_force(kdt, search, live, center, radius(rng), ahead);
       ++searches;
     }
   }

@@ -1,6 +1,7 @@
 #include "kew/pipeline/pipeline.hpp"
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 
 #include "kew/util/gentle_growth.hpp"
@@ -274,15 +275,35 @@ void Pipeline::end_track(track::TrackSlot slot) {
   tracks_.drop(slot);
 }
 
+namespace {
+/// CPU time of the calling thread (s): the split must not count time the thread waited.
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+template <class F>
+void Pipeline::timed(double PhaseTimes::*phase, F&& f) {
+  if (!config_.time_phases) {
+    f();
+    return;
+  }
+  const double start = thread_cpu_s();
+  f();
+  phases_.*phase += thread_cpu_s() - start;
+}
+
 void Pipeline::move_clock(double t) {
   if (t <= clock_) return;
   tracks_.expire(t, [&](track::TrackSlot slot, const track::Track& track) {
     const double at = std::max(clock_, track.t + tracks_.config().track_timeout_s);
-    kdt_->advance(engine_time(at));
+    timed(&PhaseTimes::maintenance_s, [&] { kdt_->advance(engine_time(at)); });
     clock_ = at;
     drop_track(slot);
   });
-  kdt_->advance(engine_time(t));
+  timed(&PhaseTimes::maintenance_s, [&] { kdt_->advance(engine_time(t)); });
   clock_ = t;
 }
 
@@ -298,7 +319,7 @@ void Pipeline::advance_to(double t) {
 void Pipeline::leave_engine(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
   if (track.point != kinetic::kNoPoint) {
-    kdt_->remove(track.point, engine_time(clock_));
+    timed(&PhaseTimes::maintenance_s, [&] { kdt_->remove(track.point, engine_time(clock_)); });
     slot_of_point_[track.point] = track::kNoTrack;
     track.point = kinetic::kNoPoint;
   }
@@ -326,13 +347,15 @@ kinetic::KineticAudit Pipeline::audit() { return kdt_->audit_and_repair(); }
 void Pipeline::apply(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
   const probe::Kinematics now = track.at(clock_);
-  if (track.point == kinetic::kNoPoint) {
-    track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
-    util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
-    slot_of_point_[track.point] = slot;
-  } else {
-    kdt_->update(track.point, engine_time(clock_), now.position, now.velocity);
-  }
+  timed(&PhaseTimes::maintenance_s, [&] {
+    if (track.point == kinetic::kNoPoint) {
+      track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
+      util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
+      slot_of_point_[track.point] = slot;
+    } else {
+      kdt_->update(track.point, engine_time(clock_), now.position, now.velocity);
+    }
+  });
   speeds_.set(slot, geometry::norm(now.velocity));
   util::grow_to(probe_state_, slot + 1);
   util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
@@ -366,7 +389,15 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
   points_scratch_.clear();
   switch (config_.probe_mode) {
     case probe::ProbeMode::Exact:
-      search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
+      // Straight-line prediction: every j that can come within S_h of i within T is within
+      // S_h + v_max·T (+ 2τ) of i's position T ahead (design §2.1), a disk that is smaller
+      // the faster i flies; an arc stays only within |v_i|·T of its start.
+      if (config_.search_ahead && probe_state_[slot].kinematics.turn_rate_rps == 0.0) {
+        const geometry::Point2 ahead = kdt_->position_now(track.point) + largest_lookahead_s_ * track.kinematics.velocity;
+        search_.within_around(*kdt_, track.point, ahead, search_radius(0.0), points_scratch_);
+      } else {
+        search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
+      }
       break;
     case probe::ProbeMode::Edges:
       search_.neighbours(*kdt_, track.point, points_scratch_);
@@ -407,7 +438,11 @@ Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const 
 }
 
 void Pipeline::probe(track::TrackSlot slot) {
-  collect_candidates(slot);
+  timed(&PhaseTimes::search_s, [&] { collect_candidates(slot); });
+  timed(&PhaseTimes::tests_s, [&] { test_candidates(slot); });
+}
+
+void Pipeline::test_candidates(track::TrackSlot slot) {
   ++stats_.probes;
   stats_.candidates += candidates_.size();
   const probe::Kinematics k_self = probe_state_[slot].at(clock_);

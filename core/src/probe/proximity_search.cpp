@@ -7,27 +7,67 @@
 
 namespace kew::probe {
 
-void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m,
-                             std::vector<PointId>& out) {
+double ProximitySearch::begin_search(const kinetic::KineticDelaunay& kdt, double radius_m) {
   if (round_ >= std::numeric_limits<std::uint32_t>::max() - 2) {  // about to wrap: forget every mark
     std::fill(visited_round_.begin(), visited_round_.end(), 0);
     std::fill(face_round_.begin(), face_round_.end(), 0);
     round_ = 0;
   }
   round_ += 2;  // a vertex mark of round_ means "seen, out of reach", round_ + 1 "in reach"
-  // Twins sit within their release distance of their host; widening the disk by twice
-  // that keeps the greedy-routing argument valid for hosts of twins inside the disk.
-  const double reach = radius_m + 2.0 * kdt.config().twin_release_distance_m;
-  const geometry::Point2 c = kdt.position_now(center);
   // Sized once for every id, so the marks never grow inside the loops.
   const triangulation::Tds& tds = kdt.triangulation().tds();
   util::grow_to(visited_round_, tds.vertex_capacity(), std::uint32_t{0});
   util::grow_to(face_round_, tds.face_capacity(), std::uint32_t{0});
-  const PointId start = kdt.host_of(center);
-  if (!tds.is_attached(start) || kdt.triangulation().is_flat())
-    within_by_vertices(kdt, center, c, reach * reach, out);
+  // Twins sit within their release distance of their host; widening the disk by twice
+  // that keeps the greedy-routing argument valid for hosts of twins inside the disk.
+  const double reach = radius_m + 2.0 * kdt.config().twin_release_distance_m;
+  return reach * reach;
+}
+
+void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m,
+                             std::vector<PointId>& out) {
+  const double reach2 = begin_search(kdt, radius_m);
+  const geometry::Point2 c = kdt.position_now(center);
+  const PointId start = kdt.host_of(center);  // c's own point: nearest to c already
+  if (!kdt.triangulation().tds().is_attached(start) || kdt.triangulation().is_flat())
+    within_by_vertices(kdt, center, center, c, reach2, out);
   else
-    within_by_faces(kdt, center, c, reach * reach, out);
+    within_by_faces(kdt, start, center, c, reach2, out);
+}
+
+void ProximitySearch::within_around(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 target,
+                                    double radius_m, std::vector<PointId>& out) {
+  const double reach2 = begin_search(kdt, radius_m);
+  const PointId start = nearest_to(kdt, center, target);
+  if (!kdt.triangulation().tds().is_attached(kdt.host_of(start)) || kdt.triangulation().is_flat())
+    within_by_vertices(kdt, start, center, target, reach2, out);
+  else
+    within_by_faces(kdt, kdt.host_of(start), center, target, reach2, out);
+}
+
+PointId ProximitySearch::nearest_to(const kinetic::KineticDelaunay& kdt, PointId from, geometry::Point2 c) {
+  // Distances fall strictly at each step, so the walk ends; where it ends no neighbour is
+  // closer, which on a Delaunay triangulation makes it the nearest point (ties: one of them).
+  PointId best = from;
+  geometry::Vector2 d = kdt.position_now(best) - c;
+  double best2 = geometry::dot(d, d);
+  for (bool moved = true; moved;) {
+    moved = false;
+    PointId next = best;
+    for_each_neighbor(kdt, best, [&](PointId w) {
+      const geometry::Vector2 e = kdt.position_now(w) - c;
+      const double e2 = geometry::dot(e, e);
+      if (e2 < best2) {
+        best2 = e2;
+        next = w;
+      }
+    });
+    if (next != best) {
+      best = next;
+      moved = true;
+    }
+  }
+  return best;
 }
 
 bool ProximitySearch::group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center,
@@ -47,15 +87,15 @@ bool ProximitySearch::group_in_reach(const kinetic::KineticDelaunay& kdt, PointI
   return any;
 }
 
-void ProximitySearch::within_by_faces(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c,
-                                      double reach2, std::vector<PointId>& out) {
+void ProximitySearch::within_by_faces(const kinetic::KineticDelaunay& kdt, PointId start, PointId center,
+                                      geometry::Point2 c, double reach2, std::vector<PointId>& out) {
   // Faces, not vertex rings: walking the ring of every vertex in the disk reads each face
   // three times, and those reads (cache misses on a triangulation of thousands of
   // points) were half the probe's time. A face is opened when one of its vertices (or a
   // twin of one) is in reach, so every face around a vertex in reach is opened and every
   // neighbour of one is seen: the same points as the breadth-first search over vertices.
   const triangulation::Tds& tds = kdt.triangulation().tds();
-  const FaceIndex first = tds.vertex_face(kdt.host_of(center));
+  const FaceIndex first = tds.vertex_face(start);
   face_frontier_.clear();
   face_round_[first] = round_;
   face_frontier_.push_back(first);
@@ -83,18 +123,18 @@ void ProximitySearch::within_by_faces(const kinetic::KineticDelaunay& kdt, Point
   }
 }
 
-void ProximitySearch::within_by_vertices(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c,
-                                         double reach2, std::vector<PointId>& out) {
+void ProximitySearch::within_by_vertices(const kinetic::KineticDelaunay& kdt, PointId start, PointId center,
+                                         geometry::Point2 c, double reach2, std::vector<PointId>& out) {
   frontier_.clear();
-  first_visit(center);
-  frontier_.push_back(center);
+  // The center is walked through when in reach (a path may pass it), never returned.
   const auto visit = [&](PointId w) {
     if (!first_visit(w)) return;
     const geometry::Vector2 d = kdt.position_now(w) - c;
     if (geometry::dot(d, d) > reach2) return;
     frontier_.push_back(w);
-    out.push_back(w);
+    if (w != center) out.push_back(w);
   };
+  visit(start);
   for (std::size_t next = 0; next < frontier_.size(); ++next) for_each_neighbor(kdt, frontier_[next], visit);
 }
 

@@ -30,6 +30,13 @@ struct PipelineConfig {
   double coverage_radius_m = 1.5e6;
   kinetic::KineticConfig kinetic = default_kinetic();
   probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
+  /// Exact mode: search around the predicted position p_i + v_i·T, over the smaller disk
+  /// of design §2.1 (a track under a turn hypothesis keeps the disk around p_i). Both
+  /// are complete; false measures the difference (kew_peers_bench).
+  bool search_ahead = true;
+  /// Time the three parts of the work on updates (Pipeline::phase_times); off except in
+  /// benchmarks (two reads of the thread's CPU clock per part and update, about 1 µs).
+  bool time_phases = false;
   probe::SeparationMinima minima;
   /// The turn hypothesis (design §4.4); off by default.
   probe::TurnHypothesis turn;
@@ -48,13 +55,21 @@ struct PipelineConfig {
   }
 };
 
+/// Where the time of updates goes (PipelineConfig::time_phases): CPU seconds of the
+/// calling thread, summed over the run.
+struct PhaseTimes {
+  double maintenance_s = 0.0;  ///< kinetic maintenance: insert, update, remove, advance (events)
+  double search_s = 0.0;       ///< candidate search (ProximitySearch) and partner collection
+  double tests_s = 0.0;        ///< CPA tests of the candidates and the alert bookkeeping
+};
+
 struct PipelineStatistics {
   std::uint64_t records = 0;            ///< records offered to process()
   std::uint64_t accepted = 0;           ///< records the track table accepted
   std::uint64_t awaiting_velocity = 0;  ///< accepted records of tracks without velocity yet
   std::uint64_t tracks_dropped = 0;     ///< tracks dropped (timeout, end of track, restart)
-  std::uint64_t tracks_ended = 0;
-  std::uint64_t runs_restarted = 0;     ///< young runs restarted elsewhere in time or space       ///< tracks the source ended (TrackReport::track_end)
+  std::uint64_t tracks_ended = 0;       ///< tracks the source ended (TrackReport::track_end)
+  std::uint64_t runs_restarted = 0;     ///< young runs restarted elsewhere in time or space
   /// Tracks restarted because a record of the same id carried another 24-bit address (a
   /// reused track number: two addresses are never one aircraft).
   std::uint64_t tracks_restarted = 0;
@@ -111,6 +126,8 @@ class Pipeline {
 
   double now() const { return clock_; }
   const PipelineStatistics& statistics() const { return stats_; }
+  /// Zero unless PipelineConfig::time_phases.
+  const PhaseTimes& phase_times() const { return phases_; }
   const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_->statistics(); }
   const Rejections& rejections() const { return tracks_.rejections(); }
   Rejections& rejections() { return tracks_.rejections(); }
@@ -170,6 +187,10 @@ class Pipeline {
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
   void collect_candidates(track::TrackSlot slot);
+  void test_candidates(track::TrackSlot slot);
+  /// Runs f, adding its duration to `phase` when phases are timed.
+  template <class F>
+  void timed(double PhaseTimes::*phase, F&& f);
   /// A pair as the probe evaluates it: lower slot first, minima scaled for the pair.
   struct PairKinematics {
     track::TrackSlot p, q;
@@ -247,6 +268,7 @@ class Pipeline {
   bool started_ = false;
   double clock_ = 0.0;
   PipelineStatistics stats_;
+  PhaseTimes phases_;
 };
 
 }  // namespace kew

@@ -2,11 +2,12 @@
 // Candidate search for the conflict probe (design §2.1): the kinetic Delaunay
 // triangulation used as an exact proximity index.
 //
-// Every point within distance r of a triangulation vertex p is reached by a
-// breadth-first search from p over Delaunay edges that never leaves the disk of radius
-// r around p: greedy routing toward p succeeds on a Delaunay triangulation (from any
-// vertex, some neighbour is strictly closer to p), so each point in the disk is joined
-// to p by a path that stays in the disk.
+// Every point within distance r of a point x is reached by a breadth-first search over
+// Delaunay edges that starts at the vertex nearest to x and never leaves the disk of
+// radius r around x: greedy routing toward x succeeds on a Delaunay triangulation (from
+// any vertex but the nearest, some neighbour is strictly closer to x), so each point in
+// the disk is joined to the nearest vertex by a path that stays in the disk, and the
+// same greedy walk finds the nearest vertex (design §2.1).
 
 #include <cstdint>
 #include <string_view>
@@ -40,17 +41,29 @@ class ProximitySearch {
   /// farther (twins within their release distance of the disk). Order unspecified.
   void within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m, std::vector<PointId>& out);
 
+  /// The same for a disk around any point `target` of the plane (m), which need not hold
+  /// `center`: every point other than `center` whose model position at kdt.now() is
+  /// within `radius_m` of `target`, plus possibly twins slightly farther. The search walks
+  /// greedily from center's vertex to the vertex nearest `target` and spreads from there.
+  void within_around(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 target, double radius_m,
+                     std::vector<PointId>& out);
+
   /// Appends the Delaunay neighbours of `center` (twins counted) — the thesis' candidates.
   void neighbours(const kinetic::KineticDelaunay& kdt, PointId center, std::vector<PointId>& out);
 
  private:
   using FaceIndex = triangulation::FaceIndex;
-  /// The search over faces (a triangulation with a finite face) ...
-  void within_by_faces(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c, double reach2,
-                       std::vector<PointId>& out);
-  /// ... and over vertex rings (flat or tiny triangulations, which have no finite face).
-  void within_by_vertices(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 c, double reach2,
-                          std::vector<PointId>& out);
+  /// New marks for one search; the reach (radius widened for twins, squared).
+  double begin_search(const kinetic::KineticDelaunay& kdt, double radius_m);
+  /// The search from `start` (the point nearest c, or c's own point) over faces (a
+  /// triangulation with a finite face) ...
+  void within_by_faces(const kinetic::KineticDelaunay& kdt, PointId start, PointId center, geometry::Point2 c,
+                       double reach2, std::vector<PointId>& out);
+  /// ... or over vertex rings (flat or tiny triangulations, which have no finite face).
+  void within_by_vertices(const kinetic::KineticDelaunay& kdt, PointId start, PointId center, geometry::Point2 c,
+                          double reach2, std::vector<PointId>& out);
+  /// The greedy walk: from `from`, to ever closer neighbours of c until none is closer.
+  static PointId nearest_to(const kinetic::KineticDelaunay& kdt, PointId from, geometry::Point2 c);
   /// Whether a triangulation vertex or one of its twins is within reach of c, each
   /// decided once per search; the first time, appends those in reach (center excepted).
   bool group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center, geometry::Point2 c,
