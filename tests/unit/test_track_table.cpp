@@ -163,7 +163,7 @@ TEST(BadRecords, RejectionsAreReportedRateLimited) {
   std::vector<std::string> messages;
   pipeline.rejections().set_reporter(
       [&](std::string_view reason, std::string_view) { messages.emplace_back(reason); });
-  for (int i = 0; i < 1000; ++i) pipeline.process(report(std::string("X") + std::to_string(i), kT0 + i, kNaN, 8.0));
+  for (int i = 0; i < 1000; ++i) pipeline.process(report(std::string("X").append(std::to_string(i)), kT0 + i, kNaN, 8.0));
   EXPECT_EQ(pipeline.rejections().count("position_not_finite"), 1000u);
   EXPECT_EQ(messages.size(), 10u + 6u);  // a burst of 10, then at 20, 40, 80, 160, 320, 640
 }
