@@ -16,7 +16,7 @@ decoder supports, with --audit: exit 0, statistics printed, no unrepaired violat
 
 Every recording (bundled or shared, not the generated ones, which are NDJSON already) is
 also converted by kew-decode (KEW_DECODE) and the conversion replayed: its alerts must be
-byte-identical to the original's (issue 21).
+byte-identical to the original's, and kew-eval (KEW_EVAL) must score both alike (issue 21).
 """
 
 import argparse
@@ -35,6 +35,7 @@ SHARED = os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings")
 KEW_REPLAY = os.environ.get("KEW_REPLAY", os.path.join(ROOT, "build", "replay", "kew-replay"))
 KEW_GEN = os.environ.get("KEW_GEN", os.path.join(ROOT, "build", "replay", "kew-gen"))
 KEW_DECODE = os.environ.get("KEW_DECODE", os.path.join(ROOT, "build", "replay", "kew-decode"))
+KEW_EVAL = os.environ.get("KEW_EVAL", os.path.join(ROOT, "build", "replay", "kew-eval"))
 
 # name → recording: a bundled file (relative to tests/data), or "gen:" and kew-gen flags.
 CASES = {
@@ -115,7 +116,20 @@ def decoded_alerts_differ(name, recording, workdir, alerts, extra):
     if again != alerts:
         show_difference(f"{name} via kew-decode", alerts, again)
         return "alerts replayed from kew-decode's NDJSON differ from the original's"
+    scores = [evaluation(path, [flag for flag in extra if flag != "--audit"]) for path in (recording, decoded)]
+    if scores[0] != scores[1]:
+        return f"kew-eval scores kew-decode's NDJSON otherwise than the original: {scores[0]} != {scores[1]}"
     return None
+
+
+def evaluation(recording, extra):
+    """kew-eval --json of one recording without what names the input: the file names, and
+    the decoder's refusals (kew-decode's output holds only what was decoded)."""
+    result = subprocess.run([KEW_EVAL, "--json", *extra, recording], stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL, check=True)
+    scores = json.loads(result.stdout)
+    scores["truth"].pop("files", None)
+    return scores
 
 
 def stable(stats):
