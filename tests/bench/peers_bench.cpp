@@ -307,15 +307,24 @@ struct MethodResult {
 // ---------------------------------------------------------------------------------
 // (a) kew
 
+// kew as configured, and each lever of issue 22 turned back off, beside it in one run.
+enum class KewVariant { Default, Centred, Eager };
+
 // kew's time per period, then (time_phases) a second run for the split of print_split:
 // timing the parts costs about 1 µs per update, kept out of the first.
-MethodResult run_kew(const Params& prm, const Workload& w, bool search_ahead = true, bool time_phases = false) {
-  MethodResult result = search_ahead
-      ? MethodResult{"kew", "kew: KDT updates + exact BFS probe around p + v·T (Pipeline)", 1, {}, 0, 0}
-      : MethodResult{"kew-centred", "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)", 1, {}, 0, 0};
+MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = KewVariant::Default,
+                     bool time_phases = false) {
   kew::PipelineConfig config = w.config;
-  config.search_ahead = search_ahead;
   config.time_phases = time_phases;
+  MethodResult result{"kew", "kew: KDT updates (lazy certificates) + exact BFS probe around p + v·T (Pipeline)", 1,
+                      {}, 0, 0};
+  if (variant == KewVariant::Centred) {
+    result = {"kew-centred", "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)", 1, {}, 0, 0};
+    config.search_ahead = false;
+  } else if (variant == KewVariant::Eager) {
+    result = {"kew-eager", "kew with every certificate solved over the whole horizon", 1, {}, 0, 0};
+    config.kinetic.lazy_window_s = 0.0;
+  }
   kew::Pipeline pipeline(config);
   std::uint32_t current = 0;
   std::vector<Conflict>* sink = nullptr;
@@ -971,13 +980,15 @@ int main(int argc, char** argv) {
     std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
               << fixed(w.radius_km, 0) << " km; (a) kew...\n";
     fleet.methods.push_back(run_kew(prm, w));
-    std::cerr << "  kew-centred...\n";
-    fleet.methods.push_back(run_kew(prm, w, false));
-    compare(fleet.methods.front(), fleet.methods.back());
-    all_agree = all_agree && fleet.methods.back().missing == 0 && fleet.methods.back().extra == 0;
-    std::cerr << "  kew and kew-centred again, timing their parts...\n";
-    fleet.split.push_back(run_kew(prm, w, true, true));
-    fleet.split.push_back(run_kew(prm, w, false, true));
+    for (const KewVariant variant : {KewVariant::Centred, KewVariant::Eager}) {
+      fleet.methods.push_back(run_kew(prm, w, variant));
+      std::cerr << "  " << fleet.methods.back().name << " done\n";
+      compare(fleet.methods.front(), fleet.methods.back());
+      all_agree = all_agree && fleet.methods.back().missing == 0 && fleet.methods.back().extra == 0;
+    }
+    std::cerr << "  kew's variants again, timing their parts...\n";
+    for (const KewVariant variant : {KewVariant::Default, KewVariant::Centred, KewVariant::Eager})
+      fleet.split.push_back(run_kew(prm, w, variant, true));
 
     const double r_max = w.config.minima.horizontal_m * w.k_max + 2.0 * w.config.minima.lookahead_s * w.v_max;
     const auto run = [&](const char* name, const char* label, auto& index, std::size_t stride) {

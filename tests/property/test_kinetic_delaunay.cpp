@@ -153,6 +153,9 @@ std::vector<MotionCase> configurations() {
         c.horizon_s = horizon;
         c.tolerance = tolerance;
         c.reduce_redundant_events = reduce;
+        // Lazy certificates (kew's default) where the horizon leaves them room, the
+        // eager solve elsewhere: both kinds of window in the suite.
+        c.lazy_window_s = tolerance > 0.0 && horizon > 1.5 ? 1.5 : 0.0;
         cases.push_back({"", c});
       }
   return cases;
@@ -160,7 +163,7 @@ std::vector<MotionCase> configurations() {
 
 std::string describe(const KineticConfig& c) {
   return "H=" + std::to_string(c.horizon_s) + " tau=" + std::to_string(c.tolerance) +
-         " reduce=" + std::to_string(c.reduce_redundant_events);
+         " reduce=" + std::to_string(c.reduce_redundant_events) + " lazy=" + std::to_string(c.lazy_window_s);
 }
 
 // ---------------------------------------------------------------------------------

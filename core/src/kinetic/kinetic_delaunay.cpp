@@ -241,13 +241,21 @@ void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::ui
       schedule_edge(std::max(end, now_), f, i, EventKind::Renewal, 0);
     return;
   }
-  ++stats_.certificates_solved;
   const double window = end - now_;
   if (!(window > from_offset)) {
+    ++stats_.certificates_solved;
     // Nothing to examine before the window closes: re-examine when it does.
     if (std::isfinite(end)) schedule_edge(std::max(end, now_), f, i, EventKind::Renewal, 0);
     return;
   }
+  const double lazy = config_.lazy_window_s;
+  if (lazy > from_offset && window > lazy && certainly_negative(certificate, lazy)) {
+    // Valid until now + lazy for certain, the same answer a horizon of lazy would give.
+    ++stats_.certificates_deferred;
+    schedule_edge(now_ + lazy, f, i, EventKind::Renewal, 0);
+    return;
+  }
+  ++stats_.certificates_solved;
   const Crossing crossing = first_positive_crossing(certificate, from_offset, window);
   stats_.tangencies_ignored += static_cast<std::uint64_t>(crossing.tangencies);
   if (crossing.violated_at_start || crossing.found) {

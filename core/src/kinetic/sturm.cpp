@@ -709,6 +709,25 @@ std::vector<int> real_root_multiplicities(const Polynomial& p) {
   return multiplicities;
 }
 
+namespace {
+/// The sign p keeps on all of [−reach, reach] when the bound |c_0| > Σ_{i≥1} |c_i|·reach^i
+/// proves it has no root there (for |t| ≤ reach, |p(t) − p(0)| is at most the sum);
+/// 0 when the bound cannot decide. The margin covers the rounding of the bound (a few ulps).
+int certified_sign(const Polynomial& p, double reach) {
+  const int degree = p.degree();
+  double power = 1.0;
+  double excursion = 0.0;
+  for (int i = 1; i <= degree; ++i) {
+    power *= reach;
+    excursion += std::abs(p.coefficient(i)) * power;
+  }
+  if (!(std::abs(p.coefficient(0)) > excursion * kExclusionMargin)) return 0;
+  return p.coefficient(0) > 0.0 ? 1 : -1;
+}
+}  // namespace
+
+bool certainly_negative(const Polynomial& p, double reach) { return certified_sign(p, reach) < 0; }
+
 Crossing first_positive_crossing(const Polynomial& p, double lo, double hi, double start_tolerance) {
   assert(std::isfinite(lo) && !std::isnan(hi));
   Crossing result;
@@ -724,15 +743,9 @@ Crossing first_positive_crossing(const Polynomial& p, double lo, double hi, doub
   // sign of c_0. With a short horizon this settles most certificates in a few multiplies.
   // The margin covers the rounding of the bound itself (a few ulps).
   if (std::isfinite(hi)) {
-    const double reach = std::max(std::abs(lo), std::abs(hi));
-    double power = 1.0;
-    double excursion = 0.0;
-    for (int i = 1; i <= degree; ++i) {
-      power *= reach;
-      excursion += std::abs(p.coefficient(i)) * power;
-    }
-    if (std::abs(p.coefficient(0)) > excursion * kExclusionMargin) {
-      result.violated_at_start = p.coefficient(0) > 0.0;
+    const int sign = certified_sign(p, std::max(std::abs(lo), std::abs(hi)));
+    if (sign != 0) {
+      result.violated_at_start = sign > 0;
       return result;
     }
   }

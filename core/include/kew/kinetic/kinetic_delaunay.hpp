@@ -50,11 +50,17 @@ struct KineticConfig {
   /// exact meeting in the model is always caught; small enough to be invisible to the
   /// probe.
   double twin_release_distance_m = 1e-3;
+  /// Lazy certificates (design §2.4, s, ≥ 0; 0: off): a certificate the certified bound
+  /// proves valid over [now, now + lazy_window_s] is not solved further; that window is
+  /// its life and it is re-examined at its end. Updates re-solve the certificates around
+  /// a point, several times a radar period, so most never need more.
+  double lazy_window_s = 0.0;
 };
 
 /// Counters an engine user can read. Events are certificate failures.
 struct KineticStatistics {
   std::uint64_t certificates_solved = 0;  ///< Sturm solves run
+  std::uint64_t certificates_deferred = 0;  ///< proved valid over the lazy window, not solved further
   std::uint64_t events_computed = 0;      ///< failures found and scheduled
   std::uint64_t events_executed = 0;      ///< failures that flipped an edge
   std::uint64_t events_discarded = 0;     ///< scheduled failures descheduled before their time

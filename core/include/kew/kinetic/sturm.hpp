@@ -128,6 +128,11 @@ std::vector<Root> real_roots(const Polynomial& p, double a, double b);
 /// (t-1)^2 (t-3), {} for (t^2+1)^2). Empty for the zero polynomial and for constants.
 std::vector<int> real_root_multiplicities(const Polynomial& p);
 
+/// Whether p < 0 on all of [−reach, reach] (reach ≥ 0, seconds), proved by the bound
+/// first_positive_crossing tries first: |c_0| > Σ_{i≥1} |c_i|·reach^i (with a margin for the
+/// rounding of the bound) and c_0 < 0. False when the bound cannot decide, whatever p is.
+bool certainly_negative(const Polynomial& p, double reach);
+
 /// Result of first_positive_crossing; times in seconds.
 struct Crossing {
   bool found = false;              // an odd-multiplicity root in (lo, hi] where p goes from < 0 to > 0
