@@ -300,6 +300,19 @@ void expect_check_error(const std::string& text, const std::string& needle, bool
   }
 }
 
+TEST(Config, InputNamesAreDistinct) {
+  // Input names label the metrics, ?STATS and the log: two inputs of one name would be
+  // counted as one. A default name (inputN) taken by an explicit one counts too.
+  expect_error("[[input]]\nname = \"radar\"\naddress = \"127.0.0.1:8600\"\ntransport = \"udp\"\n"
+               "[[input]]\nname = \"radar\"\naddress = \"127.0.0.1:8601\"\ntransport = \"udp\"\n",
+               "[input 2] name \"radar\" is the name of input 1 already");
+  expect_error("[[input]]\nname = \"input2\"\naddress = \"127.0.0.1:8600\"\ntransport = \"udp\"\n"
+               "[[input]]\naddress = \"127.0.0.1:8601\"\ntransport = \"udp\"\n",
+               "[input 2] name \"input2\" is the name of input 1 already");
+  EXPECT_NO_THROW(parse_config("[[input]]\naddress = \"127.0.0.1:8600\"\ntransport = \"udp\"\n"
+                               "[[input]]\naddress = \"127.0.0.1:8601\"\ntransport = \"udp\"\n"));
+}
+
 TEST(ConfigChecks, ListenersBindLoopbackUnlessAllowed) {
   expect_check_error("[service]\nalert_listen = \"0.0.0.0:4747\"\n",
                      "t.toml: [service] alert_listen = \"0.0.0.0:4747\" listens on every interface");

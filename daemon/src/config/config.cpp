@@ -103,6 +103,10 @@ Config read_config(const config::Document& document) {
     InputConfig input;
     input.name = "input" + std::to_string(i + 1);
     read_input(r, input);
+    // Names label the metrics, ?STATS and the log: two inputs of one name would read as one.
+    for (std::size_t k = 0; k < c.inputs.size(); ++k)
+      if (c.inputs[k].name == input.name)
+        r.fail(nullptr, "name \"" + input.name + "\" is the name of input " + std::to_string(k + 1) + " already");
     c.inputs.push_back(std::move(input));
   });
   return c;
