@@ -27,22 +27,22 @@ double ProximitySearch::begin_search(const kinetic::KineticDelaunay& kdt, double
 void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center, double radius_m,
                              std::vector<PointId>& out) {
   const double reach2 = begin_search(kdt, radius_m);
-  const geometry::Point2 c = kdt.position_now(center);
-  const PointId start = kdt.host_of(center);  // c's own point: nearest to c already
-  if (!kdt.triangulation().tds().is_attached(start) || kdt.triangulation().is_flat())
-    within_by_vertices(kdt, center, center, c, reach2, out);
-  else
-    within_by_faces(kdt, start, center, c, reach2, out);
+  search_from(kdt, center, center, kdt.position_now(center), reach2, out);  // its own point is nearest
 }
 
 void ProximitySearch::within_around(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 target,
                                     double radius_m, std::vector<PointId>& out) {
   const double reach2 = begin_search(kdt, radius_m);
-  const PointId start = nearest_to(kdt, center, target);
-  if (!kdt.triangulation().tds().is_attached(kdt.host_of(start)) || kdt.triangulation().is_flat())
-    within_by_vertices(kdt, start, center, target, reach2, out);
+  search_from(kdt, nearest_to(kdt, center, target), center, target, reach2, out);
+}
+
+void ProximitySearch::search_from(const kinetic::KineticDelaunay& kdt, PointId start, PointId center,
+                                  geometry::Point2 c, double reach2, std::vector<PointId>& out) {
+  const PointId vertex = kdt.host_of(start);
+  if (!kdt.triangulation().tds().is_attached(vertex) || kdt.triangulation().is_flat())
+    within_by_vertices(kdt, start, center, c, reach2, out);
   else
-    within_by_faces(kdt, kdt.host_of(start), center, target, reach2, out);
+    within_by_faces(kdt, vertex, center, c, reach2, out);
 }
 
 PointId ProximitySearch::nearest_to(const kinetic::KineticDelaunay& kdt, PointId from, geometry::Point2 c) {

@@ -55,8 +55,11 @@ class ProximitySearch {
   using FaceIndex = triangulation::FaceIndex;
   /// New marks for one search; the reach (radius widened for twins, squared).
   double begin_search(const kinetic::KineticDelaunay& kdt, double radius_m);
-  /// The search from `start` (the point nearest c, or c's own point) over faces (a
-  /// triangulation with a finite face) ...
+  /// The search from `start`, the point nearest c (c's own point for within()), over
+  /// faces or vertex rings as below; `center` is never returned.
+  void search_from(const kinetic::KineticDelaunay& kdt, PointId start, PointId center, geometry::Point2 c,
+                   double reach2, std::vector<PointId>& out);
+  /// Over faces (a triangulation with a finite face), from start's vertex ...
   void within_by_faces(const kinetic::KineticDelaunay& kdt, PointId start, PointId center, geometry::Point2 c,
                        double reach2, std::vector<PointId>& out);
   /// ... or over vertex rings (flat or tiny triangulations, which have no finite face).
