@@ -25,8 +25,20 @@ using detail::FlightKind;
 using detail::RandomStream;
 using detail::SlotPlan;
 
-// Mixed: shares of random, airways, stacks and TMA traffic.
-constexpr std::array<double, 4> kMixedShares = {0.25, 0.40, 0.15, 0.20};
+// Shares of random, airways, stacks and TMA traffic (in FlightKind order).
+using KindShares = std::array<double, 4>;
+constexpr KindShares kMixedShares = {0.25, 0.40, 0.15, 0.20};
+// Calibrated (README "Calibration"): two thirds cruise on airways, a fifth arrives in
+// the TMA, the rest climbs or descends below the airways, and stacks are rare (one
+// holding aircraft in a hundred, not a sixth of the sky).
+constexpr KindShares kCalibratedShares = {0.15, 0.64, 0.01, 0.20};
+
+FlightKind draw_kind(const KindShares& shares, RandomStream& kinds) {
+  double u = kinds.uniform();
+  std::size_t k = 0;
+  while (k + 1 < shares.size() && u >= shares[k]) u -= shares[k++];
+  return static_cast<FlightKind>(k);
+}
 
 constexpr std::uint32_t kAddressMask = 0xFFFFFF;
 
@@ -215,13 +227,8 @@ std::vector<SlotPlan> TrafficGenerator::Impl::plan_slots(std::mt19937_64& master
       case Scenario::Airways: plan.kind = FlightKind::Airways; break;
       case Scenario::Stacks: plan.kind = FlightKind::Stacks; break;
       case Scenario::Tma: plan.kind = FlightKind::Tma; break;
-      case Scenario::Mixed: {
-        double u = kinds.uniform();
-        std::size_t k = 0;
-        while (k + 1 < kMixedShares.size() && u >= kMixedShares[k]) u -= kMixedShares[k++];
-        plan.kind = static_cast<FlightKind>(k);
-        break;
-      }
+      case Scenario::Mixed: plan.kind = draw_kind(kMixedShares, kinds); break;
+      case Scenario::Calibrated: plan.kind = draw_kind(kCalibratedShares, kinds); break;
     }
     if (plan.kind == FlightKind::Stacks) {
       // Stacks are filled level by level, one aircraft per level.

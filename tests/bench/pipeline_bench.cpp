@@ -11,6 +11,9 @@
 // before and after loading a fleet, divided by the live tracks; RSS is printed too.
 //
 // Usage: kew_pipeline_bench [--quick] [--memory-only] [--json FILE] [--seconds S]
+//                           [--fleets N,N...] [--scenario NAME]
+// --fleets and --scenario choose the generated NDJSON runs (default 2,000 and 10,000
+// aircraft, mixed); the same flags on an older tree give a before/after pair.
 
 #include <malloc.h>
 
@@ -72,11 +75,13 @@ struct Params {
   bool quick = false;
   bool memory_only = false;  // skip the throughput runs
   double ndjson_seconds = 300.0;  // duration of the generated NDJSON traffic
+  std::vector<std::size_t> fleets;  // empty: 2,000 and 10,000 (2,000 with --quick)
+  kew::replay::Scenario scenario = kew::replay::Scenario::Mixed;
   std::string json_path;
 };
 
 [[noreturn]] void usage(const std::string& why) {
-  std::cerr << "kew_pipeline_bench: " << why << "\nusage: kew_pipeline_bench [--quick] [--memory-only] [--seconds S] [--json FILE]\n";
+  std::cerr << "kew_pipeline_bench: " << why << "\nusage: kew_pipeline_bench [--quick] [--memory-only] [--seconds S] [--fleets N,N...] [--scenario NAME] [--json FILE]\n";
   std::exit(2);
 }
 
@@ -91,6 +96,19 @@ Params parse(int argc, char** argv) {
       p.memory_only = true;
     } else if (flag == "--json" && i + 1 < argc) {
       p.json_path = argv[++i];
+    } else if (flag == "--fleets" && i + 1 < argc) {
+      std::string list = argv[++i];
+      for (std::size_t start = 0; start <= list.size();) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        const long n = std::atol(list.substr(start, comma - start).c_str());
+        if (n < 1 || n > 1'000'000) usage("--fleets takes aircraft counts from 1 to 1000000");
+        p.fleets.push_back(static_cast<std::size_t>(n));
+        start = comma + 1;
+      }
+    } else if (flag == "--scenario" && i + 1 < argc) {
+      const auto scenario = kew::replay::kScenarioNames.parse(argv[++i]);
+      if (!scenario) usage(std::string("--scenario takes one of ") + std::string(kew::replay::kScenarioNames.list()));
+      p.scenario = *scenario;
     } else if (flag == "--seconds" && i + 1 < argc) {
       p.ndjson_seconds = std::atof(argv[++i]);
       if (!(p.ndjson_seconds >= 4.0 && p.ndjson_seconds <= 3600.0)) usage("--seconds must be in [4, 3600]");
@@ -114,8 +132,8 @@ kew::replay::GeneratorConfig generated(std::size_t aircraft, double seconds,
   return g;
 }
 
-std::string generated_ndjson(std::size_t aircraft, double seconds) {
-  kew::replay::TrafficGenerator generator(generated(aircraft, seconds));
+std::string generated_ndjson(std::size_t aircraft, double seconds, kew::replay::Scenario scenario) {
+  kew::replay::TrafficGenerator generator(generated(aircraft, seconds, scenario));
   std::string text;
   for (kew::TrackReport r; generator.next(r);) {
     kew::protocol::append_ndjson(text, r);
@@ -367,11 +385,13 @@ void write_json(const std::string& path, const std::vector<EndToEnd>& runs, cons
 
 std::vector<EndToEnd> run_throughput(const Params& prm) {
   std::vector<EndToEnd> runs;
-  const std::vector<std::size_t> fleets = prm.quick ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{2000, 10000};
+  std::vector<std::size_t> fleets = prm.fleets;
+  if (fleets.empty()) fleets = prm.quick ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{2000, 10000};
   for (const std::size_t n : fleets) {
-    const std::string name = "ndjson mixed " + std::to_string(n) + " × " + std::to_string(static_cast<int>(prm.ndjson_seconds)) + " s";
+    const std::string name = "ndjson " + std::string(kew::replay::to_string(prm.scenario)) + " " + std::to_string(n) + " × " +
+                             std::to_string(static_cast<int>(prm.ndjson_seconds)) + " s";
     std::cerr << name << "...\n";
-    runs.push_back(run_end_to_end(name, kew::protocol::Format::Ndjson, generated_ndjson(n, prm.ndjson_seconds)));
+    runs.push_back(run_end_to_end(name, kew::protocol::Format::Ndjson, generated_ndjson(n, prm.ndjson_seconds, prm.scenario)));
   }
   const std::string bundled = std::string(KEW_TEST_DATA_DIR) + "/asterix/jade/final_frame_062_first3min.ff";
   const std::string shared = std::string(KEW_SHARED_RECORDINGS_DIR) + "/jade-cat062-ff/final_frame_062_30min.ff";

@@ -30,7 +30,7 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kEarthRadiusM = 6'371'008.8;
 
 const Scenario kAllScenarios[] = {Scenario::Random, Scenario::Airways, Scenario::Stacks,
-                                  Scenario::Tma, Scenario::Mixed};
+                                  Scenario::Tma, Scenario::Mixed, Scenario::Calibrated};
 
 std::vector<TrackReport> generate(const GeneratorConfig& config) {
   TrafficGenerator generator(config);
@@ -346,7 +346,8 @@ Envelope envelope_of(Scenario scenario) {
     case Scenario::Airways: return {380, 580, 21'000, 42'000};  // overtakers fly up to 80 kt faster
     case Scenario::Stacks: return {210, 230, 3'000, 18'000};
     case Scenario::Tma: return {160, 480, 1'500, 38'000};
-    case Scenario::Mixed: break;
+    case Scenario::Mixed:
+    case Scenario::Calibrated: break;
   }
   return {160, 580, 1'500, 42'000};
 }
@@ -405,6 +406,32 @@ INSTANTIATE_TEST_SUITE_P(AllScenarios, ScenarioTest, ::testing::ValuesIn(kAllSce
                          [](const ::testing::TestParamInfo<Scenario>& param_info) {
                            return std::string(to_string(param_info.param));
                          });
+
+TEST(TrafficGenerator, CalibratedTrafficHasTheRecordingsShape) {
+  // README "Calibration": the controlled-airspace recordings put most records at FL300
+  // and above, a tenth to a third below FL100, and 14–57 % climbing or descending; mixed
+  // traffic puts a sixth in holding stacks, calibrated traffic one in a hundred.
+  GeneratorConfig config;
+  config.scenario = Scenario::Calibrated;
+  config.aircraft = 1000;
+  config.duration_s = 120;
+  std::size_t high = 0, low = 0, changing = 0, holding_speed = 0;
+  const std::vector<TrackReport> records = generate(config);
+  for (const TrackReport& r : records) {
+    if (r.alt_ft >= 30'000) ++high;
+    if (r.alt_ft < 10'000) ++low;
+    if (std::abs(*r.vr_fpm) >= 500) ++changing;
+    if (*r.gs_kt >= 210 && *r.gs_kt <= 230 && *r.vr_fpm == 0 && r.alt_ft <= 18'000) ++holding_speed;
+  }
+  const auto share = [&](std::size_t n) { return static_cast<double>(n) / static_cast<double>(records.size()); };
+  EXPECT_GT(share(high), 0.4);
+  EXPECT_LT(share(high), 0.65);
+  EXPECT_GT(share(low), 0.03);
+  EXPECT_LT(share(low), 0.25);
+  EXPECT_GT(share(changing), 0.1);
+  EXPECT_LT(share(changing), 0.35);
+  EXPECT_LT(share(holding_speed), 0.05);
+}
 
 TEST(TrafficGenerator, StacksPutManyLevelsOverOneGroundPoint) {
   // At some instant at least 5 aircraft lie within 1 km of one of them (so within 2 km of

@@ -67,6 +67,18 @@ constexpr std::size_t kMinArrivalRoutes = 8, kMaxArrivalRoutes = 72;
 
 constexpr double kLevelChangeMinFpm = 1000, kLevelChangeMaxFpm = 2500;
 
+// ---- calibrated (README "Calibration"): traffic below the airways climbs and descends
+// on semicircular levels (ICAO Annex 2 Appendix 3: tracks 000–179° odd thousands,
+// 180–359° even), at lower speeds than cruise.
+constexpr double kLowerLowestFl = 50, kLowerHighestFl = 240;
+constexpr double kLowerMinKt = 250, kLowerMaxKt = 420;
+constexpr double kLowerLevelChangeShare = 0.6;
+// Airways: each route and direction cruises on its own 2 of the direction's 8 levels (a
+// flight-level allocation scheme, as ACCs separate crossing routes), so crossing routes
+// share a level one time in four; level changes are rarer than on the mixed airways.
+constexpr std::size_t kAllocationGroups = 4;
+constexpr double kCalibratedAirwayLevelChangeShare = 0.1;
+
 /// Level `level_ft`, or with probability `share` a climb or descent of 1–3 `step_ft`
 /// starting at a uniform time in [earliest, latest] and staying within [lowest, highest].
 VerticalProfile maybe_change_level(double level_ft, double step_ft, double lowest_ft,
@@ -95,13 +107,14 @@ Airspace::Airspace(const GeneratorConfig& config, const std::vector<SlotPlan>& p
     : center_lat_(config.center_lat_deg),
       center_lon_(config.center_lon_deg),
       radius_m_(config.radius_km * 1000.0),
-      time_origin_(config.start_time) {
+      time_origin_(config.start_time),
+      calibrated_(config.scenario == Scenario::Calibrated) {
   lay_out_airways(count_of(plans, FlightKind::Airways), layout);
   std::uint32_t stacks = 0;
   for (const SlotPlan& p : plans)
     if (p.kind == FlightKind::Stacks) stacks = std::max(stacks, p.stack + 1);
   // In a mixed scenario the stacks feed the TMA, so they sit around its terminal.
-  lay_out_stacks(stacks, config.scenario == Scenario::Mixed, layout);
+  lay_out_stacks(stacks, config.scenario == Scenario::Mixed || calibrated_, layout);
   lay_out_arrivals(count_of(plans, FlightKind::Tma), layout);
 }
 
@@ -200,6 +213,17 @@ Flight Airspace::random_flight(double t, RandomStream& rng, bool under_way) cons
   f.own_line = std::make_unique<const GeographicLib::GeodesicLine>(wgs84().Line(lat, lon, heading, kLineCaps));
   f.leg.line = f.own_line.get();
   f.leg.length_m = to_edge;
+  if (calibrated_) {
+    f.leg.speed = SpeedSchedule::constant(knots(rng.uniform(kLowerMinKt, kLowerMaxKt)));
+    f.end_time = f.leg_end_time();
+    // Levels of the heading's parity, changed in steps of 2000 ft that keep it.
+    const double lowest = flight_level(kLowerLowestFl) + (heading < 180.0 ? 0.0 : 1000.0);
+    const auto levels = static_cast<std::size_t>((flight_level(kLowerHighestFl) - lowest) / 2000.0) + 1;
+    const double level = lowest + 2000.0 * static_cast<double>(rng.index(levels));
+    f.vertical = maybe_change_level(level, 2000, lowest, lowest + 2000.0 * static_cast<double>(levels - 1),
+                                    under_way ? t - 120 : t, t + 300, kLowerLevelChangeShare, rng);
+    return f;
+  }
   f.leg.speed = SpeedSchedule::constant(knots(rng.uniform(kRandomMinKt, kRandomMaxKt)));
   const auto levels = static_cast<std::size_t>(kRandomHighestFl - kRandomLowestFl) / 10 + 1;
   const double level = flight_level(kRandomLowestFl + 10.0 * static_cast<double>(rng.index(levels)));
@@ -211,12 +235,16 @@ Flight Airspace::random_flight(double t, RandomStream& rng, bool under_way) cons
 }
 
 Flight Airspace::airway_flight(double t, RandomStream& rng, bool under_way) const {
-  const Route& route = airways_[rng.index(airways_.size())];
+  const std::size_t route_index = rng.index(airways_.size());
+  const Route& route = airways_[route_index];
   const int direction = rng.chance(0.5) ? 1 : -1;
   const double start_arc = under_way ? rng.uniform(0, route.length_m) : (direction > 0 ? 0.0 : route.length_m);
   // Semicircular rule: one direction flies the odd thousands, the other the even ones.
   const double lowest = flight_level(kAirwayLowestFl) + (direction > 0 ? 0.0 : 1000.0);
-  const double level = lowest + 2000.0 * static_cast<double>(rng.index(kAirwayLevelsPerDirection));
+  std::size_t level_index = rng.index(kAirwayLevelsPerDirection);
+  if (calibrated_)  // the route's group of levels: index ≡ route (mod groups)
+    level_index = level_index / kAllocationGroups * kAllocationGroups + route_index % kAllocationGroups;
+  const double level = lowest + 2000.0 * static_cast<double>(level_index);
   const double highest = lowest + 2000.0 * static_cast<double>(kAirwayLevelsPerDirection - 1);
 
   Flight f;
@@ -227,8 +255,8 @@ Flight Airspace::airway_flight(double t, RandomStream& rng, bool under_way) cons
   f.leg.length_m = direction > 0 ? route.length_m - start_arc : start_arc;
   f.leg.speed = SpeedSchedule::constant(knots(rng.uniform(kAirwayMinKt, kAirwayMaxKt)));
   // Level changes keep the direction's parity, crossing the other direction's levels.
-  f.vertical = maybe_change_level(level, 2000, lowest - 4000, highest + 2000, under_way ? t - 60 : t,
-                                  t + 600, kAirwayLevelChangeShare, rng);
+  f.vertical = maybe_change_level(level, 2000, lowest - 4000, highest + 2000, under_way ? t - 60 : t, t + 600,
+                                  calibrated_ ? kCalibratedAirwayLevelChangeShare : kAirwayLevelChangeShare, rng);
   f.end_time = f.leg_end_time();
   return f;
 }
@@ -252,7 +280,8 @@ Flight Airspace::trailing_flight(const Flight& leader, double t, RandomStream& r
   // The same level (an overtake that is a conflict) or the next level of the same
   // direction (passing over or under it on exactly the same track).
   double level = leader.vertical.start_ft;
-  if (!rng.chance(kTrailingSameLevelShare)) {
+  // Calibrated: controllers do not let one overtake another at its level.
+  if (calibrated_ || !rng.chance(kTrailingSameLevelShare)) {
     const double highest = flight_level(kAirwayLowestFl) + (direction > 0 ? 0.0 : 1000.0) +
                            2000.0 * static_cast<double>(kAirwayLevelsPerDirection - 1);
     level += level + 2000.0 <= highest ? 2000.0 : -2000.0;

@@ -67,6 +67,7 @@ class Airspace {
 
   double center_lat_, center_lon_, radius_m_;
   double time_origin_;
+  bool calibrated_;  // Scenario::Calibrated: its level rules (airspace.cpp)
   std::vector<Route> airways_;
   std::vector<Stack> stacks_;
   std::vector<GeographicLib::GeodesicLine> arrivals_;  // outbound from the terminal

@@ -38,15 +38,20 @@ enum class Scenario {
   Stacks,   ///< holding racetracks, one aircraft per level, 1000 ft apart
   Tma,      ///< arrivals converging on the region centre, descending and slowing
   Mixed,    ///< each aircraft drawn from the four above
+  /// Shaped like the shared recordings of controlled airspace (README "Calibration"):
+  /// cruise on airways with route-allocated levels, lower traffic climbing and
+  /// descending on semicircular levels, TMA arrivals, a few small holding stacks.
+  Calibrated,
 };
 
 /// The names of `kew-gen --scenario` (exact, lower case).
-inline constexpr util::NameTable<Scenario, 5> kScenarioNames({{
+inline constexpr util::NameTable<Scenario, 6> kScenarioNames({{
     {Scenario::Random, "random"},
     {Scenario::Airways, "airways"},
     {Scenario::Stacks, "stacks"},
     {Scenario::Tma, "tma"},
     {Scenario::Mixed, "mixed"},
+    {Scenario::Calibrated, "calibrated"},
 }});
 constexpr std::string_view to_string(Scenario scenario) { return kScenarioNames.name(scenario); }
 
