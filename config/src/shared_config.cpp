@@ -48,6 +48,7 @@ void read_kinetic(TableReader& r, kinetic::KineticConfig& k) {
   r.number("horizon_s", horizon, 0.0, 1e9);
   k.horizon_s = horizon == 0.0 ? kinetic::kNever : horizon;
   r.boolean("reduce_redundant_events", k.reduce_redundant_events);
+  r.number("keep_model_s", k.keep_model_s, 0.0, 3600.0);
 }
 
 void read_probe(TableReader& r, PipelineConfig& p) {

@@ -30,6 +30,8 @@ struct SuiteTotals {
   std::uint64_t audits = 0;
   std::uint64_t unrepaired = 0;
   std::uint64_t oracle_comparisons = 0;
+  std::uint64_t kept_updates = 0;        // kept models: the lag check above covers them
+  std::uint64_t drift_reinsertions = 0;  // and their deadlines
 };
 SuiteTotals& totals() {
   static SuiteTotals t;
@@ -47,6 +49,10 @@ struct Aircraft {
   Point2 position;  // true position at `time`
   Vector2 velocity;
   double time = 0.0;
+  Point2 reported;  // the latest report's position, with its noise
+  // When the engine took it: `time`, or the engine's clock when checks ran ahead of the
+  // report (update() applies a report at max(t, now())).
+  double reported_time = 0.0;
 };
 
 /// Drives an engine through a scenario and checks it at random times.
@@ -55,7 +61,7 @@ class Harness {
   Harness(const KineticConfig& config, std::uint64_t seed) : engine_(config, 0.0), rng_(seed + seed_offset()) {}
 
   PointId add(Point2 p, Vector2 v, double t) {
-    Aircraft a{engine_.insert(t, p, v), p, v, t};
+    Aircraft a{engine_.insert(t, p, v), p, v, t, p, engine_.now()};
     aircraft_.push_back(a);
     return a.id;
   }
@@ -75,6 +81,8 @@ class Harness {
       a.time = t;
       a.velocity = steer(a, rng_);
       const Point2 measured = noise_m > 0 ? Point2{a.position.x + noise(rng_), a.position.y + noise(rng_)} : a.position;
+      a.reported = measured;
+      a.reported_time = std::max(t, engine_.now());
       engine_.update(a.id, t, measured, a.velocity);
     }
   }
@@ -84,6 +92,15 @@ class Harness {
   /// finds nothing), then (in general position) the edge set against CGAL.
   void check_at(double t, bool compare_with_oracle = true) {
     engine_.advance(t);
+    // The probe's search relies on it (design §2.1, §2.3): no model lags its latest
+    // report by more than τ (velocity-only updates, kept models and their deadlines).
+    const double tau = engine_.config().tolerance;
+    for (const Aircraft& a : aircraft_) {
+      if (!engine_.contains(a.id)) continue;
+      const Point2 report_now = a.reported + (engine_.now() - a.reported_time) * a.velocity;
+      ASSERT_LE(geometry::norm(engine_.position_now(a.id) - report_now), tau + 1e-6 * (1.0 + tau))
+          << "point " << a.id << " at t=" << t;
+    }
     const auto report = engine_.triangulation().audit();
     ASSERT_TRUE(engine_.is_valid()) << "at t=" << t << ": tds " << static_cast<int>(engine_.triangulation().tds().check())
                                     << ", inverted " << report.inverted_faces << ", non-Delaunay "
@@ -111,7 +128,11 @@ class Harness {
     EXPECT_EQ(engine_.edges(), testing::cgal_delaunay_edges(points)) << "edge sets differ at t=" << t;
   }
 
-  void finish() { totals().events_executed += engine_.statistics().events_executed; }
+  void finish() {
+    totals().events_executed += engine_.statistics().events_executed;
+    totals().kept_updates += engine_.statistics().kept_updates;
+    totals().drift_reinsertions += engine_.statistics().drift_reinsertions;
+  }
 
   KineticDelaunay& engine() { return engine_; }
   std::vector<Aircraft>& aircraft() { return aircraft_; }
@@ -156,6 +177,8 @@ std::vector<MotionCase> configurations() {
         // Lazy certificates (kew's default) where the horizon leaves them room, the
         // eager solve elsewhere: both kinds of window in the suite.
         c.lazy_window_s = tolerance > 0.0 && horizon > 1.5 ? 1.5 : 0.0;
+        // Kept models (kew's default) in half of the cases with a tolerance.
+        c.keep_model_s = tolerance > 0.0 && !reduce ? 4.0 : 0.0;
         cases.push_back({"", c});
       }
   return cases;
@@ -163,7 +186,8 @@ std::vector<MotionCase> configurations() {
 
 std::string describe(const KineticConfig& c) {
   return "H=" + std::to_string(c.horizon_s) + " tau=" + std::to_string(c.tolerance) +
-         " reduce=" + std::to_string(c.reduce_redundant_events) + " lazy=" + std::to_string(c.lazy_window_s);
+         " reduce=" + std::to_string(c.reduce_redundant_events) + " lazy=" + std::to_string(c.lazy_window_s) +
+         " keep=" + std::to_string(c.keep_model_s);
 }
 
 // ---------------------------------------------------------------------------------
@@ -259,8 +283,11 @@ TEST(KineticDelaunayProperty, OnlyCollinearTraffic) {
     h.check_at(4.0 * period + 4.0, false);
   }
   // One aircraft leaves the line: the structure becomes two-dimensional and back.
-  const PointId odd = h.aircraft()[0].id;
-  h.engine().update(odd, 125.0, {0.0, 500.0}, {0.0, -10.0});
+  Aircraft& odd = h.aircraft()[0];
+  h.engine().update(odd.id, 125.0, {0.0, 500.0}, {0.0, -10.0});
+  odd.position = odd.reported = {0.0, 500.0};
+  odd.velocity = {0.0, -10.0};
+  odd.time = odd.reported_time = 125.0;
   h.check_at(130.0, false);
   h.check_at(200.0, false);
   h.finish();
@@ -426,10 +453,15 @@ TEST(KineticDelaunayProperty, ManyEventsAcrossTheSuiteWithNoUnrepairedViolation)
   h.finish();
   EXPECT_GE(totals().events_executed, 1'000'000u);
   EXPECT_EQ(totals().unrepaired, 0u);
-  std::printf("suite: %llu events executed, %llu audits, %llu CGAL comparisons\n",
+  EXPECT_GT(totals().kept_updates, 1000u);
+  EXPECT_GT(totals().drift_reinsertions, 10u);
+  std::printf("suite: %llu events executed, %llu audits, %llu CGAL comparisons, %llu kept updates, "
+              "%llu drift reinsertions\n",
               static_cast<unsigned long long>(totals().events_executed),
               static_cast<unsigned long long>(totals().audits),
-              static_cast<unsigned long long>(totals().oracle_comparisons));
+              static_cast<unsigned long long>(totals().oracle_comparisons),
+              static_cast<unsigned long long>(totals().kept_updates),
+              static_cast<unsigned long long>(totals().drift_reinsertions));
 }
 
 }  // namespace

@@ -62,6 +62,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.kinetic.tolerance_mode, d.kinetic.tolerance_mode);
   EXPECT_EQ(p.kinetic.horizon_s, d.kinetic.horizon_s);
   EXPECT_EQ(p.kinetic.reduce_redundant_events, d.kinetic.reduce_redundant_events);
+  EXPECT_EQ(p.kinetic.keep_model_s, d.kinetic.keep_model_s);
   EXPECT_EQ(p.probe_mode, d.probe_mode);
   EXPECT_DOUBLE_EQ(p.minima.horizontal_m, d.minima.horizontal_m);
   EXPECT_DOUBLE_EQ(p.minima.vertical_m, d.minima.vertical_m);

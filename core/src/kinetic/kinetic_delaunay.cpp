@@ -156,6 +156,7 @@ void KineticDelaunay::schedule_edge(double time, FaceIndex f, int i, EventKind k
 
 bool KineticDelaunay::is_live(const Entry& e) const {
   if (e.kind == EventKind::TwinRelease) return twins_.release_seq(e.subject) == e.seq;
+  if (e.kind == EventKind::Drift) return drift_seq_[e.subject] == e.seq;
   return dt_.tds().face(e.subject).alive && schedule_[e.subject].seq[e.edge] == e.seq;
 }
 
@@ -362,7 +363,8 @@ void KineticDelaunay::advance(double t) {
   } while (flip_degenerate_edges());
   stats_.queue_sum += static_cast<double>(stats_.queue_now);
   ++stats_.queue_samples;
-  queue_.compact(stats_.queue_now + stats_.renewals_queued, [this](const Entry& e) { return is_live(e); });
+  queue_.compact(stats_.queue_now + stats_.renewals_queued + stats_.drifts_queued,
+                 [this](const Entry& e) { return is_live(e); });
 }
 
 void KineticDelaunay::execute(const Entry& e) {
@@ -377,6 +379,9 @@ void KineticDelaunay::execute(const Entry& e) {
       return;
     case EventKind::Approach:
       execute_approach(e);
+      return;
+    case EventKind::Drift:
+      execute_drift(e.subject);
       return;
     case EventKind::TwinRelease: {
       const PointId id = e.subject;
@@ -475,6 +480,10 @@ PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
   const PointId id = dt_.create_vertex(Trajectory{p, v, t});
   if (id >= live_.size()) live_.resize(id + 1, false);
   live_[id] = true;
+  if (id >= drift_seq_.size()) {
+    drift_seq_.resize(id + 1, 0);
+    reported_.resize(id + 1);
+  }
   twins_.add(id);
   ++live_points_;
   ++stats_.insertions;
@@ -487,6 +496,7 @@ void KineticDelaunay::remove(PointId id, double t) {
   assert(contains(id));
   advance(t);
   ++stats_.removals;
+  cancel_drift(id);
   detach_point(id);
   live_[id] = false;
   --live_points_;
@@ -502,6 +512,11 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
   const double deviation = geometry::norm(p - predicted);
   const double allowed =
       config_.tolerance_mode == ToleranceMode::Absolute ? config_.tolerance : config_.tolerance * geometry::norm(p);
+  if (deviation <= allowed && keep_model(id, p, v, deviation, allowed)) {
+    ++stats_.kept_updates;
+    return UpdateKind::Kept;
+  }
+  cancel_drift(id);  // the model becomes this report's
   if (deviation <= allowed) {
     // Keep the predicted position exactly, so the triangulation stays valid at now.
     dt_.set_trajectory(id, Trajectory{predicted, v, now_});
@@ -517,16 +532,51 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
     return UpdateKind::VelocityOnly;
   }
   ++stats_.reinsertions;
+  reinsert(id, Trajectory{p, v, now_});
+  advance(now_);
+  return UpdateKind::Reinserted;
+}
+
+void KineticDelaunay::reinsert(PointId id, const Trajectory& to) {
   // A report moves an aircraft a few hundred metres at most: the walk that locates it
   // again starts from where it was, not from an arbitrary face (O(1) steps, not O(√n)).
   const PointId anchor = attached_neighbour(id);
   detach_point(id);
-  dt_.set_trajectory(id, Trajectory{p, v, now_});
+  dt_.set_trajectory(id, to);
   const FaceIndex hint =
       anchor != kNoPoint && dt_.tds().is_attached(anchor) ? dt_.tds().vertex_face(anchor) : kNoFace;
   attach_point(id, hint);
-  advance(now_);
-  return UpdateKind::Reinserted;
+}
+
+bool KineticDelaunay::keep_model(PointId id, Point2 p, Vector2 v, double deviation, double allowed) {
+  if (config_.keep_model_s <= 0.0 || config_.tolerance_mode != ToleranceMode::Absolute) return false;
+  // |model(now + s) − report(now + s)| ≤ deviation + |Δv|·s: within τ until s = slack / |Δv|.
+  const double drift_mps = geometry::norm(v - dt_.trajectory(id).velocity);
+  const double slack = allowed - deviation;
+  if (slack < drift_mps * config_.keep_model_s) return false;
+  cancel_drift(id);
+  reported_[id] = Trajectory{p, v, now_};
+  if (drift_mps > 0.0) {
+    const double deadline = now_ + slack / drift_mps;
+    if (std::isfinite(deadline)) {
+      drift_seq_[id] = queue_.push(deadline, id, 0, EventKind::Drift, 0);
+      ++stats_.drifts_queued;
+    }
+  }
+  return true;
+}
+
+void KineticDelaunay::cancel_drift(PointId id) {
+  if (drift_seq_[id] == 0) return;
+  drift_seq_[id] = 0;
+  --stats_.drifts_queued;
+}
+
+void KineticDelaunay::execute_drift(PointId id) {
+  cancel_drift(id);
+  ++stats_.drift_reinsertions;
+  const Trajectory& report = reported_[id];
+  reinsert(id, Trajectory{report.at(now_), report.velocity, now_});
 }
 
 void KineticDelaunay::reschedule_star(PointId vertex) {

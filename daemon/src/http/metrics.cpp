@@ -67,7 +67,7 @@ struct KineticCounter {
   std::string_view name, help;
   std::uint64_t kinetic::KineticStatistics::*member;
 };
-constexpr std::array<KineticCounter, 14> kKineticCounters{{
+constexpr std::array<KineticCounter, 16> kKineticCounters{{
     {"kew_kinetic_certificates_solved_total", "Sturm certificate solves run.", &kinetic::KineticStatistics::certificates_solved},
     {"kew_kinetic_events_computed_total", "Certificate failures found and scheduled.", &kinetic::KineticStatistics::events_computed},
     {"kew_kinetic_events_executed_total", "Certificate failures that flipped an edge.", &kinetic::KineticStatistics::events_executed},
@@ -78,6 +78,8 @@ constexpr std::array<KineticCounter, 14> kKineticCounters{{
     {"kew_kinetic_removals_total", "Points removed from the kinetic triangulation.", &kinetic::KineticStatistics::removals},
     {"kew_kinetic_updates_total", "Track updates applied to the kinetic triangulation.", &kinetic::KineticStatistics::updates},
     {"kew_kinetic_reinsertions_total", "Updates beyond the tolerance: removed and reinserted.", &kinetic::KineticStatistics::reinsertions},
+    {"kew_kinetic_kept_updates_total", "Updates within the tolerance for long enough: the model kept.", &kinetic::KineticStatistics::kept_updates},
+    {"kew_kinetic_drift_reinsertions_total", "Kept models reinserted on their report when their bound ran out.", &kinetic::KineticStatistics::drift_reinsertions},
     {"kew_kinetic_repairs_total", "Defects found by audits or degenerate events and fixed.", &kinetic::KineticStatistics::repairs},
     {"kew_kinetic_degenerate_flips_total", "Flips of edges whose certificate is zero within rounding.", &kinetic::KineticStatistics::degenerate_flips},
     {"kew_kinetic_rebuilds_total", "Full retriangulations (last-resort repair).", &kinetic::KineticStatistics::rebuilds},

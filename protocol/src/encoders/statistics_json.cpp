@@ -88,6 +88,8 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("insertions", k.insertions);
   m.integer("reinsertions", k.reinsertions);
   m.integer("velocity_updates", k.velocity_updates);
+  m.integer("kept_updates", k.kept_updates);
+  m.integer("drift_reinsertions", k.drift_reinsertions);
   m.integer("events_computed", k.events_computed);
   m.integer("events_executed", k.events_executed);
   m.integer("events_discarded", k.events_discarded);

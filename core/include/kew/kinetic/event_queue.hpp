@@ -19,6 +19,7 @@ enum class EventKind : std::uint8_t {
   Renewal,      ///< an edge's window closes before its certificate fails: solved again
   TwinRelease,  ///< a twin may be far enough from its host to be reinserted
   Approach,     ///< the two ends of an edge come so close that one becomes a twin
+  Drift,        ///< a point's kept model reaches τ from its latest report: replaced by it
 };
 
 class EventQueue {
@@ -26,8 +27,8 @@ class EventQueue {
   struct Entry {
     double time;            ///< s, on the engine's epoch
     std::uint64_t seq;      ///< from push(): > 0, unique, increasing in push order
-    std::uint32_t subject;  ///< face, or point for TwinRelease
-    std::uint8_t edge;      ///< edge 0..2 of the face (0 for TwinRelease)
+    std::uint32_t subject;  ///< face, or point for TwinRelease and Drift
+    std::uint8_t edge;      ///< edge 0..2 of the face (0 for TwinRelease and Drift)
     EventKind kind;
     std::uint16_t retries;  ///< times this failure popped before the exact predicate agreed
   };

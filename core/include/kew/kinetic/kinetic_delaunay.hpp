@@ -55,6 +55,14 @@ struct KineticConfig {
   /// its life and it is re-examined at its end. Updates re-solve the certificates around
   /// a point, several times a radar period, so most never need more.
   double lazy_window_s = 0.0;
+  /// Kept models (design §2.3, s, ≥ 0; 0: off; Absolute tolerance only): an update
+  /// whose report stays within τ of the point's model position for at least this long —
+  /// |p − model| + |v − model velocity|·s ≤ τ — changes nothing in the triangulation;
+  /// the report is remembered, and if no later update comes first, a Drift event at the
+  /// moment the bound runs out reinserts the point on the report's trajectory. Either
+  /// way the model never lags its latest report by more than τ. A radar period or more:
+  /// each update then costs a comparison, not the rescheduling of its star.
+  double keep_model_s = 0.0;
 };
 
 /// Counters an engine user can read. Events are certificate failures.
@@ -71,7 +79,9 @@ struct KineticStatistics {
   std::uint64_t removals = 0;
   std::uint64_t updates = 0;
   std::uint64_t velocity_updates = 0;     ///< updates within τ: velocity changed, position kept
+  std::uint64_t kept_updates = 0;         ///< updates within τ for keep_model_s: model unchanged
   std::uint64_t reinsertions = 0;         ///< updates beyond τ: removed and reinserted
+  std::uint64_t drift_reinsertions = 0;   ///< kept models replaced by their report at the deadline
   std::uint64_t repairs = 0;              ///< defects found by audits or degenerate events and fixed
   std::uint64_t repair_flips = 0;
   /// Flips of edges whose certificate is identically zero, or no larger than the
@@ -92,13 +102,18 @@ struct KineticStatistics {
   std::size_t queue_now = 0;              ///< failures and approaches scheduled now
   std::size_t queue_max = 0;
   std::size_t renewals_queued = 0;        ///< renewal entries scheduled now
+  std::size_t drifts_queued = 0;          ///< Drift deadlines scheduled now
   double queue_sum = 0.0;                 ///< Σ queue_now over samples (one per advance)
   std::uint64_t queue_samples = 0;
   double queue_mean() const { return queue_samples ? queue_sum / static_cast<double>(queue_samples) : 0.0; }
 };
 
 /// What update() did.
-enum class UpdateKind { VelocityOnly, Reinserted };
+enum class UpdateKind {
+  Kept,          ///< within τ for KineticConfig::keep_model_s: the model stays as it was
+  VelocityOnly,  ///< within τ: position kept, velocity replaced
+  Reinserted,    ///< beyond τ: removed and reinserted at the report
+};
 
 /// Result of an audit at the current time.
 struct KineticAudit {
@@ -122,13 +137,15 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// Removes a point at time t (≥ now()).
   void remove(PointId id, double t);
   /// A new measurement of a point at time t (≥ now()): within the tolerance the
-  /// predicted position is kept and only the velocity changes; beyond it the point is
-  /// removed and reinserted at p (Eq. 10.1).
+  /// predicted position is kept and only the velocity changes (or, with keep_model_s,
+  /// nothing changes while the model stays within τ of the measurement); beyond it the
+  /// point is removed and reinserted at p (Eq. 10.1).
   UpdateKind update(PointId id, double t, Point2 p, Vector2 v);
 
   bool contains(PointId id) const;
   std::size_t size() const { return live_points_; }
   /// Model position at time t (m): the last accepted position extrapolated linearly.
+  /// Within τ of the latest update's p + v·(t − t_update) until the next update.
   Point2 position(PointId id, double t) const { return dt_.trajectory(id).at(t); }
   Point2 position_now(PointId id) const { return dt_.trajectory(id).at(now_); }
   Vector2 velocity(PointId id) const { return dt_.trajectory(id).velocity; }
@@ -205,6 +222,13 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// False for an entry descheduled since it was queued (its record holds another seq).
   bool is_live(const Entry& e) const;
   void reschedule_star(PointId vertex);
+  /// Removes id and attaches it again on trajectory `to` (at now).
+  void reinsert(PointId id, const triangulation::Trajectory& to);
+  /// Keeps id's model if the report (p, v) at now stays within `allowed` of it for
+  /// keep_model_s; then schedules the Drift deadline and returns true.
+  bool keep_model(PointId id, Point2 p, Vector2 v, double deviation, double allowed);
+  void cancel_drift(PointId id);
+  void execute_drift(PointId id);
   /// Attaches id at its position now; `hint` is a face near it where the walk starts.
   void attach_point(PointId id, triangulation::FaceIndex hint = triangulation::kNoFace);
   /// An attached point next to id in the triangulation (its host for a twin), or
@@ -243,6 +267,10 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::uint32_t dirty_round_ = 0;
   TwinRegistry twins_;
   std::vector<bool> live_;
+  // By point: the latest report's trajectory while its model is kept, and the sequence
+  // number of its Drift deadline (0: none scheduled).
+  std::vector<triangulation::Trajectory> reported_;
+  std::vector<std::uint64_t> drift_seq_;
   std::size_t live_points_ = 0;
   KineticStatistics stats_;
   mutable std::vector<PointId> scratch_neighbors_;
