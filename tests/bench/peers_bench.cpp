@@ -308,7 +308,7 @@ struct MethodResult {
 // (a) kew
 
 // kew as configured, and each lever of issue 22 turned back off, beside it in one run.
-enum class KewVariant { Default, Centred, Eager };
+enum class KewVariant { Default, Centred, Eager, Reinserting };
 
 // kew's time per period, then (time_phases) a second run for the split of print_split:
 // timing the parts costs about 1 µs per update, kept out of the first.
@@ -324,6 +324,10 @@ MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = 
   } else if (variant == KewVariant::Eager) {
     result = {"kew-eager", "kew with every certificate solved over the whole horizon", 1, {}, 0, 0};
     config.kinetic.lazy_window_s = 0.0;
+  } else if (variant == KewVariant::Reinserting) {
+    result = {"kew-tau50", "kew with the earlier tolerance: τ = 50 m, every update within τ changes the velocity", 1, {}, 0, 0};
+    config.kinetic.tolerance = 50.0;
+    config.kinetic.keep_model_s = 0.0;
   }
   kew::Pipeline pipeline(config);
   std::uint32_t current = 0;
@@ -980,14 +984,14 @@ int main(int argc, char** argv) {
     std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
               << fixed(w.radius_km, 0) << " km; (a) kew...\n";
     fleet.methods.push_back(run_kew(prm, w));
-    for (const KewVariant variant : {KewVariant::Centred, KewVariant::Eager}) {
+    for (const KewVariant variant : {KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting}) {
       fleet.methods.push_back(run_kew(prm, w, variant));
       std::cerr << "  " << fleet.methods.back().name << " done\n";
       compare(fleet.methods.front(), fleet.methods.back());
       all_agree = all_agree && fleet.methods.back().missing == 0 && fleet.methods.back().extra == 0;
     }
     std::cerr << "  kew's variants again, timing their parts...\n";
-    for (const KewVariant variant : {KewVariant::Default, KewVariant::Centred, KewVariant::Eager})
+    for (const KewVariant variant : {KewVariant::Default, KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting})
       fleet.split.push_back(run_kew(prm, w, variant, true));
 
     const double r_max = w.config.minima.horizontal_m * w.k_max + 2.0 * w.config.minima.lookahead_s * w.v_max;
