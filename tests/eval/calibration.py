@@ -82,6 +82,17 @@ def traffic_shape(ndjson_lines):
     }
 
 
+def decoded_lines(kew_decode, path, radar_config, extra):
+    """A recording as kew-decode's NDJSON lines, in time order when `extra` asks --sort
+    (recordings grouped by flight: per-track spans need each track in time order)."""
+    decode = [kew_decode, "-q"] + (["-c", radar_config] if radar_config else []) + [path]
+    lines = subprocess.run(decode, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, check=True,
+                           text=True).stdout.splitlines()
+    if "--sort" in extra:
+        lines.sort(key=lambda l: json.loads(l)["t"] if l.strip() and not l.startswith("#") else -1)
+    return lines
+
+
 def scored(kew_eval, path, extra, config):
     args = [kew_eval, "--json", *extra]
     if config:
@@ -127,11 +138,7 @@ def main():
                 print(f"*** {path} is absent: not measured ***", file=sys.stderr)
                 continue
             config = radar_config if radar else None
-            decode = [tool("kew-decode"), "-q"] + (["-c", config] if config else []) + [path]
-            lines = subprocess.run(decode, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, check=True,
-                                   text=True).stdout.splitlines()
-            if "--sort" in extra:  # grouped by flight: the rate spans need each track in time order
-                lines.sort(key=lambda l: json.loads(l)["t"] if l.strip() and not l.startswith("#") else -1)
+            lines = decoded_lines(tool("kew-decode"), path, config, extra)
             print(row(label, traffic_shape(lines), scored(tool("kew-eval"), path, extra, config)), flush=True)
         radius = BENCH_RADIUS_KM_PER_SQRT_AIRCRAFT * math.sqrt(options.aircraft)
         if options.area:

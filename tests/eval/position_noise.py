@@ -18,13 +18,13 @@ import json
 import math
 import os
 import statistics
-import subprocess
 import sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from calibration import RECORDINGS, BARCELONA_RADAR  # noqa: E402
+from calibration import RECORDINGS, BARCELONA_RADAR, decoded_lines  # noqa: E402
 
 EARTH_RADIUS_M = 6_371_008.8
 KNOT_MPS = 1852.0 / 3600.0
@@ -68,9 +68,10 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--recordings", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings"))
     options = parser.parse_args()
-    radar_config = os.path.join(options.build, "position-noise-radar.toml")
-    with open(radar_config, "w") as f:
-        f.write(BARCELONA_RADAR)
+    radar_file = tempfile.NamedTemporaryFile("w", suffix=".toml", prefix="kew-radar-")
+    radar_file.write(BARCELONA_RADAR)
+    radar_file.flush()
+    radar_config = radar_file.name
     print("| recording | pairs of reports | Δt median (s) | residual p50 / p90 / p99 (m) | "
           + " | ".join(f"> {t} m" for t in THRESHOLDS_M) + " |")
     print("|---|---:|---:|---|" + "---:|" * len(THRESHOLDS_M))
@@ -79,11 +80,8 @@ def main():
         if not os.path.exists(path):
             print(f"*** {path} is absent: not measured ***", file=sys.stderr)
             continue
-        decode = [os.path.join(options.build, "replay", "kew-decode"), "-q"] + (["-c", radar_config] if radar else []) + [path]
-        lines = subprocess.run(decode, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, check=True,
-                               text=True).stdout.splitlines()
-        if "--sort" in extra:
-            lines.sort(key=lambda l: json.loads(l)["t"] if l.strip() and not l.startswith("#") else -1)
+        lines = decoded_lines(os.path.join(options.build, "replay", "kew-decode"), path,
+                              radar_config if radar else None, extra)
         values, gaps = residuals(lines)
         if not values:
             continue
