@@ -123,5 +123,30 @@ TEST(ConflictTap, SeesEveryConflictingEvaluationOnceWithOrderedSlots) {
   EXPECT_EQ(events.front().state, AlertState::New);
 }
 
+TEST(ConflictTap, SeesConflictsTheRulesThenSuppress) {
+  // The tap reports what the probe found, so that the peers benchmark can compare
+  // candidate searches; the eligibility rules decide afterwards what becomes an alert.
+  // Two tracks of one aircraft (one address, two sources) head-on at one level: every
+  // evaluation of the pair is a conflict, and same_aircraft suppresses every alert.
+  Pipeline pipeline;
+  std::vector<std::pair<track::TrackSlot, track::TrackSlot>> taps;
+  std::vector<AlertEvent> events;
+  pipeline.set_conflict_tap([&](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); });
+  pipeline.set_alert_sink([&](const AlertEvent& e) { events.push_back(e); });
+  for (int k = 0; k < 3; ++k) {
+    const double t = 1714400000.0 + 4.0 * k;
+    const double flown_deg = 4.0 * k * 205.8 / 71700.0;
+    TrackReport west = report("W", t, 7.9 + flown_deg, 90.0);
+    TrackReport east = report("E", t, 8.1 - flown_deg, 270.0);
+    west.address = east.address = 0x4B1234;
+    east.source = "tap-2";
+    pipeline.process(west);
+    pipeline.process(east);
+  }
+  EXPECT_EQ(taps.size(), 5u);
+  EXPECT_TRUE(events.empty());
+  EXPECT_GE(pipeline.suppressed().count("same_aircraft"), 5u);
+}
+
 }  // namespace
 }  // namespace kew

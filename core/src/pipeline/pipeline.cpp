@@ -480,7 +480,9 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
     bool along_turn = false;
-    if (pair_in_conflict(pair.kp, pair.kq, pair.minima) && !suppressed_by_rules(pair)) {
+    const bool found = pair_in_conflict(pair.kp, pair.kq, pair.minima);
+    if (found && conflict_tap_) conflict_tap_(pair.p, pair.q);  // what the search found, before the rules
+    if (found && !suppressed_by_rules(pair)) {
       g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
       if (!g.in_conflict) {  // only the turn hypothesis finds it
         g = probe::turn_conflict(pair.kp, pair.kq, pair.minima);
@@ -492,7 +494,6 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
     e.confirm = pair.parameters.confirm;
     e.clear = pair.parameters.clear;
     if (g.in_conflict) {
-      if (conflict_tap_) conflict_tap_(pair.p, pair.q);
       e.severity = alerts_.classify(g.lost_now, g.t_los_s, pair.parameters.warning_s);
       e.t_los_s = g.t_los_s;
       e.cpa_h_m = g.cpa_h_m / pair.scale;

@@ -95,10 +95,11 @@ class Pipeline {
   /// Receives every alert event, in sequence order, synchronously.
   void set_alert_sink(AlertSink sink) { sink_ = std::move(sink); }
 
-  /// Told of every pair evaluation that finds a conflict, before the alert manager sees
-  /// it: slots (p < q) of the pair, at now(). Alerts need `confirm` such evaluations;
-  /// the tap sees each one, so benchmarks can check other candidate searches against
-  /// the probe's. Empty by default (no cost beyond a test per conflict).
+  /// Told of every pair evaluation that finds a conflict, before the eligibility rules
+  /// and the alert manager see it (a pair the rules then suppress is told too): slots
+  /// (p < q) of the pair, at now(). Alerts need `confirm` such evaluations; the tap sees
+  /// each one, so benchmarks can check other candidate searches against the probe's.
+  /// Empty by default (no cost beyond a test per conflict).
   using ConflictTap = std::function<void(track::TrackSlot p, track::TrackSlot q)>;
   void set_conflict_tap(ConflictTap tap) { conflict_tap_ = std::move(tap); }
 
