@@ -2,6 +2,9 @@
 // build (design §6.7, issue 8), on the same generated traffic and in one run:
 //   (a) kew         the Pipeline (track table, projection, kinetic Delaunay updates and
 //                   events, exact BFS probe, alert manager) — no alert output;
+//   (a') kew-index  kew's kinetic triangulation and exact search alone, driven with the
+//                   same updates and conflict test as (b)-(e): the method measured as
+//                   the baselines are (also split into maintenance, search and tests);
 //   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period
 //                   (spatial sort, then insertion with a hint; Epick) + the same BFS probe;
 //   (c) flip        one triangulation kept across periods: every position updated in place
@@ -26,7 +29,9 @@
 //
 // Usage: kew_peers_bench [--quick] [--aircraft 1000,10000,100000] [--periods N]
 //                        [--warmup N] [--seed S] [--scenario mixed|random|airways|stacks|tma]
-//                        [--brute-budget PAIRS] [--json FILE]
+//                        [--methods kew-index,grid,...] [--brute-budget PAIRS] [--json FILE]
+// --methods picks which methods run beside kew (kew-centred, kew-eager, kew-tau50,
+// kew-index, cgal, flip, grid, brute; all by default).
 //
 // Density: the region grows with √N (one aircraft per 126 km² at every N), but the
 // mixed scenario puts its TMA arrivals (20 %) on one centre and its airways (40 %) on at
@@ -54,9 +59,12 @@
 #include <vector>
 
 #include "bench_report.hpp"
+#include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/pipeline/pipeline.hpp"
+#include "kew/probe/proximity_search.hpp"
 #include "kew/replay/traffic_generator.hpp"
 #include "kew/triangulation/delaunay.hpp"
+#include "kew/util/name_table.hpp"
 
 namespace {
 
@@ -82,7 +90,14 @@ struct Params {
   // update is timed and the period's time extrapolated (and labelled so).
   double brute_budget = 1.5e8;
   std::string json_path;
+  std::vector<std::string> methods;  // empty: all of them; kew itself always runs
 };
+
+constexpr const char* kMethodNames[] = {"kew-centred", "kew-eager", "kew-tau50", "kew-index", "cgal", "flip", "grid", "brute"};
+
+bool wanted(const Params& p, const std::string& method) {
+  return p.methods.empty() || std::find(p.methods.begin(), p.methods.end(), method) != p.methods.end();
+}
 
 // Density: 100,000 aircraft fill the generator's largest region (radius 2,000 km), and
 // smaller fleets get a region scaled by √N, so every fleet size has the same density:
@@ -94,18 +109,24 @@ double region_radius_km(std::size_t aircraft) {
 [[noreturn]] void usage(const std::string& why) {
   std::cerr << "kew_peers_bench: " << why
             << "\nusage: kew_peers_bench [--quick] [--aircraft N,N,...] [--periods N] [--warmup N] [--seed S]"
-               " [--scenario NAME] [--brute-budget PAIRS] [--json FILE]\n";
+               " [--scenario NAME] [--methods NAME,...] [--brute-budget PAIRS] [--json FILE]\n";
   std::exit(2);
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    out.push_back(text.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  return out;
 }
 
 std::vector<std::size_t> parse_list(const std::string& text) {
   std::vector<std::size_t> out;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    out.push_back(std::stoul(text.substr(begin, comma - begin)));
-    begin = comma + 1;
-  }
+  for (const std::string& item : split_list(text)) out.push_back(std::stoul(item));
   return out;
 }
 
@@ -139,6 +160,15 @@ Params parse(int argc, char** argv) {
         p.brute_budget = std::stod(value());
       } else if (flag == "--json") {
         p.json_path = value();
+      } else if (flag == "--methods") {
+        for (const std::string& name : split_list(value())) {
+          if (name == "kew") continue;  // always run: every other method is checked against it
+          if (std::find_if(std::begin(kMethodNames), std::end(kMethodNames), [&](const char* m) { return name == m; }) ==
+              std::end(kMethodNames))
+            usage("unknown method " + name);
+          p.methods.push_back(name);
+        }
+        if (p.methods.empty()) p.methods.push_back("kew");  // kew alone
       } else {
         usage("unknown flag " + flag);
       }
@@ -309,25 +339,39 @@ struct MethodResult {
 
 // kew as configured, and each lever of issue 22 turned back off, beside it in one run.
 enum class KewVariant { Default, Centred, Eager, Reinserting };
+inline constexpr kew::util::NameTable<KewVariant, 4> kKewVariantNames({{
+    {KewVariant::Default, "kew"},
+    {KewVariant::Centred, "kew-centred"},
+    {KewVariant::Eager, "kew-eager"},
+    {KewVariant::Reinserting, "kew-tau50"},
+}});
+std::string variant_name(KewVariant variant) { return std::string(kKewVariantNames.name(variant)); }
 
 // kew's time per period, then (time_phases) a second run for the split of print_split:
-// timing the parts costs about 1 µs per update, kept out of the first.
+// timing the parts costs a few clock reads per update (about 1 µs with a TSC clock
+// source, several on a virtual machine without one), kept out of the first.
 MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = KewVariant::Default,
                      bool time_phases = false) {
   kew::PipelineConfig config = w.config;
   config.time_phases = time_phases;
-  MethodResult result{"kew", "kew: KDT updates (lazy certificates) + exact BFS probe around p + v·T (Pipeline)", 1,
-                      {}, 0, 0};
-  if (variant == KewVariant::Centred) {
-    result = {"kew-centred", "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)", 1, {}, 0, 0};
-    config.search_ahead = false;
-  } else if (variant == KewVariant::Eager) {
-    result = {"kew-eager", "kew with every certificate solved over the whole horizon", 1, {}, 0, 0};
-    config.kinetic.lazy_window_s = 0.0;
-  } else if (variant == KewVariant::Reinserting) {
-    result = {"kew-tau50", "kew with the earlier tolerance: τ = 50 m, every update within τ changes the velocity", 1, {}, 0, 0};
-    config.kinetic.tolerance = 50.0;
-    config.kinetic.keep_model_s = 0.0;
+  MethodResult result{variant_name(variant), "", 1, {}, 0, 0};
+  switch (variant) {
+    case KewVariant::Default:
+      result.label = "kew: KDT updates (lazy certificates) + exact BFS probe around p + v·T (Pipeline)";
+      break;
+    case KewVariant::Centred:
+      result.label = "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)";
+      config.search_ahead = false;
+      break;
+    case KewVariant::Eager:
+      result.label = "kew with every certificate solved over the whole horizon";
+      config.kinetic.lazy_window_s = 0.0;
+      break;
+    case KewVariant::Reinserting:
+      result.label = "kew with the earlier tolerance: τ = 50 m, every update within τ changes the velocity";
+      config.kinetic.tolerance = 50.0;
+      config.kinetic.keep_model_s = 0.0;
+      break;
   }
   kew::Pipeline pipeline(config);
   std::uint32_t current = 0;
@@ -428,6 +472,93 @@ bool in_conflict(const World& world, Slot slot, const Kinematics& k_self, Slot o
   const Kinematics k_other = them.at(clock);
   return slot < other ? kew::probe::in_conflict(k_self, k_other, minima)
                       : kew::probe::in_conflict(k_other, k_self, minima);
+}
+
+// ---------------------------------------------------------------------------------
+// (a') kew's method alone, measured as the baselines are
+
+// How much of kew-index's work one run does. Three runs (maintenance alone, with the
+// search, everything) split its time by their differences, without reading a clock
+// around each part of each update: a clock read costs microseconds on virtual machines
+// whose clock source is not the TSC, which is what distorts PipelineConfig::time_phases.
+enum class IndexWork { Maintenance, Search, All };
+
+// The Pipeline's kinetic triangulation and exact search (the disk of radius
+// S_h·k_max + T·v_max + 2τ around p_i + v_i·T, design §2.1), fed the same updates as the
+// baselines (the track table's output, World) and testing candidates with the same
+// conflict test: the method's maintenance, search and CPA tests, without the track
+// table, projection, eligibility rules and alert bookkeeping the Pipeline adds around
+// them. v_max is the largest speed of the whole run, as the baselines' (the Pipeline's
+// is that of the tracks live at the time).
+MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork work = IndexWork::All) {
+  using kew::kinetic::kNoPoint;
+  using kew::kinetic::PointId;
+  MethodResult result{"kew-index", "kew's kinetic Delaunay triangulation and exact search alone, fed as the baselines are",
+                      1, {}, 0, 0};
+  const kew::probe::SeparationMinima& minima = w.config.minima;
+  kew::kinetic::KineticDelaunay kdt(w.config.kinetic, 0.0);
+  kew::probe::ProximitySearch search;
+  World world;
+  std::vector<PointId> point_of;  // by slot
+  std::vector<Slot> slot_of;      // by point
+  std::vector<PointId> found;
+  const double epoch = w.steps.empty() ? 0.0 : std::floor(w.steps.front().clock);
+  const double radius =
+      minima.horizontal_m * w.k_max + minima.lookahead_s * w.v_max + 2.0 * w.config.kinetic.tolerance + 1.0;
+  // The Pipeline's calls for one step (Pipeline::apply, leave_engine); the point updated.
+  const auto apply = [&](const Step& s) -> PointId {
+    world.grow(s.slot);
+    if (point_of.size() <= s.slot) point_of.resize(s.slot + 1, kNoPoint);
+    const double t = s.clock - epoch;
+    kdt.advance(t);
+    PointId& point = point_of[s.slot];
+    if (s.drop) {
+      if (point != kNoPoint) {
+        kdt.remove(point, t);
+        slot_of[point] = kNone;
+        point = kNoPoint;
+      }
+      world.live[s.slot] = 0;
+      return kNoPoint;
+    }
+    world.state[s.slot] = s.state;
+    world.live[s.slot] = 1;
+    const Kinematics now = s.state.at(s.clock);
+    if (point == kNoPoint) {
+      point = kdt.insert(t, now.position, now.velocity);
+      if (slot_of.size() <= point) slot_of.resize(point + 1, kNone);
+      slot_of[point] = s.slot;
+    } else {
+      kdt.update(point, t, now.position, now.velocity);
+    }
+    return point;
+  };
+  std::size_t step = 0;
+  for (; step < w.period_first_step[prm.warmup]; ++step) apply(w.steps[step]);
+  for (std::size_t period = prm.warmup; period < prm.warmup + prm.periods; ++period) {
+    PeriodResult out;
+    const Stopwatch clock;
+    for (; step < w.period_first_step[period + 1]; ++step) {
+      const Step& s = w.steps[step];
+      const PointId point = apply(s);
+      if (point == kNoPoint || work == IndexWork::Maintenance) continue;
+      const Kinematics k_self = world.state[s.slot].at(s.clock);
+      found.clear();
+      search.within_around(kdt, point, kdt.position_now(point) + minima.lookahead_s * k_self.velocity, radius, found);
+      ++out.queries;
+      if (work == IndexWork::Search) continue;
+      for (const PointId p : found) {
+        const Slot other = slot_of[p];
+        ++out.pairs_tested;
+        if (in_conflict(world, s.slot, k_self, other, s.clock, minima))
+          out.conflicts.push_back({s.record, std::min(s.slot, other), std::max(s.slot, other)});
+      }
+    }
+    out.seconds = out.measured_seconds = clock.seconds();
+    out.audit_violations += kdt.is_valid() ? 0 : 1;
+    result.periods.push_back(std::move(out));
+  }
+  return result;
 }
 
 // An index answers for_each_candidate(world, slot, centre, radius, f): f(j) at least for
@@ -845,7 +976,11 @@ struct FleetResult {
   std::size_t records = 0;
   std::uint64_t rejected = 0;
   std::vector<MethodResult> methods;  // kew first
-  std::vector<MethodResult> split;    // kew and kew-centred with their parts timed
+  std::vector<MethodResult> split;    // kew and its variants with their parts timed
+  struct IndexParts {                  // kew-index's three runs (IndexWork), s per period
+    double maintenance = 0.0, with_search = 0.0, all = 0.0;
+  };
+  std::optional<IndexParts> index_parts;
 };
 
 void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
@@ -895,6 +1030,27 @@ void print_split(const Params& prm, const std::vector<FleetResult>& fleets) {
     }
 }
 
+// kew-index's parts from its three runs, beside the grid's whole period.
+void print_index_parts(const std::vector<FleetResult>& fleets) {
+  bool any = false;
+  for (const FleetResult& fleet : fleets) any = any || fleet.index_parts.has_value();
+  if (!any) return;
+  std::cout << "\n| aircraft | kew-index ms / period | maintenance ms | search ms | CPA tests ms | grid ms / period | "
+               "kew-index × grid |\n|---|---|---|---|---|---|---|\n";
+  for (const FleetResult& fleet : fleets) {
+    if (!fleet.index_parts) continue;
+    const FleetResult::IndexParts& parts = *fleet.index_parts;
+    const auto grid = std::find_if(fleet.methods.begin(), fleet.methods.end(),
+                                   [](const MethodResult& m) { return m.name == "grid"; });
+    const double grid_s = grid == fleet.methods.end() ? 0.0 : grid->mean_seconds();
+    std::cout << "| " << fleet.aircraft << " | " << fixed(1e3 * parts.all, 1) << " | " << fixed(1e3 * parts.maintenance, 1)
+              << " | " << fixed(1e3 * (parts.with_search - parts.maintenance), 1) << " | "
+              << fixed(1e3 * (parts.all - parts.with_search), 1) << " | "
+              << (grid_s > 0.0 ? fixed(1e3 * grid_s, 1) + " | " + fixed(parts.all / grid_s, 2) : std::string("- | -"))
+              << " |\n";
+  }
+}
+
 void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
   JsonText j;
   j.begin_object();
@@ -941,6 +1097,13 @@ void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
       j.end_object();
     }
     j.end_object();
+    if (fleet.index_parts) {  // kew-index's three runs (seconds per period)
+      j.key("kew_index_parts").begin_object();
+      j.key("maintenance_s").value(fleet.index_parts->maintenance);
+      j.key("maintenance_and_search_s").value(fleet.index_parts->with_search);
+      j.key("all_s").value(fleet.index_parts->all);
+      j.end_object();
+    }
     // The runs with their parts timed (CPU seconds per period).
     j.key("split").begin_object();
     for (const MethodResult& m : fleet.split) {
@@ -980,19 +1143,29 @@ int main(int argc, char** argv) {
   for (const std::size_t n : prm.aircraft) {
     std::cerr << n << " aircraft: generating...\n";
     const Workload w = make_workload(prm, n);
-    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}, {}};
+    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}, {}, {}};
     std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
               << fixed(w.radius_km, 0) << " km; (a) kew...\n";
     fleet.methods.push_back(run_kew(prm, w));
-    for (const KewVariant variant : {KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting}) {
-      fleet.methods.push_back(run_kew(prm, w, variant));
-      std::cerr << "  " << fleet.methods.back().name << " done\n";
-      compare(fleet.methods.front(), fleet.methods.back());
-      all_agree = all_agree && fleet.methods.back().missing == 0 && fleet.methods.back().extra == 0;
+    const auto checked = [&](MethodResult m) {
+      std::cerr << "  " << m.name << " done\n";
+      compare(fleet.methods.front(), m);
+      all_agree = all_agree && m.missing == 0 && m.extra == 0;
+      fleet.methods.push_back(std::move(m));
+    };
+    constexpr KewVariant kVariants[] = {KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting};
+    for (const KewVariant variant : kVariants)
+      if (wanted(prm, variant_name(variant))) checked(run_kew(prm, w, variant));
+    if (wanted(prm, "kew-index")) {
+      checked(run_kinetic_index(prm, w));
+      fleet.index_parts = {run_kinetic_index(prm, w, IndexWork::Maintenance).mean_seconds(),
+                           run_kinetic_index(prm, w, IndexWork::Search).mean_seconds(),
+                           run_kinetic_index(prm, w, IndexWork::All).mean_seconds()};
     }
     std::cerr << "  kew's variants again, timing their parts...\n";
-    for (const KewVariant variant : {KewVariant::Default, KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting})
-      fleet.split.push_back(run_kew(prm, w, variant, true));
+    fleet.split.push_back(run_kew(prm, w, KewVariant::Default, true));
+    for (const KewVariant variant : kVariants)
+      if (wanted(prm, variant_name(variant))) fleet.split.push_back(run_kew(prm, w, variant, true));
 
     const double r_max = w.config.minima.horizontal_m * w.k_max + 2.0 * w.config.minima.lookahead_s * w.v_max;
     const auto run = [&](const char* name, const char* label, auto& index, std::size_t stride) {
@@ -1003,20 +1176,22 @@ int main(int argc, char** argv) {
       all_agree = all_agree && m.missing == 0 && m.extra == 0;
       fleet.methods.push_back(std::move(m));
     };
-    {
+    if (wanted(prm, "cgal")) {
       CgalRebuild cgal;
       run("cgal", "CGAL Delaunay_triangulation_2 (Epick) rebuilt per period, spatial sort + BFS", cgal, 1);
     }
-    {
+    if (wanted(prm, "flip")) {
       FlipRepair flip;
       run("flip", "positions updated in place, every edge checked (exact incircle), Lawson flips", flip, 1);
     }
-    UniformGrid grid(r_max);
-    run("grid", "uniform grid (cell = R_max) rebuilt per period", grid, 1);
+    if (wanted(prm, "grid")) {
+      UniformGrid grid(r_max);
+      run("grid", "uniform grid (cell = R_max) rebuilt per period", grid, 1);
+    }
     const double pairs = static_cast<double>(n) * static_cast<double>(n);
     const auto stride = static_cast<std::size_t>(std::max(1.0, std::ceil(pairs / prm.brute_budget)));
     BruteForce brute;
-    run("brute", "brute force, all pairs per update (BlueSky state-based)", brute, stride);
+    if (wanted(prm, "brute")) run("brute", "brute force, all pairs per update (BlueSky state-based)", brute, stride);
     for (const MethodResult& m : fleet.methods)
       for (const PeriodResult& p : m.periods)
         if (p.audit_violations) {
@@ -1027,6 +1202,7 @@ int main(int argc, char** argv) {
   }
   print_table(prm, fleets);
   print_split(prm, fleets);
+  print_index_parts(fleets);
   if (!prm.json_path.empty()) write_json(prm, fleets);
   if (!all_agree) std::cerr << "kew_peers_bench: a baseline disagrees with kew (see MISMATCH lines)\n";
   return all_agree ? 0 : 1;
