@@ -4,7 +4,8 @@
 //                   events, exact BFS probe, alert manager) — no alert output;
 //   (a') kew-index  kew's kinetic triangulation and exact search alone, driven with the
 //                   same updates and conflict test as (b)-(e): the method measured as
-//                   the baselines are (also split into maintenance, search and tests);
+//                   the baselines are (also split into maintenance, search and tests,
+//                   and H counted: what kinetic detection would keep, design §2.7);
 //   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period
 //                   (spatial sort, then insertion with a hint; Epick) + the same BFS probe;
 //   (c) flip        one triangulation kept across periods: every position updated in place
@@ -56,6 +57,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "bench_report.hpp"
@@ -483,6 +486,28 @@ bool in_conflict(const World& world, Slot slot, const Kinematics& k_self, Slot o
 // whose clock source is not the TSC, which is what distorts PipelineConfig::time_phases.
 enum class IndexWork { Maintenance, Search, All };
 
+// What kinetic detection (issue 22 item 4, design §2.7) would have to keep, counted on
+// kew-index's updates: H, the pairs whose horizontal separation is below S_h somewhere in
+// the look-ahead window [t, t + T] (every pair that can be in conflict is in H).
+struct HorizontalCensus {
+  std::uint64_t updates = 0;
+  std::uint64_t candidates = 0;        // pairs the exact search returned
+  std::uint64_t horizontal = 0;        // of those, pairs in H at the update: Σ |H_i|
+  std::uint64_t conflicts = 0;
+  std::uint64_t distinct = 0;          // pairs in H at some update of the period
+  std::uint64_t entering = 0;          // of those, pairs in H at no update of the period before
+  std::uint64_t entering_two_hop = 0;  // of those, pairs with a common H partner the period before
+};
+
+// Whether two tracks come within `s_h` of each other horizontally during [0, T] (m, s).
+bool horizontally_close(const Kinematics& a, const Kinematics& b, double s_h, double lookahead_s) {
+  const Vector2 d = b.position - a.position, v = b.velocity - a.velocity;
+  const double vv = kew::geometry::dot(v, v);
+  const double at = vv > 0.0 ? std::clamp(-kew::geometry::dot(d, v) / vv, 0.0, lookahead_s) : 0.0;
+  const Vector2 closest = d + at * v;
+  return kew::geometry::dot(closest, closest) < s_h * s_h;
+}
+
 // The Pipeline's kinetic triangulation and exact search (the disk of radius
 // S_h·k_max + T·v_max + 2τ around p_i + v_i·T, design §2.1), fed the same updates as the
 // baselines (the track table's output, World) and testing candidates with the same
@@ -490,7 +515,9 @@ enum class IndexWork { Maintenance, Search, All };
 // table, projection, eligibility rules and alert bookkeeping the Pipeline adds around
 // them. v_max is the largest speed of the whole run, as the baselines' (the Pipeline's
 // is that of the tracks live at the time).
-MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork work = IndexWork::All) {
+// With `census`, counts H per measured period as well (an untimed run: hash sets).
+MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork work = IndexWork::All,
+                               std::vector<HorizontalCensus>* census = nullptr) {
   using kew::kinetic::kNoPoint;
   using kew::kinetic::PointId;
   MethodResult result{"kew-index", "kew's kinetic Delaunay triangulation and exact search alone, fed as the baselines are",
@@ -533,10 +560,16 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
     }
     return point;
   };
+  const auto pair_key = [](Slot a, Slot b) {
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+  };
+  std::unordered_set<std::uint64_t> h_now, h_before;                      // pairs in H, this period and the one before
+  std::unordered_map<Slot, std::vector<Slot>> partners_now, partners_before;  // H as adjacency lists
   std::size_t step = 0;
   for (; step < w.period_first_step[prm.warmup]; ++step) apply(w.steps[step]);
   for (std::size_t period = prm.warmup; period < prm.warmup + prm.periods; ++period) {
     PeriodResult out;
+    HorizontalCensus counted;
     const Stopwatch clock;
     for (; step < w.period_first_step[period + 1]; ++step) {
       const Step& s = w.steps[step];
@@ -552,9 +585,47 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
         ++out.pairs_tested;
         if (in_conflict(world, s.slot, k_self, other, s.clock, minima))
           out.conflicts.push_back({s.record, std::min(s.slot, other), std::max(s.slot, other)});
+        if (census) {
+          const double s_h = minima.horizontal_m * kew::geo::Projection::pair_scale(world.state[s.slot].scale,
+                                                                                   world.state[other].scale);
+          if (horizontally_close(k_self, world.state[other].at(s.clock), s_h, minima.lookahead_s)) {
+            ++counted.horizontal;
+            if (h_now.insert(pair_key(s.slot, other)).second) {
+              partners_now[s.slot].push_back(other);
+              partners_now[other].push_back(s.slot);
+            }
+          }
+        }
       }
     }
     out.seconds = out.measured_seconds = clock.seconds();
+    if (census) {
+      counted.updates = out.queries;
+      counted.candidates = out.pairs_tested;
+      counted.conflicts = out.conflicts.size();
+      counted.distinct = h_now.size();
+      std::vector<Slot> mine;
+      for (const std::uint64_t key : h_now) {
+        if (h_before.count(key)) continue;
+        ++counted.entering;
+        const auto a = partners_before.find(static_cast<Slot>(key >> 32));
+        const auto b = partners_before.find(static_cast<Slot>(key & 0xFFFFFFFFu));
+        if (a == partners_before.end() || b == partners_before.end()) continue;
+        mine = a->second;
+        std::sort(mine.begin(), mine.end());
+        for (const Slot k : b->second)
+          if (std::binary_search(mine.begin(), mine.end(), k)) {
+            ++counted.entering_two_hop;
+            break;
+          }
+      }
+      // The period before the first measured one is not counted: nothing enters then.
+      if (period > prm.warmup) census->push_back(counted);
+      h_before.swap(h_now);
+      partners_before.swap(partners_now);
+      h_now.clear();
+      partners_now.clear();
+    }
     out.audit_violations += kdt.is_valid() ? 0 : 1;
     result.periods.push_back(std::move(out));
   }
@@ -981,6 +1052,7 @@ struct FleetResult {
     double maintenance = 0.0, with_search = 0.0, all = 0.0;
   };
   std::optional<IndexParts> index_parts;
+  std::vector<HorizontalCensus> census;  // by measured period after the first
 };
 
 void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
@@ -1051,6 +1123,35 @@ void print_index_parts(const std::vector<FleetResult>& fleets) {
   }
 }
 
+// The census of H (HorizontalCensus), per update and per period.
+void print_census(const std::vector<FleetResult>& fleets) {
+  bool any = false;
+  for (const FleetResult& fleet : fleets) any = any || !fleet.census.empty();
+  if (!any) return;
+  std::cout << "\n| aircraft | candidates / update | in H / update | conflicts / update | pairs in H / period | "
+               "entering H / period | entering with a common partner |\n|---|---|---|---|---|---|---|\n";
+  for (const FleetResult& fleet : fleets) {
+    if (fleet.census.empty()) continue;
+    HorizontalCensus sum;
+    for (const HorizontalCensus& c : fleet.census) {
+      sum.updates += c.updates, sum.candidates += c.candidates, sum.horizontal += c.horizontal;
+      sum.conflicts += c.conflicts, sum.distinct += c.distinct, sum.entering += c.entering;
+      sum.entering_two_hop += c.entering_two_hop;
+    }
+    const auto per_update = [&](std::uint64_t x) {
+      return fixed(static_cast<double>(x) / static_cast<double>(sum.updates), 1);
+    };
+    const auto per_period = [&](std::uint64_t x) {
+      return fixed(static_cast<double>(x) / static_cast<double>(fleet.census.size()), 0);
+    };
+    std::cout << "| " << fleet.aircraft << " | " << per_update(sum.candidates) << " | " << per_update(sum.horizontal)
+              << " | " << per_update(sum.conflicts) << " | " << per_period(sum.distinct) << " | "
+              << per_period(sum.entering) << " | "
+              << fixed(100.0 * static_cast<double>(sum.entering_two_hop) / static_cast<double>(std::max<std::uint64_t>(1, sum.entering)), 0)
+              << " % |\n";
+  }
+}
+
 void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
   JsonText j;
   j.begin_object();
@@ -1104,6 +1205,21 @@ void write_json(const Params& prm, const std::vector<FleetResult>& fleets) {
       j.key("all_s").value(fleet.index_parts->all);
       j.end_object();
     }
+    if (!fleet.census.empty()) {
+      j.key("kew_index_census").begin_array();
+      for (const HorizontalCensus& c : fleet.census) {
+        j.begin_object();
+        j.key("updates").value(c.updates);
+        j.key("candidates").value(c.candidates);
+        j.key("in_h").value(c.horizontal);
+        j.key("conflicts").value(c.conflicts);
+        j.key("distinct_in_h").value(c.distinct);
+        j.key("entering_h").value(c.entering);
+        j.key("entering_h_with_common_partner").value(c.entering_two_hop);
+        j.end_object();
+      }
+      j.end_array();
+    }
     // The runs with their parts timed (CPU seconds per period).
     j.key("split").begin_object();
     for (const MethodResult& m : fleet.split) {
@@ -1143,7 +1259,7 @@ int main(int argc, char** argv) {
   for (const std::size_t n : prm.aircraft) {
     std::cerr << n << " aircraft: generating...\n";
     const Workload w = make_workload(prm, n);
-    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}, {}, {}};
+    FleetResult fleet{n, w.radius_km, w.records.size(), w.rejected, {}, {}, {}, {}};
     std::cerr << "  " << w.records.size() << " records (" << w.rejected << " rejected), region radius "
               << fixed(w.radius_km, 0) << " km; (a) kew...\n";
     fleet.methods.push_back(run_kew(prm, w));
@@ -1161,6 +1277,7 @@ int main(int argc, char** argv) {
       fleet.index_parts = {run_kinetic_index(prm, w, IndexWork::Maintenance).mean_seconds(),
                            run_kinetic_index(prm, w, IndexWork::Search).mean_seconds(),
                            run_kinetic_index(prm, w, IndexWork::All).mean_seconds()};
+      run_kinetic_index(prm, w, IndexWork::All, &fleet.census);
     }
     std::cerr << "  kew's variants again, timing their parts...\n";
     fleet.split.push_back(run_kew(prm, w, KewVariant::Default, true));
@@ -1203,6 +1320,7 @@ int main(int argc, char** argv) {
   print_table(prm, fleets);
   print_split(prm, fleets);
   print_index_parts(fleets);
+  print_census(fleets);
   if (!prm.json_path.empty()) write_json(prm, fleets);
   if (!all_agree) std::cerr << "kew_peers_bench: a baseline disagrees with kew (see MISMATCH lines)\n";
   return all_agree ? 0 : 1;
