@@ -70,10 +70,8 @@ PointId ProximitySearch::nearest_to(const kinetic::KineticDelaunay& kdt, PointId
   return best;
 }
 
-bool ProximitySearch::group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center,
-                                     geometry::Point2 c, double reach2, std::vector<PointId>& out) {
-  std::uint32_t& mark = visited_round_[vertex];
-  if (mark == round_ || mark == round_ + 1) return mark == round_ + 1;
+bool ProximitySearch::first_group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center,
+                                           geometry::Point2 c, double reach2, std::vector<PointId>& out) {
   bool any = false;
   const auto consider = [&](PointId p) {
     const geometry::Vector2 d = kdt.position_now(p) - c;
@@ -83,7 +81,7 @@ bool ProximitySearch::group_in_reach(const kinetic::KineticDelaunay& kdt, PointI
   };
   consider(vertex);
   for (const PointId twin : kdt.twins_of(vertex)) consider(twin);
-  mark = any ? round_ + 1 : round_;
+  visited_round_[vertex] = any ? round_ + 1 : round_;
   return any;
 }
 

@@ -69,8 +69,17 @@ class ProximitySearch {
   static PointId nearest_to(const kinetic::KineticDelaunay& kdt, PointId from, geometry::Point2 c);
   /// Whether a triangulation vertex or one of its twins is within reach of c, each
   /// decided once per search; the first time, appends those in reach (center excepted).
+  /// Inline: a vertex is met from each of its ~6 faces and decided at the first.
   bool group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center, geometry::Point2 c,
-                      double reach2, std::vector<PointId>& out);
+                      double reach2, std::vector<PointId>& out) {
+    const std::uint32_t mark = visited_round_[vertex];
+    if (mark == round_ + 1) return true;
+    if (mark == round_) return false;
+    return first_group_in_reach(kdt, vertex, center, c, reach2, out);
+  }
+  /// group_in_reach() the first time the search meets `vertex`: decides and marks it.
+  bool first_group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center,
+                            geometry::Point2 c, double reach2, std::vector<PointId>& out);
   /// Marks p visited in this round (vertex search); false when it already was.
   bool first_visit(PointId p) {
     if (visited_round_[p] == round_) return false;
