@@ -38,6 +38,9 @@ void read_tracks(TableReader& r, track::TrackTableConfig& t) {
   r.integer("max_tracks", t.max_tracks, 1, 10'000'000);
   r.number("max_lateness_s", t.max_lateness_s, 0.0, 3600.0);
   r.number("max_time_jump_s", t.max_time_jump_s, 0.0, 3600.0);
+  if (t.max_time_jump_s > t.max_lateness_s)  // or the held record could make every other one too late (§4.1)
+    r.fail(nullptr, fmt::format("max_time_jump_s = {} must not exceed max_lateness_s = {}", t.max_time_jump_s,
+                                t.max_lateness_s));
   r.number("max_derivation_gap_s", t.max_derivation_gap_s, 0.1, 3600.0);
 }
 
@@ -129,6 +132,11 @@ SharedConfig read_shared_config(const Document& document) {
   document.each_table("radar", [&](TableReader& r, std::size_t) {
     protocol::RadarSite site{};
     read_radar(r, site);
+    // Plots are placed from the site their SAC/SIC names: two sites under one name would
+    // leave it to the order of the file which one places them.
+    for (const protocol::RadarSite& other : config.decoding.asterix.radars)
+      if (other.sac == site.sac && other.sic == site.sic)
+        r.fail(nullptr, fmt::format("a radar with sac = {} and sic = {} is already configured", site.sac, site.sic));
     config.decoding.asterix.radars.push_back(site);
   });
   // After [probe]: a region's vertical_ft is checked against its altimetry tolerance.

@@ -215,6 +215,13 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
   expect_error("[eligibility]\nexcluded_mode3a = [\"7700\"]\n", "7700 is an emergency code and always alerts");
   expect_error("[eligibility]\nexcluded_mode3a = [\"7778\"]\n", "four octal digits");
   expect_error("[eligibility]\nexcluded_mode3a = 7777\n", "must be an array of Mode 3/A codes");
+  // A record held for a time jump longer than the lateness bound would make every
+  // other record too late when it moved the clock (design §4.1).
+  expect_error("[tracks]\nmax_lateness_s = 5\nmax_time_jump_s = 20\n",
+               "max_time_jump_s = 20 must not exceed max_lateness_s = 5");
+  expect_error("[[radar]]\nsac = 20\nsic = 129\nlat = 41.3\nlon = 2.1\n"
+               "[[radar]]\nsac = 20\nsic = 129\nlat = 41.5\nlon = 2.3\n",
+               "a radar with sac = 20 and sic = 129 is already configured");
 }
 
 TEST(Config, ReadsTheEligibilityRules) {

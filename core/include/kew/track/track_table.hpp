@@ -28,8 +28,11 @@ inline constexpr TrackSlot kNoTrack = ~TrackSlot{0};
 
 struct TrackTableConfig {
   double track_timeout_s = 30.0;          ///< drop a track this long after its last record (s, > 0)
-  double max_ground_speed_kt = 1200.0;    ///< records faster than this are rejected (kt, > 0)
-  double max_vertical_rate_fpm = 20000.0; ///< |vertical rate| above this is rejected (ft/min)
+  /// A reported ground speed above this is dropped from its record (counted in
+  /// fields_dropped, the record kept); a velocity derived from positions above it is
+  /// discarded and derived afresh from this record on (kt, > 0).
+  double max_ground_speed_kt = 1200.0;
+  double max_vertical_rate_fpm = 20000.0; ///< a reported |vertical rate| above this is dropped (ft/min)
   double min_altitude_ft = -2000.0;       ///< altitude range accepted (ft)
   double max_altitude_ft = 100000.0;
   bool exclude_on_ground = true;          ///< on-ground targets are not tracked (design §4.3)
