@@ -433,6 +433,29 @@ TEST(TrafficGenerator, CalibratedTrafficHasTheRecordingsShape) {
   EXPECT_LT(share(holding_speed), 0.05);
 }
 
+// Where the arrivals reach the bottom of their descent (below 2,000 ft only within a few
+// km of their terminal), grouped greedily into places at least 30 km apart.
+std::size_t arrival_places(const GeneratorConfig& config) {
+  std::vector<std::pair<double, double>> places;  // lat, lon of each place's first record
+  for (const TrackReport& r : generate(config)) {
+    if (r.alt_ft >= 2000) continue;
+    const bool known = std::any_of(places.begin(), places.end(), [&](const auto& place) {
+      double s12 = 0;
+      GeographicLib::Geodesic::WGS84().Inverse(place.first, place.second, r.lat_deg, r.lon_deg, s12);
+      return s12 < 30'000;
+    });
+    if (!known) places.emplace_back(r.lat_deg, r.lon_deg);
+  }
+  return places.size();
+}
+
+TEST(TrafficGenerator, CalibratedArrivalsGoToSeveralTerminals) {
+  // One terminal per 50 arrivals (replay/README.md): 1,000 aircraft, 200 arrivals, four
+  // terminals, where the tma scenario sends every arrival to the centre.
+  EXPECT_GE(arrival_places(truth_config(Scenario::Calibrated, 1000, 600)), 3u);
+  EXPECT_EQ(arrival_places(truth_config(Scenario::Tma, 200, 600)), 1u);
+}
+
 TEST(TrafficGenerator, StacksPutManyLevelsOverOneGroundPoint) {
   // At some instant at least 5 aircraft lie within 1 km of one of them (so within 2 km of
   // each other), each at its own level.

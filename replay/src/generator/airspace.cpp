@@ -78,6 +78,14 @@ constexpr double kLowerLevelChangeShare = 0.6;
 // share a level one time in four; level changes are rarer than on the mixed airways.
 constexpr std::size_t kAllocationGroups = 4;
 constexpr double kCalibratedAirwayLevelChangeShare = 0.1;
+// Arrivals go to one terminal per 50 of them, not all to one: a busy hub has 40 arrivals
+// an hour at its peak, each about 35 minutes on its last 250 km, so some 25 inbound at
+// once; twice that is generous. The first terminal is the region's centre (its stacks sit
+// around it); the others lie anywhere within half the radius, with four arrival routes
+// each, no longer than the distance to the region's edge.
+constexpr std::size_t kCalibratedArrivalsPerTerminal = 50;
+constexpr std::size_t kCalibratedRoutesPerTerminal = 4;
+constexpr double kCalibratedTerminalRadiusShare = 0.5;
 
 /// Level `level_ft`, or with probability `share` a climb or descent of 1–3 `step_ft`
 /// starting at a uniform time in [earliest, latest] and staying within [lowest, highest].
@@ -157,14 +165,28 @@ void Airspace::lay_out_stacks(std::size_t count, bool near_terminal, RandomStrea
 
 void Airspace::lay_out_arrivals(std::size_t aircraft, RandomStream& layout) {
   if (aircraft == 0) return;
-  const std::size_t count =
-      std::clamp(aircraft / kAircraftPerArrivalRoute, kMinArrivalRoutes, kMaxArrivalRoutes);
-  arrival_extent_m_ = std::min(radius_m_, kArrivalMaxExtentM);
-  const double rotation = layout.uniform(0, 360);
-  arrivals_.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const double bearing = rotation + 360.0 * static_cast<double>(i) / static_cast<double>(count);
-    arrivals_.push_back(wgs84().Line(center_lat_, center_lon_, bearing, kLineCaps));
+  const auto add_terminal = [&](double lat, double lon, std::size_t routes, double extent_m) {
+    const double rotation = layout.uniform(0, 360);
+    for (std::size_t i = 0; i < routes; ++i) {
+      const double bearing = rotation + 360.0 * static_cast<double>(i) / static_cast<double>(routes);
+      arrivals_.push_back({wgs84().Line(lat, lon, bearing, kLineCaps), extent_m});
+    }
+  };
+  if (!calibrated_) {  // one terminal at the centre, its routes scaled with the arrivals
+    add_terminal(center_lat_, center_lon_,
+                 std::clamp(aircraft / kAircraftPerArrivalRoute, kMinArrivalRoutes, kMaxArrivalRoutes),
+                 std::min(radius_m_, kArrivalMaxExtentM));
+    return;
+  }
+  const std::size_t terminals = (aircraft + kCalibratedArrivalsPerTerminal - 1) / kCalibratedArrivalsPerTerminal;
+  for (std::size_t k = 0; k < terminals; ++k) {
+    double lat = center_lat_, lon = center_lon_, distance = 0.0;
+    if (k > 0) {  // area-uniform within the terminal radius
+      const double bearing = layout.uniform(0, 360);
+      distance = kCalibratedTerminalRadiusShare * radius_m_ * std::sqrt(layout.uniform());
+      wgs84().Direct(center_lat_, center_lon_, bearing, distance, lat, lon);
+    }
+    add_terminal(lat, lon, kCalibratedRoutesPerTerminal, std::min(radius_m_ - distance, kArrivalMaxExtentM));
   }
 }
 
@@ -326,14 +348,14 @@ Flight Airspace::holding_flight(const SlotPlan& plan, double t, RandomStream& rn
 }
 
 Flight Airspace::arrival_flight(double t, RandomStream& rng, bool under_way) const {
-  const auto& route = arrivals_[rng.index(arrivals_.size())];
-  const double start = under_way ? rng.uniform(kArrivalMinStartM, arrival_extent_m_) : arrival_extent_m_;
+  const Route& route = arrivals_[rng.index(arrivals_.size())];
+  const double start = under_way ? rng.uniform(kArrivalMinStartM, route.length_m) : route.length_m;
   const double leg_length = start - kArrivalEndM;
-  const double slow_down = std::min(kArrivalSlowDownM, arrival_extent_m_ - kArrivalEndM);
+  const double slow_down = std::min(kArrivalSlowDownM, route.length_m - kArrivalEndM);
 
   Flight f;
   f.begin_time = f.leg_start_time = t;
-  f.leg.line = &route;
+  f.leg.line = &route.line;
   f.leg.start_arc_m = start;
   f.leg.direction = -1;  // inbound: the routes are drawn outbound from the terminal
   f.leg.length_m = leg_length;

@@ -70,8 +70,7 @@ class Airspace {
   bool calibrated_;  // Scenario::Calibrated: its level rules (airspace.cpp)
   std::vector<Route> airways_;
   std::vector<Stack> stacks_;
-  std::vector<GeographicLib::GeodesicLine> arrivals_;  // outbound from the terminal
-  double arrival_extent_m_ = 0;
+  std::vector<Route> arrivals_;  // outbound from their terminal; length_m: where arrivals enter
 };
 
 }  // namespace kew::replay::detail
