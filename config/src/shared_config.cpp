@@ -136,7 +136,8 @@ SharedConfig read_shared_config(const Document& document) {
     // leave it to the order of the file which one places them.
     for (const protocol::RadarSite& other : config.decoding.asterix.radars)
       if (other.sac == site.sac && other.sic == site.sic)
-        r.fail(nullptr, fmt::format("a radar with sac = {} and sic = {} is already configured", site.sac, site.sic));
+        r.fail(r.table_node(),
+               fmt::format("a radar with sac = {} and sic = {} is already configured", site.sac, site.sic));
     config.decoding.asterix.radars.push_back(site);
   });
   // After [probe]: a region's vertical_ft is checked against its altimetry tolerance.

@@ -221,7 +221,13 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
                "max_time_jump_s = 20 must not exceed max_lateness_s = 5");
   expect_error("[[radar]]\nsac = 20\nsic = 129\nlat = 41.3\nlon = 2.1\n"
                "[[radar]]\nsac = 20\nsic = 129\nlat = 41.5\nlon = 2.3\n",
-               "a radar with sac = 20 and sic = 129 is already configured");
+               "t.toml:6: [radar 2] a radar with sac = 20 and sic = 129 is already configured");
+  expect_error("[[input]]\ntransport = \"file\"\naddress = \"x\"\nreconnect_min_s = 2\n",
+               "t.toml:4: [input 1] reconnect_min_s is for transport tcp-client only");
+  expect_error("[[input]]\ntransport = \"udp\"\naddress = \"127.0.0.1:8600\"\npace = true\n",
+               "pace is for transport file only");
+  expect_error("[[input]]\ntransport = \"tcp-client\"\naddress = \"127.0.0.1:8600\"\nidle_timeout_s = 5\n",
+               "idle_timeout_s is for transport tcp-server only");
 }
 
 TEST(Config, ReadsTheEligibilityRules) {

@@ -85,7 +85,20 @@ void read_input(TableReader& r, InputConfig& in) {
   r.utc_day("asterix_day", in.asterix_day);
   r.boolean("allow_remote", in.allow_remote);
   if (in.allow_remote && in.transport != Transport::Udp && in.transport != Transport::TcpServer)
-    r.fail(nullptr, "allow_remote is for inputs that listen (transport udp or tcp-server)");
+    r.fail(r.node("allow_remote"), "allow_remote is for inputs that listen (transport udp or tcp-server)");
+  // A key the transport never reads is a mistake in the file (a reconnect delay on a
+  // file, a pace on a socket): refused at its line, not ignored.
+  const auto only_for = [&](std::string_view key, Transport transport) {
+    if (in.transport != transport && r.node(key))
+      r.fail(r.node(key), fmt::format("{} is for transport {} only", key, kTransportNames.name(transport)));
+  };
+  only_for("interface", Transport::Udp);
+  only_for("reconnect_min_s", Transport::TcpClient);
+  only_for("reconnect_max_s", Transport::TcpClient);
+  only_for("max_connections", Transport::TcpServer);
+  only_for("idle_timeout_s", Transport::TcpServer);
+  only_for("pace", Transport::File);
+  only_for("speed", Transport::File);
   if (in.address.empty()) r.fail(nullptr, "an input needs an address (HOST:PORT or a file path)");
   if (in.format == protocol::Format::AsterixDatagram && in.transport != Transport::Udp)
     r.fail(nullptr, "format asterix-datagram needs transport udp");
