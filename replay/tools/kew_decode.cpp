@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,10 +18,11 @@
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
 #include "kew/replay/recording_reader.hpp"
+#include "tool_config.hpp"
 
 namespace {
 
-constexpr int kUsageError = 64;  // EX_USAGE
+using kew::replay::tools::kUsageError;
 constexpr int kIoError = 1;
 constexpr std::size_t kFlushBytes = 64 * 1024;
 
@@ -66,12 +68,9 @@ int main(int argc, char** argv) {
 
   kew::config::SharedConfig config;
   if (!options.config_path.empty()) {
-    try {
-      config = kew::config::load_shared_config(options.config_path);
-    } catch (const kew::config::ConfigError& e) {
-      std::fprintf(stderr, "kew-decode: %s\n", e.what());
-      return kUsageError;
-    }
+    std::optional<kew::config::SharedConfig> loaded = kew::replay::tools::load_tool_config("kew-decode", options.config_path);
+    if (!loaded) return kUsageError;
+    config = std::move(*loaded);
   }
 
   const kew::protocol::Format format = *kew::protocol::kFormatNames.parse(options.format);

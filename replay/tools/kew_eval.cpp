@@ -26,6 +26,7 @@
 #include "kew/replay/evaluation.hpp"
 #include "kew/replay/recording_reader.hpp"
 #include "kew/replay/truth.hpp"
+#include "tool_config.hpp"
 
 namespace {
 
@@ -34,7 +35,7 @@ using kew::replay::Evaluation;
 using kew::replay::EvaluationFigures;
 using kew::replay::Truth;
 
-constexpr int kUsageError = 64;  // EX_USAGE, as kew-replay
+using kew::replay::tools::kUsageError;
 constexpr int kInputError = 1;   // an alert log cannot be read
 
 struct Options {
@@ -529,15 +530,12 @@ int main(int argc, char** argv) {
   // Configurations to run: those given, else the default one unless only logs are scored.
   std::vector<kew::config::SharedConfig> configs;
   std::vector<Column> columns;
-  try {
-    for (const std::string& path : options.config_paths) {
-      configs.push_back(kew::config::load_shared_config(path));
-      columns.push_back(Column{});
-      columns.back().path = path;
-    }
-  } catch (const kew::config::ConfigError& e) {
-    std::fprintf(stderr, "kew-eval: %s\n", e.what());
-    return kUsageError;
+  for (const std::string& path : options.config_paths) {
+    std::optional<kew::config::SharedConfig> loaded = kew::replay::tools::load_tool_config("kew-eval", path);
+    if (!loaded) return kUsageError;
+    configs.push_back(std::move(*loaded));
+    columns.push_back(Column{});
+    columns.back().path = path;
   }
   const bool run_default = configs.empty() && options.alert_paths.empty();
   if (configs.empty()) configs.emplace_back();

@@ -22,10 +22,11 @@
 #include "kew/protocol/version.hpp"
 #include "kew/replay/recording_reader.hpp"
 #include "kew/replay/stream_sender.hpp"
+#include "tool_config.hpp"
 
 namespace {
 
-constexpr int kUsageError = 64;       // EX_USAGE
+using kew::replay::tools::kUsageError;
 constexpr int kAuditFailed = 1;
 constexpr double kAuditEvery_s = 60.0;  // data time between audits with --audit
 
@@ -235,13 +236,9 @@ int main(int argc, char** argv) {
   const kew::protocol::Format format = *kew::protocol::kFormatNames.parse(options.format);
   kew::config::SharedConfig config;
   if (!options.config_path.empty()) {
-    try {
-      // A kewd file is accepted: its [service], [cat004], [modbus] and [[input]] tables are not used here.
-      config = kew::config::load_shared_config(options.config_path);
-    } catch (const kew::config::ConfigError& e) {
-      std::fprintf(stderr, "kew-replay: %s\n", e.what());
-      return kUsageError;
-    }
+    std::optional<kew::config::SharedConfig> loaded = kew::replay::tools::load_tool_config("kew-replay", options.config_path);
+    if (!loaded) return kUsageError;
+    config = std::move(*loaded);
   }
   if (!options.probe.empty()) config.pipeline.probe_mode = *kew::probe::kProbeModeNames.parse(options.probe);
 
