@@ -97,55 +97,63 @@ TrackReport report(const std::string& id, double t, double lon, double trk_deg) 
   return r;
 }
 
-TEST(ConflictTap, SeesEveryConflictingEvaluationOnceWithOrderedSlots) {
+// A Pipeline whose conflict tap and alert sink keep what they are told.
+struct TappedPipeline {
   Pipeline pipeline;
   std::vector<std::pair<track::TrackSlot, track::TrackSlot>> taps;
   std::vector<AlertEvent> events;
-  pipeline.set_conflict_tap([&](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); });
-  pipeline.set_alert_sink([&](const AlertEvent& e) { events.push_back(e); });
-  // Head-on at one level, ~14 km apart and closing at ~411 m/s: in conflict from the
-  // first evaluation on; a third aircraft 1° of longitude away (~72 km) never is.
+  TappedPipeline() {
+    pipeline.set_conflict_tap([this](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); });
+    pipeline.set_alert_sink([this](const AlertEvent& e) { events.push_back(e); });
+  }
+  TappedPipeline(const TappedPipeline&) = delete;
+  TappedPipeline& operator=(const TappedPipeline&) = delete;
+};
+
+// Two aircraft head-on at one level, ~14 km apart at k = 0 and closing at ~411 m/s: their
+// reports (west, east) of the k-th 4 s period. In conflict from the first evaluation on.
+std::pair<TrackReport, TrackReport> head_on(int k) {
+  const double t = 1714400000.0 + 4.0 * k;
+  const double flown_deg = 4.0 * k * 205.8 / 71700.0;
+  return {report("W", t, 7.9 + flown_deg, 90.0), report("E", t, 8.1 - flown_deg, 270.0)};
+}
+
+TEST(ConflictTap, SeesEveryConflictingEvaluationOnceWithOrderedSlots) {
+  TappedPipeline tapped;
+  // A third aircraft 1° of longitude away (~72 km) is never in conflict.
   for (int k = 0; k < 3; ++k) {
-    const double t = 1714400000.0 + 4.0 * k;
-    const double flown_deg = 4.0 * k * 205.8 / 71700.0;
-    pipeline.process(report("W", t, 7.9 + flown_deg, 90.0));
-    pipeline.process(report("E", t, 8.1 - flown_deg, 270.0));
-    pipeline.process(report("F", t, 9.0, 0.0));
+    const auto [west, east] = head_on(k);
+    tapped.pipeline.process(west);
+    tapped.pipeline.process(east);
+    tapped.pipeline.process(report("F", west.t, 9.0, 0.0));
   }
   // W's first update has no partner yet; then every update of W or E evaluates the pair.
-  ASSERT_EQ(taps.size(), 5u);
-  for (const auto& [p, q] : taps) {
+  ASSERT_EQ(tapped.taps.size(), 5u);
+  for (const auto& [p, q] : tapped.taps) {
     EXPECT_LT(p, q);
-    EXPECT_EQ(p, pipeline.tracks().find("tap", "W"));
-    EXPECT_EQ(q, pipeline.tracks().find("tap", "E"));
+    EXPECT_EQ(p, tapped.pipeline.tracks().find("tap", "W"));
+    EXPECT_EQ(q, tapped.pipeline.tracks().find("tap", "E"));
   }
-  ASSERT_FALSE(events.empty());  // confirm = 2: the second conflicting evaluation opens it
-  EXPECT_EQ(events.front().state, AlertState::New);
+  ASSERT_FALSE(tapped.events.empty());  // confirm = 2: the second conflicting evaluation opens it
+  EXPECT_EQ(tapped.events.front().state, AlertState::New);
 }
 
 TEST(ConflictTap, SeesConflictsTheRulesThenSuppress) {
   // The tap reports what the probe found, so that the peers benchmark can compare
   // candidate searches; the eligibility rules decide afterwards what becomes an alert.
-  // Two tracks of one aircraft (one address, two sources) head-on at one level: every
-  // evaluation of the pair is a conflict, and same_aircraft suppresses every alert.
-  Pipeline pipeline;
-  std::vector<std::pair<track::TrackSlot, track::TrackSlot>> taps;
-  std::vector<AlertEvent> events;
-  pipeline.set_conflict_tap([&](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); });
-  pipeline.set_alert_sink([&](const AlertEvent& e) { events.push_back(e); });
+  // Two tracks of one aircraft (one address, two sources) head-on: every evaluation of
+  // the pair is a conflict, and same_aircraft suppresses every alert.
+  TappedPipeline tapped;
   for (int k = 0; k < 3; ++k) {
-    const double t = 1714400000.0 + 4.0 * k;
-    const double flown_deg = 4.0 * k * 205.8 / 71700.0;
-    TrackReport west = report("W", t, 7.9 + flown_deg, 90.0);
-    TrackReport east = report("E", t, 8.1 - flown_deg, 270.0);
+    auto [west, east] = head_on(k);
     west.address = east.address = 0x4B1234;
     east.source = "tap-2";
-    pipeline.process(west);
-    pipeline.process(east);
+    tapped.pipeline.process(west);
+    tapped.pipeline.process(east);
   }
-  EXPECT_EQ(taps.size(), 5u);
-  EXPECT_TRUE(events.empty());
-  EXPECT_GE(pipeline.suppressed().count("same_aircraft"), 5u);
+  EXPECT_EQ(tapped.taps.size(), 5u);
+  EXPECT_TRUE(tapped.events.empty());
+  EXPECT_GE(tapped.pipeline.suppressed().count("same_aircraft"), 5u);
 }
 
 }  // namespace

@@ -10,11 +10,9 @@ namespace kew::kinetic {
 void TwinRegistry::add(PointId id) {
   util::grow_to(twin_host_, id + 1, kNoPoint);
   util::grow_to(twins_, id + 1);
-  util::grow_to(has_twins_, id + 1, std::uint8_t{0});
   util::grow_to(release_seq_, id + 1, std::uint64_t{0});
   twin_host_[id] = kNoPoint;
   twins_[id].clear();
-  has_twins_[id] = 0;
   release_seq_[id] = 0;
 }
 
@@ -23,13 +21,10 @@ void TwinRegistry::make_twin(PointId id, PointId host) {
   assert(host != id && !is_twin(id) && twins_[id].empty());
   twin_host_[id] = host;
   twins_[host].push_back(id);
-  has_twins_[host] = 1;
 }
 
 void TwinRegistry::unlink(PointId id) {
-  const PointId host = twin_host_[id];
-  std::erase(twins_[host], id);
-  has_twins_[host] = twins_[host].empty() ? 0 : 1;
+  std::erase(twins_[twin_host_[id]], id);
   twin_host_[id] = kNoPoint;
   release_seq_[id] = 0;
 }
@@ -37,7 +32,6 @@ void TwinRegistry::unlink(PointId id) {
 std::vector<PointId> TwinRegistry::release_all(PointId vertex) {
   std::vector<PointId> released = std::move(twins_[vertex]);
   twins_[vertex].clear();
-  has_twins_[vertex] = 0;
   for (const PointId w : released) {
     twin_host_[w] = kNoPoint;
     release_seq_[w] = 0;
@@ -57,8 +51,6 @@ std::span<const PointId> TwinRegistry::merge_into(PointId vertex, PointId host) 
     joined.push_back(w);
   }
   twins_[vertex].clear();
-  has_twins_[vertex] = 0;
-  has_twins_[host] = 1;
   return std::span<const PointId>(joined).subspan(first);
 }
 
@@ -71,7 +63,6 @@ bool TwinRegistry::is_valid() const {
     } else if (host >= n || host == id || is_twin(host) || std::count(twins_[host].begin(), twins_[host].end(), id) != 1) {
       return false;
     }
-    if (has_twins_[id] != (twins_[id].empty() ? 0 : 1)) return false;
     // With the check above, this also keeps a twin from listing twins of its own.
     for (const PointId w : twins_[id])
       if (w >= n || twin_host_[w] != id) return false;

@@ -30,9 +30,7 @@ class TwinRegistry {
   /// The twins of vertex, in the order they became twins of it; empty for a twin, for a
   /// point without twins and for any id never registered.
   const std::vector<PointId>& twins_of(PointId vertex) const {
-    // Almost no vertex has twins: one byte per point answers that without reading the
-    // vector's header, a cache miss per vertex the probe's search touches.
-    return vertex < has_twins_.size() && has_twins_[vertex] ? twins_[vertex] : no_twins_;
+    return vertex < twins_.size() ? twins_[vertex] : no_twins_;
   }
 
   /// Makes id, a point of its own without twins, a twin of host_of(host) (≠ id).
@@ -61,7 +59,6 @@ class TwinRegistry {
  private:
   std::vector<PointId> twin_host_;           // kNoPoint: not a twin
   std::vector<std::vector<PointId>> twins_;  // by host
-  std::vector<std::uint8_t> has_twins_;      // by point: 1 when twins_[point] is not empty
   std::vector<PointId> no_twins_;            // always empty: twins_of() for unregistered ids
   std::vector<std::uint64_t> release_seq_;
 };
