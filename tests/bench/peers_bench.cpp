@@ -6,6 +6,9 @@
 //                   same updates and conflict test as (b)-(e): the method measured as
 //                   the baselines are (also split into maintenance, search and tests,
 //                   and H counted: what kinetic detection would keep, design §2.7);
+//   (a'') kew-lookahead  the prototype of kinetic detection (issue 22 item 4, design §2.7,
+//                   tests/support/lookahead_pairs.hpp): H kept by events on a kinetic
+//                   triangulation of the look-ahead points, each update testing H(i);
 //   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period
 //                   (spatial sort, then insertion with a hint; Epick) + the same BFS probe;
 //   (c) flip        one triangulation kept across periods: every position updated in place
@@ -62,6 +65,7 @@
 #include <vector>
 
 #include "bench_report.hpp"
+#include "lookahead_pairs.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/probe/proximity_search.hpp"
@@ -94,9 +98,10 @@ struct Params {
   double brute_budget = 1.5e8;
   std::string json_path;
   std::vector<std::string> methods;  // empty: all of them; kew itself always runs
+  double lookahead_tolerance_m = 1000.0;  // kew-lookahead's ε
 };
 
-constexpr const char* kMethodNames[] = {"kew-centred", "kew-eager", "kew-tau50", "kew-index", "cgal", "flip", "grid", "brute"};
+constexpr const char* kMethodNames[] = {"kew-centred", "kew-eager", "kew-tau50", "kew-index", "kew-lookahead", "cgal", "flip", "grid", "brute"};
 
 bool wanted(const Params& p, const std::string& method) {
   return p.methods.empty() || std::find(p.methods.begin(), p.methods.end(), method) != p.methods.end();
@@ -161,6 +166,8 @@ Params parse(int argc, char** argv) {
         p.seed = std::stoull(value());
       } else if (flag == "--brute-budget") {
         p.brute_budget = std::stod(value());
+      } else if (flag == "--lookahead-tolerance") {
+        p.lookahead_tolerance_m = std::stod(value());
       } else if (flag == "--json") {
         p.json_path = value();
       } else if (flag == "--methods") {
@@ -629,6 +636,78 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
     out.audit_violations += kdt.is_valid() ? 0 : 1;
     result.periods.push_back(std::move(out));
   }
+  return result;
+}
+
+std::string fixed(double x, int decimals);
+
+// (a'') Kinetic detection (issue 22 item 4): the prototype fed the same steps, testing
+// the candidates LookaheadPairs gives with the same conflict test. Its own counters
+// (reports kept and replaced, disk searches, entries) are printed to stderr.
+MethodResult run_lookahead(const Params& prm, const Workload& w) {
+  MethodResult result{"kew-lookahead", "prototype: H kept by events on a kinetic triangulation of p + v·T (design §2.7)",
+                      1, {}, 0, 0};
+  const kew::probe::SeparationMinima& minima = w.config.minima;
+  kew::testing::LookaheadPairsConfig config;
+  config.separation_m = minima.horizontal_m * w.k_max;
+  config.lookahead_s = minima.lookahead_s;
+  config.tolerance_m = prm.lookahead_tolerance_m;
+  config.keep_s = 2.5 * prm.period_s;
+  config.max_speed_mps = w.v_max;
+  config.kinetic = w.config.kinetic;
+  const double epoch = w.steps.empty() ? 0.0 : std::floor(w.steps.front().clock);
+  kew::testing::LookaheadPairs pairs(config, 0.0);
+  World world;
+  const auto apply = [&](const Step& s) {
+    world.grow(s.slot);
+    const double t = s.clock - epoch;
+    if (s.drop) {
+      pairs.remove(s.slot, t);
+      world.live[s.slot] = 0;
+      return;
+    }
+    world.state[s.slot] = s.state;
+    world.live[s.slot] = 1;
+    const Kinematics now = s.state.at(s.clock);
+    pairs.report(s.slot, t, now.position, now.velocity);
+  };
+  std::size_t step = 0;
+  for (; step < w.period_first_step[prm.warmup]; ++step) apply(w.steps[step]);
+  const kew::testing::LookaheadPairsStatistics before = pairs.statistics();
+  for (std::size_t period = prm.warmup; period < prm.warmup + prm.periods; ++period) {
+    PeriodResult out;
+    const Stopwatch clock;
+    for (; step < w.period_first_step[period + 1]; ++step) {
+      const Step& s = w.steps[step];
+      apply(s);
+      if (s.drop) continue;
+      const Kinematics k_self = world.state[s.slot].at(s.clock);
+      pairs.for_each_candidate(s.slot, [&](Slot other) {
+        ++out.pairs_tested;
+        if (in_conflict(world, s.slot, k_self, other, s.clock, minima))
+          out.conflicts.push_back({s.record, std::min(s.slot, other), std::max(s.slot, other)});
+      });
+      ++out.queries;
+    }
+    out.seconds = out.measured_seconds = clock.seconds();
+    result.periods.push_back(std::move(out));
+  }
+  const kew::testing::LookaheadPairsStatistics& after = pairs.statistics();
+  const auto per_period = [&](std::uint64_t a, std::uint64_t b) {
+    return fixed(static_cast<double>(a - b) / static_cast<double>(prm.periods), 0);
+  };
+  std::cerr << "  kew-lookahead per period (epsilon " << fixed(config.tolerance_m, 0) << " m): reports "
+            << per_period(after.reports, before.reports) << ", replaced " << per_period(after.replaced, before.replaced)
+            << ", drifts " << per_period(after.drifts, before.drifts) << ", disk searches "
+            << per_period(after.disk_searches, before.disk_searches) << ", edges told "
+            << per_period(after.edges_told, before.edges_told) << ", entries "
+            << per_period(after.entries, before.entries) << ", exits " << per_period(after.exits, before.exits)
+            << ", candidate pairs computed " << per_period(after.two_hop_considered, before.two_hop_considered)
+            << " (two-hop entries pruned " << per_period(after.two_hop_pruned, before.two_hop_pruned) << ")"
+            << ", entries queued " << per_period(after.entries_queued, before.entries_queued) << ", stale "
+            << per_period(after.events_stale, before.events_stale) << ", queue max " << after.queue_max << ", |H| per track "
+            << fixed(static_cast<double>(pairs.pair_ends()) / static_cast<double>(w.aircraft), 1) << ", twins made "
+            << pairs.triangulation_statistics().twins_created << "\n";
   return result;
 }
 
@@ -1279,6 +1358,7 @@ int main(int argc, char** argv) {
                            run_kinetic_index(prm, w, IndexWork::All).mean_seconds()};
       run_kinetic_index(prm, w, IndexWork::All, &fleet.census);
     }
+    if (wanted(prm, "kew-lookahead")) checked(run_lookahead(prm, w));
     std::cerr << "  kew's variants again, timing their parts...\n";
     fleet.split.push_back(run_kew(prm, w, KewVariant::Default, true));
     for (const KewVariant variant : kVariants)

@@ -335,6 +335,13 @@ void KineticDelaunay::schedule_dirty_faces() {
       if (dirty_mark_[g] == dirty_round_ && g < f) continue;
       if (schedule_[f].kind[static_cast<unsigned>(i)] != EventKind::None) clear_edge(f, i, true);
       solve_edge(f, i, 0.0, 0);
+      if (edge_listener_) {
+        const auto& face = tds.face(f);
+        const PointId a = face.vertex[static_cast<unsigned>((i + 1) % 3)];
+        const PointId b = face.vertex[static_cast<unsigned>((i + 2) % 3)];
+        if (a != triangulation::kInfiniteVertex && b != triangulation::kInfiniteVertex && a != b)
+          edge_listener_->edge_solved(a, b);
+      }
     }
   }
 }

@@ -115,6 +115,20 @@ enum class UpdateKind {
   Reinserted,    ///< beyond τ: removed and reinserted at the report
 };
 
+/// Told of the Delaunay edges whose certificates the engine computes (design §2.7): every
+/// edge between two triangulation vertices that comes to exist (insertion, reinsertion,
+/// flip, repair, rebuild) is told at the engine time it appears, and edges around a
+/// point whose motion changed are told again. Twins are not vertices: their edges are
+/// their host's. For structures that must see each edge before it can matter, such as
+/// the look-ahead pairs prototype of issue 22 item 4 (tests/support/lookahead_pairs.hpp).
+class EdgeListener {
+ public:
+  virtual ~EdgeListener() = default;
+  /// a ≠ b, both triangulation vertices; called from inside advance(), insert(),
+  /// update() and remove(), which must not be re-entered.
+  virtual void edge_solved(PointId a, PointId b) = 0;
+};
+
 /// Result of an audit at the current time.
 struct KineticAudit {
   std::size_t violations_found = 0;
@@ -175,6 +189,10 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   KineticAudit audit_and_repair();
   /// Combinatorial and geometric validity at now(), without repairing.
   bool is_valid() const;
+
+  /// Tells `listener` (or nobody: nullptr, the default) of every edge solved from now on.
+  /// The listener must outlive the engine or be unset first.
+  void set_edge_listener(EdgeListener* listener) { edge_listener_ = listener; }
 
   const KineticStatistics& statistics() const { return stats_; }
   const KineticConfig& config() const { return config_; }
@@ -273,6 +291,7 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   std::vector<std::uint64_t> drift_seq_;
   std::size_t live_points_ = 0;
   KineticStatistics stats_;
+  EdgeListener* edge_listener_ = nullptr;
   mutable std::vector<PointId> scratch_neighbors_;
   std::vector<triangulation::FaceIndex> scratch_faces_;
 };
