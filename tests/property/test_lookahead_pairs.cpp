@@ -1,7 +1,8 @@
 // Kinetic detection (issue 22 item 4, design §2.7): the prototype LookaheadPairs gives,
 // at every update, candidates among which the conflict test finds exactly the pairs brute
 // force finds: on the generated scenarios, on aircraft stacked at one position on
-// several levels, and on one airway flown at two levels in both directions.
+// several levels, on one airway flown at three levels in both directions, and on exact
+// duplicates (twins of the q-triangulation).
 #include "lookahead_pairs.hpp"
 
 #include <gtest/gtest.h>
@@ -232,7 +233,7 @@ TEST(LookaheadPairs, StackedLevelsAtOnePosition) {
   EXPECT_GT(c.statistics.two_hop_considered, 0u);
 }
 
-TEST(LookaheadPairs, OneAirwayAtTwoLevelsBothWays) {
+TEST(LookaheadPairs, OneAirwayAtThreeLevelsBothWays) {
   // Forty aircraft on one straight airway, 15 km in trail: eastbound at FL350 and FL370
   // (some overtaking), westbound at FL360; a few climb through the others' levels.
   const probe::SeparationMinima minima;

@@ -21,7 +21,9 @@
 // current ones with the exact disk search of design §2.1 on the q-points.
 //
 // Twins of the triangulation (q-points within a millimetre) are not vertices and have no
-// edges: every query tests them directly, and a twin's own query searches the disk.
+// edges; a twin is in H with its host, so the closure of its host's pairs reaches it, and
+// the metre of margin in S' covers the millimetre (design §2.7). As a safeguard every
+// query also tests the twins directly, and a twin's own query searches the disk.
 //
 // Straight-line prediction only: the turn hypothesis of design §4.4 is not covered.
 // A prototype for measurement (tests/bench/peers_bench.cpp, method kew-lookahead) and
