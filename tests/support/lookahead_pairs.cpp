@@ -102,6 +102,15 @@ void LookaheadPairs::consider(PointId a, PointId b, double at, double before) {
   }
 }
 
+bool LookaheadPairs::add_pair(PointId a, PointId b, double exit) {
+  if (holds(a, b)) return false;
+  ++stats_.entries;
+  partners_[a].push_back({b, exit});
+  partners_[b].push_back({a, exit});
+  if (exit < kinetic::kNever) push(exit, Kind::Exit, a, b);
+  return true;
+}
+
 void LookaheadPairs::enter(PointId a, PointId b, double at) {
   work_.push_back({a, b, membership(a, b).end});
   enter_waiting(at);
@@ -111,11 +120,7 @@ void LookaheadPairs::enter_waiting(double at) {
   while (!work_.empty()) {
     const auto [x, y, exit] = work_.back();
     work_.pop_back();
-    if (holds(x, y)) continue;
-    ++stats_.entries;
-    partners_[x].push_back({y, exit});
-    partners_[y].push_back({x, exit});
-    if (exit < kinetic::kNever) push(exit, Kind::Exit, x, y);
+    if (!add_pair(x, y, exit)) continue;
     // The Gabriel gap: a pair (k, y) with k a partner of x may enter while both halves
     // are in H, without ever being a q-edge; x is its witness only until a half leaves.
     // (Indexed loops: consider() does not touch partners_, but stay safe on reallocation.)
@@ -169,13 +174,7 @@ void LookaheadPairs::find_pairs(PointId id) {
   const double now = kdt_.now();
   for (const PointId j : found_) consider(id, j, now);
   // Its current pairs (all waiting pairs hold id) go in without their closures first ...
-  for (const Waiting& w : work_) {
-    if (holds(w.a, w.b)) continue;
-    ++stats_.entries;
-    partners_[w.a].push_back({w.b, w.exit});
-    partners_[w.b].push_back({w.a, w.exit});
-    if (w.exit < kinetic::kNever) push(w.exit, Kind::Exit, w.a, w.b);
-  }
+  for (const Waiting& w : work_) add_pair(w.a, w.b, w.exit);
   work_.clear();
   // ... then the two hops at once: pairs of its partners, with id the witness, each pair
   // once; and pairs of id with the partners' partners, each point once (a point reached

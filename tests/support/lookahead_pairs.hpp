@@ -152,6 +152,8 @@ class LookaheadPairs final : private kinetic::EdgeListener {
   void push(double time, Kind kind, PointId a, PointId b);
   void process_until(double t);
   void run_event(const Event& e);
+  /// Puts the pair in H with its exit queued; false when it was there already.
+  bool add_pair(PointId a, PointId b, double exit);
   /// Adds the pair at logical time `at` and closes H under two hops from it.
   void enter(PointId a, PointId b, double at);
   /// Enters the pairs consider() found in H at `at`, and those their closure finds.
