@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kew::testing {
 
@@ -318,7 +319,9 @@ void LookaheadPairs::report(Key key, double t, Point2 p, Vector2 v) {
       pending_.resize(id + 1);
       drift_seq_.resize(id + 1, 0);
       is_twin_.resize(id + 1, 0);
+      replaced_at_.resize(id + 1, 0.0);
     }
+    replaced_at_[id] = -std::numeric_limits<double>::infinity();
     key_of_[id] = key;
     ++version_[id];  // odd: live
     sync_twins();
@@ -345,7 +348,13 @@ void LookaheadPairs::report(Key key, double t, Point2 p, Vector2 v) {
     return;
   }
   ++stats_.replaced;
+  replaced_at_[id] = kdt_.now();
   replace_model(id, p, v);
+}
+
+double LookaheadPairs::last_replaced(Key key) const {
+  if (key >= point_of_.size() || point_of_[key] == kNoPoint) return -std::numeric_limits<double>::infinity();
+  return replaced_at_[point_of_[key]];
 }
 
 void LookaheadPairs::remove(Key key, double t) {

@@ -114,6 +114,10 @@ class LookaheadPairs final : private kinetic::EdgeListener {
   bool is_valid() const;
 
   const LookaheadPairsStatistics& statistics() const { return stats_; }
+  /// When (s) a report of `key` last replaced its model, or −∞ if none has since its
+  /// first report (or the key is unknown): how recently a track turned or jumped
+  /// (kew_peers_bench).
+  double last_replaced(Key key) const;
   const kinetic::KineticStatistics& triangulation_statistics() const { return kdt_.statistics(); }
   /// Σ |H(i)| over the tracks (each pair twice).
   std::size_t pair_ends() const;
@@ -182,6 +186,7 @@ class LookaheadPairs final : private kinetic::EdgeListener {
   std::vector<Report> pending_;
   std::vector<std::uint64_t> drift_seq_;
   std::vector<std::uint8_t> is_twin_;
+  std::vector<double> replaced_at_;  // by point: last replacement by a report
   std::vector<PointId> twins_;
   std::uint64_t twin_changes_seen_ = 0;
   // Events before near_end_ wait in a heap; later ones in buckets of kBucket_s seconds,
