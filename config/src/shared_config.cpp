@@ -44,7 +44,8 @@ void read_tracks(TableReader& r, track::TrackTableConfig& t) {
   r.number("max_derivation_gap_s", t.max_derivation_gap_s, 0.1, 3600.0);
 }
 
-void read_kinetic(TableReader& r, kinetic::KineticConfig& k) {
+void read_kinetic(TableReader& r, PipelineConfig& p) {
+  kinetic::KineticConfig& k = p.kinetic;
   r.number("tolerance", k.tolerance, 0.0, 1e6);
   r.choice("tolerance_mode", k.tolerance_mode, kinetic::kToleranceModeNames);
   double horizon = std::isinf(k.horizon_s) ? 0.0 : k.horizon_s;
@@ -52,6 +53,7 @@ void read_kinetic(TableReader& r, kinetic::KineticConfig& k) {
   k.horizon_s = horizon == 0.0 ? kinetic::kNever : horizon;
   r.boolean("reduce_redundant_events", k.reduce_redundant_events);
   r.number("keep_model_s", k.keep_model_s, 0.0, 3600.0);
+  r.number("renumber_every_s", p.renumber_every_s, 0.0, 86400.0);
 }
 
 void read_probe(TableReader& r, PipelineConfig& p) {
@@ -124,7 +126,7 @@ SharedConfig read_shared_config(const Document& document) {
   SharedConfig config;
   document.section("projection", [&](TableReader& r) { read_projection(r, config.pipeline); });
   document.section("tracks", [&](TableReader& r) { read_tracks(r, config.pipeline.tracks); });
-  document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline.kinetic); });
+  document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline); });
   document.section("probe", [&](TableReader& r) { read_probe(r, config.pipeline); });
   document.section("alerts", [&](TableReader& r) { read_alerts(r, config.pipeline.alerts); });
   document.section("eligibility", [&](TableReader& r) { read_eligibility(r, config.pipeline.eligibility); });

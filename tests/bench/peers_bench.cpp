@@ -35,13 +35,18 @@
 //                        [--warmup N] [--seed S] [--scenario mixed|random|airways|stacks|tma]
 //                        [--recording FILE] [--methods kew-index,grid,...]
 //                        [--lookahead-tolerance M] [--lookahead-keep S] [--brute-budget PAIRS]
+//                        [--first-order arrival|shuffled|hilbert] [--renumber-every S]
 //                        [--json FILE]
-// --methods picks which methods run beside kew (kew-centred, kew-eager, kew-tau50,
+// --methods picks which methods run beside kew (kew-centred, kew-eager, kew-tau50, kew-renumbered,
 // kew-index, kew-lookahead, cgal, flip, grid, brute; all by default). --recording runs
 // one fleet on a real recording (any format kew-replay detects, time-sorted here) instead
 // of generated traffic: its periods from the first record on. --lookahead-tolerance is
 // kew-lookahead's ε (m, default 1000), --lookahead-keep its K (s, default 10; ADS-B feeds
 // that report every 5-15 s want more, or most kept reports end as Drifts).
+// --first-order permutes the first period's records (which create every track, point and
+// face) into a random or a Hilbert-curve order of their positions: the worst and the best
+// memory order a renumbering could leave (issue 22 item 5); arrival order by default.
+// --renumber-every is kew-renumbered's PipelineConfig::renumber_every_s (default 60).
 //
 // Density: the region grows with √N (one aircraft per 126 km² at every N), but the
 // mixed scenario puts its TMA arrivals (20 %) on one centre and its airways (40 %) on at
@@ -53,6 +58,7 @@
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/property_map.h>
+#include <CGAL/hilbert_sort.h>
 #include <CGAL/spatial_sort.h>
 
 #include <algorithm>
@@ -67,6 +73,7 @@
 #include <stdexcept>
 #include <string>
 #include <set>
+#include <random>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -109,9 +116,11 @@ struct Params {
   double lookahead_tolerance_m = 1000.0;  // kew-lookahead's ε
   double lookahead_keep_s = 10.0;         // kew-lookahead's K
   std::string recording;  // a real recording instead of generated traffic
+  enum class FirstOrder { Arrival, Shuffled, Hilbert } first_order = FirstOrder::Arrival;
+  double renumber_every_s = 60.0;  // kew-renumbered's period
 };
 
-constexpr const char* kMethodNames[] = {"kew-centred", "kew-eager", "kew-tau50", "kew-index", "kew-lookahead", "cgal", "flip", "grid", "brute"};
+constexpr const char* kMethodNames[] = {"kew-centred", "kew-eager", "kew-tau50", "kew-renumbered", "kew-index", "kew-lookahead", "cgal", "flip", "grid", "brute"};
 
 bool wanted(const Params& p, const std::string& method) {
   return p.methods.empty() || std::find(p.methods.begin(), p.methods.end(), method) != p.methods.end();
@@ -128,6 +137,7 @@ double region_radius_km(std::size_t aircraft) {
   std::cerr << "kew_peers_bench: " << why
             << "\nusage: kew_peers_bench [--quick] [--aircraft N,N,...] [--periods N] [--warmup N] [--seed S]"
                " [--scenario NAME] [--recording FILE] [--methods NAME,...] [--lookahead-tolerance M] [--lookahead-keep S]"
+               " [--first-order arrival|shuffled|hilbert] [--renumber-every S]"
                " [--brute-budget PAIRS] [--json FILE]\n";
   std::exit(2);
 }
@@ -184,6 +194,15 @@ Params parse(int argc, char** argv) {
         p.lookahead_keep_s = std::stod(value());
       } else if (flag == "--lookahead-tolerance") {
         p.lookahead_tolerance_m = std::stod(value());
+      } else if (flag == "--renumber-every") {
+        p.renumber_every_s = std::stod(value());
+        if (!(p.renumber_every_s > 0.0)) usage("--renumber-every wants seconds > 0");
+      } else if (flag == "--first-order") {
+        const std::string order = value();
+        if (order == "arrival") p.first_order = Params::FirstOrder::Arrival;
+        else if (order == "shuffled") p.first_order = Params::FirstOrder::Shuffled;
+        else if (order == "hilbert") p.first_order = Params::FirstOrder::Hilbert;
+        else usage("unknown --first-order " + order);
       } else if (flag == "--json") {
         p.json_path = value();
       } else if (flag == "--methods") {
@@ -262,6 +281,8 @@ void read_recording(const Params& prm, Workload& w) {
   w.config.reference = kew::geo::GeodeticPosition{w.records.front().lat_deg, w.records.front().lon_deg};
 }
 
+void reorder_first_period(const Params& prm, double start_time, std::vector<kew::TrackReport>& records);
+
 Workload make_workload(const Params& prm, std::size_t aircraft) {
   Workload w;
   double start_time = 0.0;
@@ -287,6 +308,7 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
   }
   const kew::geo::Projection projection(*w.config.reference, w.config.coverage_radius_m);
   w.k_max = projection.max_scale();
+  reorder_first_period(prm, start_time, w.records);
 
   // The Pipeline's own sequence of track table calls (Pipeline::process), so the slots
   // and kinematics here are the ones its probe sees.
@@ -386,12 +408,15 @@ struct MethodResult {
 // (a) kew
 
 // kew as configured, and each lever of issue 22 turned back off, beside it in one run.
-enum class KewVariant { Default, Centred, Eager, Reinserting };
-inline constexpr kew::util::NameTable<KewVariant, 4> kKewVariantNames({{
+std::string fixed(double x, int decimals);
+
+enum class KewVariant { Default, Centred, Eager, Reinserting, Renumbered };
+inline constexpr kew::util::NameTable<KewVariant, 5> kKewVariantNames({{
     {KewVariant::Default, "kew"},
     {KewVariant::Centred, "kew-centred"},
     {KewVariant::Eager, "kew-eager"},
     {KewVariant::Reinserting, "kew-tau50"},
+    {KewVariant::Renumbered, "kew-renumbered"},
 }});
 std::string variant_name(KewVariant variant) { return std::string(kKewVariantNames.name(variant)); }
 
@@ -419,6 +444,11 @@ MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = 
       result.label = "kew with the earlier tolerance: τ = 50 m, every update within τ changes the velocity";
       config.kinetic.tolerance = 50.0;
       config.kinetic.keep_model_s = 0.0;
+      break;
+    case KewVariant::Renumbered:
+      result.label = "kew renumbering its points and probe states along a Hilbert curve every " +
+                     fixed(prm.renumber_every_s, 0) + " s";
+      config.renumber_every_s = prm.renumber_every_s;
       break;
   }
   kew::Pipeline pipeline(config);
@@ -677,7 +707,6 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
   return result;
 }
 
-std::string fixed(double x, int decimals);
 
 // (a'') Kinetic detection (issue 22 item 4): the prototype fed the same steps, testing
 // the candidates LookaheadPairs gives with the same conflict test. Its own counters
@@ -712,6 +741,11 @@ MethodResult run_lookahead(const Params& prm, const Workload& w) {
   std::size_t step = 0;
   for (; step < w.period_first_step[prm.warmup]; ++step) apply(w.steps[step]);
   const kew::testing::LookaheadPairsStatistics before = pairs.statistics();
+  // Reports whose track replaced its model within the last 10, 30 and 60 s (this one
+  // included): the tracks a hybrid would search for instead of keeping in H.
+  constexpr double kRecent_s[] = {10.0, 30.0, 60.0};
+  std::uint64_t recent[3] = {0, 0, 0};
+  std::uint64_t measured_reports = 0;
   for (std::size_t period = prm.warmup; period < prm.warmup + prm.periods; ++period) {
     PeriodResult out;
     const Stopwatch clock;
@@ -719,6 +753,9 @@ MethodResult run_lookahead(const Params& prm, const Workload& w) {
       const Step& s = w.steps[step];
       apply(s);
       if (s.drop) continue;
+      ++measured_reports;
+      const double age = s.clock - epoch - pairs.last_replaced(s.slot);
+      for (int k = 0; k < 3; ++k) recent[k] += age < kRecent_s[k] ? 1 : 0;
       const Kinematics k_self = world.state[s.slot].at(s.clock);
       pairs.for_each_candidate(s.slot, [&](Slot other) {
         ++out.pairs_tested;
@@ -750,7 +787,10 @@ MethodResult run_lookahead(const Params& prm, const Workload& w) {
             << ", entries queued " << per_period(after.entries_queued, before.entries_queued) << ", stale "
             << per_period(after.events_stale, before.events_stale) << ", queue max " << after.queue_max << ", |H| per track "
             << fixed(static_cast<double>(pairs.pair_ends()) / static_cast<double>(w.aircraft), 1) << ", twins made "
-            << pairs.triangulation_statistics().twins_created << "\n";
+            << pairs.triangulation_statistics().twins_created << ", reports of tracks replaced within 10/30/60 s "
+            << fixed(100.0 * static_cast<double>(recent[0]) / std::max(1.0, static_cast<double>(measured_reports)), 1) << " / "
+            << fixed(100.0 * static_cast<double>(recent[1]) / std::max(1.0, static_cast<double>(measured_reports)), 1) << " / "
+            << fixed(100.0 * static_cast<double>(recent[2]) / std::max(1.0, static_cast<double>(measured_reports)), 1) << " %\n";
   return result;
 }
 
@@ -836,6 +876,26 @@ using Triangulation = CGAL::Delaunay_triangulation_2<Kernel, Structure>;
 using CgalPoint = Kernel::Point_2;
 using SortTraits = CGAL::Spatial_sort_traits_adapter_2<Kernel, CGAL::Pointer_property_map<CgalPoint>::type>;
 }  // namespace cgal
+
+void reorder_first_period(const Params& prm, double start_time, std::vector<kew::TrackReport>& records) {
+  if (prm.first_order == Params::FirstOrder::Arrival) return;
+  const auto end = std::find_if(records.begin(), records.end(),
+                                [&](const kew::TrackReport& r) { return r.t >= start_time + prm.period_s; });
+  if (prm.first_order == Params::FirstOrder::Shuffled) {
+    std::mt19937_64 random(prm.seed);
+    std::shuffle(records.begin(), end, random);
+    return;
+  }
+  std::vector<cgal::CgalPoint> where;
+  for (auto r = records.begin(); r != end; ++r) where.emplace_back(r->lon_deg, r->lat_deg);
+  std::vector<std::size_t> order(where.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  CGAL::hilbert_sort(order.begin(), order.end(), cgal::SortTraits(CGAL::make_property_map(where)));
+  std::vector<kew::TrackReport> sorted;
+  sorted.reserve(order.size());
+  for (const std::size_t i : order) sorted.push_back(std::move(records[i]));
+  std::move(sorted.begin(), sorted.end(), records.begin());
+}
 
 class CgalRebuild {
  public:
@@ -1408,7 +1468,8 @@ int main(int argc, char** argv) {
       all_agree = all_agree && m.missing == 0 && m.extra == 0;
       fleet.methods.push_back(std::move(m));
     };
-    constexpr KewVariant kVariants[] = {KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting};
+    constexpr KewVariant kVariants[] = {KewVariant::Centred, KewVariant::Eager, KewVariant::Reinserting,
+                                        KewVariant::Renumbered};
     for (const KewVariant variant : kVariants)
       if (wanted(prm, variant_name(variant))) checked(run_kew(prm, w, variant));
     if (wanted(prm, "kew-index")) {

@@ -63,6 +63,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.kinetic.horizon_s, d.kinetic.horizon_s);
   EXPECT_EQ(p.kinetic.reduce_redundant_events, d.kinetic.reduce_redundant_events);
   EXPECT_EQ(p.kinetic.keep_model_s, d.kinetic.keep_model_s);
+  EXPECT_EQ(p.renumber_every_s, d.renumber_every_s);
   EXPECT_EQ(p.probe_mode, d.probe_mode);
   EXPECT_DOUBLE_EQ(p.minima.horizontal_m, d.minima.horizontal_m);
   EXPECT_DOUBLE_EQ(p.minima.vertical_m, d.minima.vertical_m);
@@ -139,6 +140,7 @@ coverage_radius_km = 300
 tolerance = 0.001
 tolerance_mode = "relative"
 horizon_s = 0
+renumber_every_s = 120
 [probe]
 mode = "edges"
 horizontal_nm = 3
@@ -159,6 +161,7 @@ asterix_day = "2023-05-02"
   EXPECT_EQ(c.pipeline.coverage_radius_m, 300000.0);
   EXPECT_EQ(c.pipeline.kinetic.tolerance_mode, kinetic::ToleranceMode::Relative);
   EXPECT_TRUE(std::isinf(c.pipeline.kinetic.horizon_s));
+  EXPECT_EQ(c.pipeline.renumber_every_s, 120.0);
   EXPECT_EQ(c.pipeline.probe_mode, probe::ProbeMode::Edges);
   EXPECT_DOUBLE_EQ(c.pipeline.minima.horizontal_m, 5556.0);
   ASSERT_EQ(c.decoding.asterix.radars.size(), 1u);
@@ -206,6 +209,7 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
   expect_error("[alerts]\nconfirm = 0\n", "confirm = 0 is outside [1, 1000]");
   expect_error("[service]\nalert_listen = \"localhost\"\n", "is not HOST:PORT");
   expect_error("[kinetic]\ntolerance = \"big\"\n", "tolerance must be a number");
+  expect_error("[kinetic]\nrenumber_every_s = -1\n", "renumber_every_s");
   expect_error("[[input]]\ntransport = \"udp\"\n", "an input needs an address");
   expect_error("[[input]]\nformat = \"asterix-datagram\"\ntransport = \"file\"\naddress = \"x\"\n",
                "asterix-datagram needs transport udp");

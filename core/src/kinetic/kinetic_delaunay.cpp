@@ -772,4 +772,14 @@ bool KineticDelaunay::is_valid() const {
   return true;
 }
 
+void KineticDelaunay::continue_statistics(const KineticStatistics& earlier) {
+  const KineticStatistics own = stats_;
+  stats_ = earlier;
+  ++stats_.renumberings;
+  stats_.queue_now = own.queue_now;
+  stats_.queue_max = std::max(earlier.queue_max, own.queue_max);
+  stats_.renewals_queued = own.renewals_queued;
+  stats_.drifts_queued = own.drifts_queued;
+}
+
 }  // namespace kew::kinetic

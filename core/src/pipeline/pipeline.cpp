@@ -4,6 +4,7 @@
 #include <ctime>
 #include <cmath>
 
+#include "kew/geometry/hilbert.hpp"
 #include "kew/util/gentle_growth.hpp"
 
 namespace kew {
@@ -96,7 +97,7 @@ Pipeline::PairParameters Pipeline::pair_parameters(std::size_t ra, std::size_t r
 }
 
 Pipeline::PairParameters Pipeline::parameters_of(track::TrackSlot p, track::TrackSlot q) const {
-  return pair_parameters(probe_state_[p].region, probe_state_[q].region);
+  return pair_parameters(probe_state_[tracks_[p].point].region, probe_state_[tracks_[q].point].region);
 }
 
 bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
@@ -305,6 +306,36 @@ void Pipeline::move_clock(double t) {
   });
   timed(&PhaseTimes::maintenance_s, [&] { kdt_->advance(engine_time(t)); });
   clock_ = t;
+  if (config_.renumber_every_s > 0.0 && clock_ >= next_renumber_) {
+    if (next_renumber_ > 0.0) timed(&PhaseTimes::maintenance_s, [&] { renumber(); });
+    next_renumber_ = clock_ + config_.renumber_every_s;
+  }
+}
+
+void Pipeline::renumber() {
+  std::vector<track::TrackSlot> slots;
+  std::vector<geometry::Point2> positions;
+  for (const track::TrackSlot slot : slot_of_point_) {
+    if (slot == track::kNoTrack) continue;
+    slots.push_back(slot);
+    positions.push_back(tracks_[slot].at(clock_).position);
+  }
+  const kinetic::KineticStatistics earlier = kdt_->statistics();
+  std::vector<ProbeState> old_state = std::move(probe_state_);
+  probe_state_.clear();
+  slot_of_point_.clear();
+  kdt_.emplace(config_.kinetic, engine_time(clock_));
+  for (const std::uint32_t i : geometry::hilbert_order(positions)) {
+    track::Track& track = tracks_[slots[i]];
+    const probe::Kinematics now = track.at(clock_);
+    const kinetic::PointId old_point = track.point;
+    track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
+    util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
+    util::grow_to(probe_state_, track.point + 1);
+    slot_of_point_[track.point] = slots[i];
+    probe_state_[track.point] = old_state[old_point];
+  }
+  kdt_->continue_statistics(earlier);
 }
 
 void Pipeline::advance_to(double t) {
@@ -323,7 +354,6 @@ void Pipeline::leave_engine(track::TrackSlot slot) {
     slot_of_point_[track.point] = track::kNoTrack;
     track.point = kinetic::kNoPoint;
   }
-  if (slot < probe_live_.size()) probe_live_[slot] = 0;
   speeds_.erase(slot);
 }
 
@@ -357,14 +387,12 @@ void Pipeline::apply(track::TrackSlot slot) {
     }
   });
   speeds_.set(slot, geometry::norm(now.velocity));
-  util::grow_to(probe_state_, slot + 1);
-  util::grow_to(probe_live_, slot + 1, std::uint8_t{0});
-  ProbeState& state = probe_state_[slot];
+  util::grow_to(probe_state_, track.point + 1);
+  ProbeState& state = probe_state_[track.point];
   state = {track.kinematics, track.t, track.plane_scale, track.intent.sel_t + config_.tracks.intent.max_age_s,
            regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft)};
   if (config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps)
     state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
-  probe_live_[slot] = 1;
   probe(slot);
 }
 
@@ -378,13 +406,14 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
     std::fill(partner_mark_.begin(), partner_mark_.end(), 0);
     candidate_round_ = 1;
   }
-  util::grow_to(partner_mark_, probe_state_.size(), std::uint32_t{0});
+  util::grow_to(partner_mark_, tracks_.slot_end(), std::uint32_t{0});
   partners_scratch_.clear();
   alerts_.partners_of(slot, partners_scratch_);
   for (const track::TrackSlot other : partners_scratch_) {
     partner_mark_[other] = candidate_round_;
-    // Brute force takes every live track below, partners included.
-    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(other);
+    // Brute force takes every live track below, partners included. A pair's state ends
+    // when either track leaves the engine, so a partner always has a point.
+    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(tracks_[other].point);
   }
   points_scratch_.clear();
   switch (config_.probe_mode) {
@@ -392,7 +421,7 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       // Straight-line prediction: every j that can come within S_h of i within T is within
       // S_h + v_max·T (+ 2τ) of i's position T ahead (design §2.1), a disk that is smaller
       // the faster i flies; an arc stays only within |v_i|·T of its start.
-      if (config_.search_ahead && probe_state_[slot].kinematics.turn_rate_rps == 0.0) {
+      if (config_.search_ahead && probe_state_[track.point].kinematics.turn_rate_rps == 0.0) {
         const geometry::Point2 ahead = kdt_->position_now(track.point) + largest_lookahead_s_ * track.kinematics.velocity;
         search_.within_around(*kdt_, track.point, ahead, search_radius(0.0), points_scratch_);
       } else {
@@ -406,21 +435,19 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       points_scratch_.erase(std::unique(points_scratch_.begin(), points_scratch_.end()), points_scratch_.end());
       break;
     case probe::ProbeMode::Brute:
-      for (track::TrackSlot other = 0; other < probe_state_.size(); ++other)
-        if (probe_live_[other] && other != slot) candidates_.push_back(other);
+      for (kinetic::PointId other = 0; other < slot_of_point_.size(); ++other)
+        if (slot_of_point_[other] != track::kNoTrack && other != track.point) candidates_.push_back(other);
       return;
   }
   // Each point once, never the track's own (within() marks what it visited).
-  for (const kinetic::PointId p : points_scratch_) {
-    const track::TrackSlot other = slot_of_point_[p];
-    if (partner_mark_[other] != candidate_round_) candidates_.push_back(other);
-  }
+  for (const kinetic::PointId p : points_scratch_)
+    if (partner_mark_[slot_of_point_[p]] != candidate_round_) candidates_.push_back(p);
 }
 
 Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
                                                    track::TrackSlot other_slot) const {
-  const ProbeState& self = probe_state_[slot];
-  const ProbeState& other = probe_state_[other_slot];
+  const ProbeState& self = probe_state_[tracks_[slot].point];
+  const ProbeState& other = probe_state_[tracks_[other_slot].point];
   PairKinematics pair;
   pair.scale = geo::Projection::pair_scale(self.scale, other.scale);
   pair.parameters = parameters_of(slot, other_slot);
@@ -445,27 +472,28 @@ void Pipeline::probe(track::TrackSlot slot) {
 void Pipeline::test_candidates(track::TrackSlot slot) {
   ++stats_.probes;
   stats_.candidates += candidates_.size();
-  const probe::Kinematics k_self = probe_state_[slot].at(clock_);
+  const ProbeState& self = probe_state_[tracks_[slot].point];
+  const probe::Kinematics k_self = self.at(clock_);
   // Most candidates are clear and have no pair state, and for those the alert manager
   // does nothing: only pairs in conflict or with state (the partners, marked above) go
   // on, in slot order, which fixes the order of the events of one probe (design §2.5).
   // Sorting these few rather than every candidate found is the same order.
   evaluated_.clear();
-  const ProbeState& self = probe_state_[slot];
   constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     if (i + kPrefetchAhead < candidates_.size()) {
-      const track::TrackSlot ahead = candidates_[i + kPrefetchAhead];
+      const kinetic::PointId ahead = candidates_[i + kPrefetchAhead];
       __builtin_prefetch(&probe_state_[ahead]);
-      __builtin_prefetch(&partner_mark_[ahead]);
+      __builtin_prefetch(&slot_of_point_[ahead]);
     }
-    const track::TrackSlot other = candidates_[i];
+    const kinetic::PointId point = candidates_[i];
+    const track::TrackSlot other = slot_of_point_[point];
     if (partner_mark_[other] == candidate_round_) {
       evaluated_.push_back(other);
       continue;
     }
     // pair_kinematics() without its copies: this loop runs ~100 times per update.
-    const ProbeState& them = probe_state_[other];
+    const ProbeState& them = probe_state_[point];
     const probe::Kinematics k_other = them.at(clock_);
     probe::SeparationMinima minima =
         regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;

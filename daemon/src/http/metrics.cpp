@@ -67,7 +67,7 @@ struct KineticCounter {
   std::string_view name, help;
   std::uint64_t kinetic::KineticStatistics::*member;
 };
-constexpr std::array<KineticCounter, 16> kKineticCounters{{
+constexpr std::array<KineticCounter, 17> kKineticCounters{{
     {"kew_kinetic_certificates_solved_total", "Sturm certificate solves run.", &kinetic::KineticStatistics::certificates_solved},
     {"kew_kinetic_events_computed_total", "Certificate failures found and scheduled.", &kinetic::KineticStatistics::events_computed},
     {"kew_kinetic_events_executed_total", "Certificate failures that flipped an edge.", &kinetic::KineticStatistics::events_executed},
@@ -83,6 +83,7 @@ constexpr std::array<KineticCounter, 16> kKineticCounters{{
     {"kew_kinetic_repairs_total", "Defects found by audits or degenerate events and fixed.", &kinetic::KineticStatistics::repairs},
     {"kew_kinetic_degenerate_flips_total", "Flips of edges whose certificate is zero within rounding.", &kinetic::KineticStatistics::degenerate_flips},
     {"kew_kinetic_rebuilds_total", "Full retriangulations (last-resort repair).", &kinetic::KineticStatistics::rebuilds},
+    {"kew_kinetic_renumberings_total", "Engines rebuilt in Hilbert order for memory locality.", &kinetic::KineticStatistics::renumberings},
     {"kew_kinetic_twins_created_total", "Points made twins (exact duplicates and approaches).", &kinetic::KineticStatistics::twins_created},
 }};
 

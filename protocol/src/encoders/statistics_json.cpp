@@ -97,6 +97,7 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("renewals", k.renewals);
   m.integer("repairs", k.repairs);
   m.integer("rebuilds", k.rebuilds);
+  m.integer("renumberings", k.renumberings);
   m.integer("queue_now", k.queue_now);
   m.integer("queue_max", k.queue_max);
   m.fixed("queue_mean", k.queue_mean(), 1);

@@ -92,6 +92,9 @@ struct KineticStatistics {
   std::uint64_t degenerate_flips = 0;
   std::uint64_t repair_reinsertions = 0;
   std::uint64_t rebuilds = 0;             ///< full retriangulations (last-resort repair)
+  /// Engines replaced by one built in memory order (the Pipeline's renumbering, design
+  /// §8.3); their own insertions are not counted above.
+  std::uint64_t renumberings = 0;
   std::uint64_t twins_created = 0;        ///< points made twins: exact duplicates and approaches
   std::uint64_t twins_released = 0;       ///< twins reinserted once twin_release_distance_m apart
   /// Approach entries scheduled: edges whose two ends come within
@@ -195,6 +198,10 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void set_edge_listener(EdgeListener* listener) { edge_listener_ = listener; }
 
   const KineticStatistics& statistics() const { return stats_; }
+  /// For an engine built to replace `earlier` (the same points renumbered): its counters
+  /// go on from earlier's, the building itself not counted but as one renumbering; the
+  /// queue figures are this engine's own (their maximum the larger of the two).
+  void continue_statistics(const KineticStatistics& earlier);
   const KineticConfig& config() const { return config_; }
   const triangulation::DelaunayTriangulation& triangulation() const { return dt_; }
   /// Finite Delaunay edges at now() between triangulation vertices.

@@ -34,6 +34,11 @@ struct PipelineConfig {
   /// of design §2.1 (a track under a turn hypothesis keeps the disk around p_i). Both
   /// are complete; false measures the difference (kew_peers_bench).
   bool search_ahead = true;
+  /// Memory order (design §8.3, s, ≥ 0; 0: off): every this many seconds of data time the
+  /// kinetic engine is rebuilt with its points numbered along a Hilbert curve, and the
+  /// probe's per-track state, kept by point, with them, so that the candidate search and
+  /// the tests read neighbours from nearby memory. Alerts and their order do not change.
+  double renumber_every_s = 0.0;
   /// Time the three parts of the work on updates (Pipeline::phase_times); off except in
   /// benchmarks (two reads of the thread's CPU clock per part and update, about 1 µs).
   bool time_phases = false;
@@ -190,6 +195,9 @@ class Pipeline {
   /// Drops a track its source ended (TrackReport::track_end).
   void end_track(track::TrackSlot slot);
   void leave_engine(track::TrackSlot slot);
+  /// Rebuilds the engine with the live tracks' points in Hilbert order of their positions
+  /// now, each at its track's latest report, and moves the probe states with them.
+  void renumber();
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
   void collect_candidates(track::TrackSlot slot);
@@ -216,7 +224,7 @@ class Pipeline {
   /// the turn hypothesis is on and either aircraft turns, along the arcs.
   bool pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
                         const probe::SeparationMinima& minima) const;
-  /// The parameters of the pair of probe states (slots) p and q.
+  /// The parameters of the pair of tracks (slots, both in the engine) p and q.
   PairParameters parameters_of(track::TrackSlot p, track::TrackSlot q) const;
   void deliver();
   double engine_time(double t) const { return t - epoch_; }
@@ -237,8 +245,8 @@ class Pipeline {
   alert::AlertManager alerts_;
   probe::ProximitySearch search_;
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
-  // What the probe reads of each live track, by slot, packed for the candidate loop
-  // (the Track itself is large and cold).
+  // What the probe reads of each live track, by its engine point (so that renumbering
+  // the points orders it too), packed for the candidate loop (the Track is large and cold).
   /// One cache line: the probe reads a hundred of these, scattered, per update.
   struct alignas(64) ProbeState {
     probe::Kinematics kinematics;  // at time t
@@ -252,11 +260,10 @@ class Pipeline {
       return probe::extrapolated(k, at_t - t);
     }
   };
-  std::vector<ProbeState> probe_state_;
-  std::vector<std::uint8_t> probe_live_;  // by slot: in the kinetic engine
-  std::vector<track::TrackSlot> slot_of_point_;
+  std::vector<ProbeState> probe_state_;          // by point
+  std::vector<track::TrackSlot> slot_of_point_;  // kNoTrack: no live track
   std::vector<kinetic::PointId> points_scratch_;
-  std::vector<track::TrackSlot> candidates_;     // every pair partner of one probe, once each
+  std::vector<kinetic::PointId> candidates_;     // every pair partner of one probe, once each
   std::vector<track::TrackSlot> evaluated_;      // those the alert manager must see, in slot order
   std::vector<track::TrackSlot> partners_scratch_;
   std::vector<std::uint32_t> partner_mark_;      // by slot: == candidate_round_ for this probe's partners
@@ -271,6 +278,7 @@ class Pipeline {
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
   double epoch_ = 0.0;  // engine time = data time − epoch (design §4.1: local time frames)
+  double next_renumber_ = 0.0;  // data time of the next renumbering (renumber_every_s)
   bool started_ = false;
   double clock_ = 0.0;
   PipelineStatistics stats_;
