@@ -133,6 +133,25 @@ TEST(RunStart, AStrayFirstTimeDoesNotFixTheClock) {
   }
 }
 
+TEST(RunStart, AStrayFirstTimeDoesNotPostponeRenumbering) {
+  // The renumbering's schedule (PipelineConfig::renumber_every_s) starts with the run: a
+  // first record dated 2099 must not leave it waiting for 2099 after the restart.
+  PipelineConfig config;
+  config.renumber_every_s = 8.0;
+  Pipeline pipeline(config);
+  for (const double dt : {0.0, 4.0}) {  // a stray track that moved the clock once
+    TrackReport stray = head_on("C", kT0, 0.0);
+    stray.t = 4070908800.0 + dt;
+    pipeline.process(stray);
+  }
+  for (double dt = 0.0; dt < 80.0; dt += 4.0) {
+    pipeline.process(head_on("A", kT0 + dt, 0.0));
+    pipeline.process(head_on("B", kT0 + dt, 0.0));
+  }
+  EXPECT_EQ(pipeline.statistics().runs_restarted, 1u);
+  EXPECT_GE(pipeline.kinetic_statistics().renumberings, 8u);
+}
+
 TEST(RunStart, ARestartOfASparseFeedAppliesEveryRecordOnce) {
   // Review finding: a stray first record an hour ahead, then a sparse feed (a record every
   // 12 s, each more than max_time_jump_s after the last): the restart replays records that

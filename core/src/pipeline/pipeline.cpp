@@ -151,6 +151,7 @@ void Pipeline::restart_young_run() {
   time_guard_.release(held);
   if (!config_.reference) projection_.reset();
   kdt_.emplace(config_.kinetic, 0.0);
+  next_renumber_ = 0.0;  // its schedule starts with the new run's clock
   started_ = false;
   accepted_in_run_ = 0;
   late_since_accepted_ = false;
@@ -390,7 +391,8 @@ void Pipeline::apply(track::TrackSlot slot) {
   util::grow_to(probe_state_, track.point + 1);
   ProbeState& state = probe_state_[track.point];
   state = {track.kinematics, track.t, track.plane_scale, track.intent.sel_t + config_.tracks.intent.max_age_s,
-           regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft)};
+           regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft),
+           slot};
   if (config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps)
     state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
   probe(slot);
@@ -403,17 +405,17 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
   // evaluations even when the search (edges mode) does not return them; they are marked
   // so that probe() keeps them and the search does not add them twice.
   if (++candidate_round_ == 0) {  // wrapped: forget every mark
-    std::fill(partner_mark_.begin(), partner_mark_.end(), 0);
+    for (ProbeState& state : probe_state_) state.partner_round = 0;
     candidate_round_ = 1;
   }
-  util::grow_to(partner_mark_, tracks_.slot_end(), std::uint32_t{0});
   partners_scratch_.clear();
   alerts_.partners_of(slot, partners_scratch_);
   for (const track::TrackSlot other : partners_scratch_) {
-    partner_mark_[other] = candidate_round_;
-    // Brute force takes every live track below, partners included. A pair's state ends
-    // when either track leaves the engine, so a partner always has a point.
-    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(tracks_[other].point);
+    // A pair's state ends when either track leaves the engine: a partner has a point.
+    const kinetic::PointId point = tracks_[other].point;
+    probe_state_[point].partner_round = candidate_round_;
+    // Brute force takes every live track below, partners included.
+    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(point);
   }
   points_scratch_.clear();
   switch (config_.probe_mode) {
@@ -441,7 +443,7 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
   }
   // Each point once, never the track's own (within() marks what it visited).
   for (const kinetic::PointId p : points_scratch_)
-    if (partner_mark_[slot_of_point_[p]] != candidate_round_) candidates_.push_back(p);
+    if (probe_state_[p].partner_round != candidate_round_) candidates_.push_back(p);
 }
 
 Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
@@ -482,18 +484,17 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
   constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     if (i + kPrefetchAhead < candidates_.size()) {
-      const kinetic::PointId ahead = candidates_[i + kPrefetchAhead];
-      __builtin_prefetch(&probe_state_[ahead]);
-      __builtin_prefetch(&slot_of_point_[ahead]);
+      const ProbeState* ahead = &probe_state_[candidates_[i + kPrefetchAhead]];
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
     }
-    const kinetic::PointId point = candidates_[i];
-    const track::TrackSlot other = slot_of_point_[point];
-    if (partner_mark_[other] == candidate_round_) {
+    // pair_kinematics() without its copies: this loop runs ~100 times per update.
+    const ProbeState& them = probe_state_[candidates_[i]];
+    const track::TrackSlot other = them.slot;
+    if (them.partner_round == candidate_round_) {
       evaluated_.push_back(other);
       continue;
     }
-    // pair_kinematics() without its copies: this loop runs ~100 times per update.
-    const ProbeState& them = probe_state_[point];
     const probe::Kinematics k_other = them.at(clock_);
     probe::SeparationMinima minima =
         regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;

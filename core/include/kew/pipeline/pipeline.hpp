@@ -247,13 +247,15 @@ class Pipeline {
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
   // What the probe reads of each live track, by its engine point (so that renumbering
   // the points orders it too), packed for the candidate loop (the Track is large and cold).
-  /// One cache line: the probe reads a hundred of these, scattered, per update.
+  /// Two cache lines: the probe reads a hundred of these, scattered, per update.
   struct alignas(64) ProbeState {
     probe::Kinematics kinematics;  // at time t
     double t = 0.0;
     double scale = 1.0;
     double level_off_until_t = 0.0;  // the selected altitude's age limit (UTC s)
     std::size_t region = region::RegionMap::kNone;
+    track::TrackSlot slot = track::kNoTrack;  // the track it belongs to
+    std::uint32_t partner_round = 0;  // == candidate_round_: a pair partner of this probe
     probe::Kinematics at(double at_t) const {
       probe::Kinematics k = kinematics;
       if (at_t > level_off_until_t) k.level_off_m = std::numeric_limits<double>::quiet_NaN();
@@ -266,7 +268,6 @@ class Pipeline {
   std::vector<kinetic::PointId> candidates_;     // every pair partner of one probe, once each
   std::vector<track::TrackSlot> evaluated_;      // those the alert manager must see, in slot order
   std::vector<track::TrackSlot> partners_scratch_;
-  std::vector<std::uint32_t> partner_mark_;      // by slot: == candidate_round_ for this probe's partners
   std::uint32_t candidate_round_ = 0;
   region::RegionMap regions_;
   std::vector<PairParameters> region_parameters_;  // by region index; the defaults last
