@@ -402,22 +402,17 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
   const track::Track& track = tracks_[slot];
   candidates_.clear();
   // Pairs pending confirmation or alerting are always evaluated, so they see their clear
-  // evaluations even when the search (edges mode) does not return them; they are marked
-  // so that probe() keeps them and the search does not add them twice.
+  // evaluations even when the search (edges mode) does not return them: they are marked
+  // here, test_candidates() takes those it meets among the candidates, and then the rest.
   if (++candidate_round_ == 0) {  // wrapped: forget every mark
     for (ProbeState& state : probe_state_) state.partner_round = 0;
     candidate_round_ = 1;
   }
   partners_scratch_.clear();
   alerts_.partners_of(slot, partners_scratch_);
-  for (const track::TrackSlot other : partners_scratch_) {
-    // A pair's state ends when either track leaves the engine: a partner has a point.
-    const kinetic::PointId point = tracks_[other].point;
-    probe_state_[point].partner_round = candidate_round_;
-    // Brute force takes every live track below, partners included.
-    if (config_.probe_mode != probe::ProbeMode::Brute) candidates_.push_back(point);
-  }
-  points_scratch_.clear();
+  // A pair's state ends when either track leaves the engine: a partner has a point.
+  for (const track::TrackSlot other : partners_scratch_) probe_state_[tracks_[other].point].partner_round = candidate_round_;
+  // Each point once, never the track's own (within() marks what it visited).
   switch (config_.probe_mode) {
     case probe::ProbeMode::Exact:
       // Straight-line prediction: every j that can come within S_h of i within T is within
@@ -425,25 +420,22 @@ void Pipeline::collect_candidates(track::TrackSlot slot) {
       // the faster i flies; an arc stays only within |v_i|·T of its start.
       if (config_.search_ahead && probe_state_[track.point].kinematics.turn_rate_rps == 0.0) {
         const geometry::Point2 ahead = kdt_->position_now(track.point) + largest_lookahead_s_ * track.kinematics.velocity;
-        search_.within_around(*kdt_, track.point, ahead, search_radius(0.0), points_scratch_);
+        search_.within_around(*kdt_, track.point, ahead, search_radius(0.0), candidates_);
       } else {
-        search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), points_scratch_);
+        search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), candidates_);
       }
       break;
     case probe::ProbeMode::Edges:
-      search_.neighbours(*kdt_, track.point, points_scratch_);
+      search_.neighbours(*kdt_, track.point, candidates_);
       // A few points; within() gives each once by construction, this makes sure here.
-      std::sort(points_scratch_.begin(), points_scratch_.end());
-      points_scratch_.erase(std::unique(points_scratch_.begin(), points_scratch_.end()), points_scratch_.end());
+      std::sort(candidates_.begin(), candidates_.end());
+      candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
       break;
     case probe::ProbeMode::Brute:
       for (kinetic::PointId other = 0; other < slot_of_point_.size(); ++other)
         if (slot_of_point_[other] != track::kNoTrack && other != track.point) candidates_.push_back(other);
-      return;
+      break;
   }
-  // Each point once, never the track's own (within() marks what it visited).
-  for (const kinetic::PointId p : points_scratch_)
-    if (probe_state_[p].partner_round != candidate_round_) candidates_.push_back(p);
 }
 
 Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
@@ -489,9 +481,10 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
       __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
     }
     // pair_kinematics() without its copies: this loop runs ~100 times per update.
-    const ProbeState& them = probe_state_[candidates_[i]];
+    ProbeState& them = probe_state_[candidates_[i]];
     const track::TrackSlot other = them.slot;
     if (them.partner_round == candidate_round_) {
+      them.partner_round = 0;  // met: not added again below
       evaluated_.push_back(other);
       continue;
     }
@@ -502,6 +495,11 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
     minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
     if (slot < other ? pair_in_conflict(k_self, k_other, minima) : pair_in_conflict(k_other, k_self, minima))
       evaluated_.push_back(other);
+  }
+  for (const track::TrackSlot other : partners_scratch_) {  // partners the search did not find
+    if (probe_state_[tracks_[other].point].partner_round != candidate_round_) continue;
+    ++stats_.candidates;
+    evaluated_.push_back(other);
   }
   std::sort(evaluated_.begin(), evaluated_.end());
   for (const track::TrackSlot other : evaluated_) {
