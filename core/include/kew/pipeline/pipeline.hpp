@@ -264,7 +264,7 @@ class Pipeline {
   };
   std::vector<ProbeState> probe_state_;          // by point
   std::vector<track::TrackSlot> slot_of_point_;  // kNoTrack: no live track
-  std::vector<kinetic::PointId> candidates_;     // every pair partner of one probe, once each
+  std::vector<kinetic::PointId> candidates_;     // the points one probe's search found, once each
   std::vector<track::TrackSlot> evaluated_;      // those the alert manager must see, in slot order
   std::vector<track::TrackSlot> partners_scratch_;
   std::uint32_t candidate_round_ = 0;
