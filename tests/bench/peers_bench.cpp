@@ -707,7 +707,6 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
   return result;
 }
 
-
 // (a'') Kinetic detection (issue 22 item 4): the prototype fed the same steps, testing
 // the candidates LookaheadPairs gives with the same conflict test. Its own counters
 // (reports kept and replaced, disk searches, entries) are printed to stderr.
