@@ -315,11 +315,13 @@ void Pipeline::move_clock(double t) {
 
 void Pipeline::renumber() {
   std::vector<track::TrackSlot> slots;
+  std::vector<probe::Kinematics> reports;  // each track's latest report, now
   std::vector<geometry::Point2> positions;
   for (const track::TrackSlot slot : slot_of_point_) {
     if (slot == track::kNoTrack) continue;
     slots.push_back(slot);
-    positions.push_back(tracks_[slot].at(clock_).position);
+    reports.push_back(tracks_[slot].at(clock_));
+    positions.push_back(reports.back().position);
   }
   const kinetic::KineticStatistics earlier = kdt_->statistics();
   std::vector<ProbeState> old_state = std::move(probe_state_);
@@ -328,9 +330,8 @@ void Pipeline::renumber() {
   kdt_.emplace(config_.kinetic, engine_time(clock_));
   for (const std::uint32_t i : geometry::hilbert_order(positions)) {
     track::Track& track = tracks_[slots[i]];
-    const probe::Kinematics now = track.at(clock_);
     const kinetic::PointId old_point = track.point;
-    track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
+    track.point = kdt_->insert(engine_time(clock_), reports[i].position, reports[i].velocity);
     util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
     util::grow_to(probe_state_, track.point + 1);
     slot_of_point_[track.point] = slots[i];
