@@ -22,9 +22,13 @@ void read_projection(TableReader& r, PipelineConfig& p) {
   r.number("reference_lon", lon, -180.0, 180.0);
   if (std::isnan(lat) != std::isnan(lon)) r.fail(nullptr, "reference_lat and reference_lon go together");
   if (!std::isnan(lat)) p.reference = geo::GeodeticPosition{lat, lon};
-  double radius_km = p.coverage_radius_m / 1000.0;
-  r.number("coverage_radius_km", radius_km, 1.0, 3000.0);
-  p.coverage_radius_m = radius_km * 1000.0;
+  r.choice("zones", p.zone_mode, kZoneModeNames);
+  // One plane reaches 3,000 km at most (design §4.2); worldwide, a limit may reach the
+  // antipode (half a meridian, 20,004 km).
+  const double largest_km = p.zone_mode == ZoneMode::Single ? 3000.0 : 20004.0;
+  double radius_km = p.coverage_radius_m ? *p.coverage_radius_m / 1000.0 : NAN;
+  r.number("coverage_radius_km", radius_km, 1.0, largest_km);
+  if (!std::isnan(radius_km)) p.coverage_radius_m = radius_km * 1000.0;
 }
 
 void read_tracks(TableReader& r, track::TrackTableConfig& t) {

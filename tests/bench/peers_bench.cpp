@@ -278,6 +278,8 @@ void read_recording(const Params& prm, Workload& w) {
   std::set<std::pair<std::string, std::string>> tracks;
   for (const kew::TrackReport& r : w.records) tracks.emplace(r.source, r.id);
   w.aircraft = tracks.size();
+  // The other methods work in one plane: so does the pipeline they are measured against.
+  w.config.zone_mode = kew::ZoneMode::Single;
   w.config.reference = kew::geo::GeodeticPosition{w.records.front().lat_deg, w.records.front().lon_deg};
 }
 
@@ -303,10 +305,12 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
     w.records.reserve(aircraft * (prm.warmup + prm.periods));
     for (kew::TrackReport r; generator.next(r);) w.records.push_back(r);
     start_time = g.start_time;
+    w.config.zone_mode = kew::ZoneMode::Single;
     w.config.reference = kew::geo::GeodeticPosition{g.center_lat_deg, g.center_lon_deg};
     w.config.coverage_radius_m = std::min(3.0e6, std::max(1.5e6, 1.25e3 * w.radius_km + 50e3));
   }
-  const kew::geo::Projection projection(*w.config.reference, w.config.coverage_radius_m);
+  const kew::geo::Projection projection(*w.config.reference,
+                                        w.config.coverage_radius_m.value_or(kew::PipelineConfig::kSingleCoverage_m));
   w.k_max = projection.max_scale();
   reorder_first_period(prm, start_time, w.records);
 

@@ -294,6 +294,7 @@ MemoryPerTrack measure_memory(std::size_t aircraft, kew::replay::Scenario scenar
     // Centred on the region, whose radius (2,000 km at 100k aircraft) is beyond the
     // default coverage.
     const kew::replay::GeneratorConfig region = generated(aircraft, 12.0, scenario);
+    config.zone_mode = kew::ZoneMode::Single;
     config.reference = kew::geo::GeodeticPosition{region.center_lat_deg, region.center_lon_deg};
     config.coverage_radius_m = 1.25e3 * region.radius_km + 50e3;
     kew::Pipeline pipeline(config);

@@ -18,7 +18,7 @@ import tempfile
 
 # Library folder -> (level, the kew/<x> header folders it owns, its CMake targets).
 LIBRARIES = {
-    "core": (0, {"geometry", "triangulation", "kinetic", "geo", "track", "probe", "alert", "eligibility", "region", "pipeline", "util"},
+    "core": (0, {"geometry", "triangulation", "kinetic", "geo", "track", "probe", "alert", "eligibility", "region", "zone", "pipeline", "util"},
              {"kew_core"}),
     "protocol": (1, {"protocol"}, {"kew_protocol"}),
     "config": (2, {"config"}, {"kew_config"}),

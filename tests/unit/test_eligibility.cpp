@@ -331,7 +331,9 @@ TEST(Eligibility, ARefusedLastRecordStillEndsTheTrack) {
 TEST(Eligibility, ARefusedRecordWithAnotherAddressKeepsTheOldTrack) {
   Flight a{"17", "cat062/25.100"};
   a.edit = [](TrackReport& r) { r.address = 0x4CA1B2; };
-  Pipeline pipeline;
+  PipelineConfig limited;  // worldwide zones with an explicit coverage limit
+  limited.coverage_radius_m = 1.5e6;
+  Pipeline pipeline(limited);
   pipeline.process(a.at(kT0));
   pipeline.process(a.at(kT0 + 4.0));
   TrackReport far = a.at(kT0 + 8.0);  // outside the 1,500 km coverage

@@ -66,7 +66,7 @@ std::vector<AlertEvent> run(probe::ProbeMode mode) {
     place(8000.0 - advance, &lat, &lon);
     pipeline.process(at("B", t, lat, lon, 35000, gs, 270.0));
   }
-  EXPECT_TRUE(pipeline.kinetic().is_valid());
+  EXPECT_TRUE(pipeline.is_valid());
   return events;
 }
 

@@ -38,7 +38,7 @@ TrackReport head_on(const std::string& id, double t, double start) {
 struct Feed {
   Pipeline pipeline;
   std::size_t opened = 0;
-  Feed() {
+  explicit Feed(const PipelineConfig& config = {}) : pipeline(config) {
     pipeline.set_alert_sink([this](const AlertEvent& e) { opened += e.state == AlertState::New; });
   }
   // Both aircraft every 4 s over [from, to), the pair first 20 NM apart at `start`.
@@ -100,10 +100,41 @@ TEST(TimeGuard, HeldRecordsAreAppliedOnceTheClockReachesThemOrTheInputEnds) {
   EXPECT_EQ(run.pipeline.rejections().total(), 0u);
 }
 
+// The configurations where a position can be outside coverage: one plane (whose
+// centre the first record fixes), and the worldwide zones with an explicit limit
+// around the first record.
+std::vector<PipelineConfig> limited_coverage() {
+  PipelineConfig single;
+  single.zone_mode = ZoneMode::Single;
+  PipelineConfig limited;
+  limited.coverage_radius_m = 1.5e6;
+  return {single, limited};
+}
+
 TEST(RunStart, AStrayFirstPositionDoesNotFixTheProjection) {
   // The reliability finding: with no reference configured, a first record at −45°, 170°
   // made every later record of a European feed outside_coverage. Five refused in a row
   // restart the young run from them.
+  for (const PipelineConfig& config : limited_coverage()) {
+    SCOPED_TRACE(kZoneModeNames.name(config.zone_mode));
+    Feed run(config);
+    TrackReport stray = head_on("C", kT0, 0.0);
+    stray.lat_deg = -45.0;
+    stray.lon_deg = 170.0;
+    run.pipeline.process(stray);
+    run.fly(0.0, 80.0, 0.0);
+    EXPECT_EQ(run.opened, 1u);
+    EXPECT_EQ(run.pipeline.statistics().runs_restarted, 1u);
+    EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 5u);  // before the restart
+    if (config.zone_mode == ZoneMode::Single) {
+      EXPECT_NEAR(run.pipeline.projection()->reference().lat_deg, 50.0, 0.05);
+    }
+    EXPECT_EQ(run.pipeline.tracks().size(), 2u);
+  }
+}
+
+TEST(RunStart, WorldwideZonesRefuseNoPositionWithoutALimit) {
+  // The same stray first record: with zones and no limit it is a track like any other.
   Feed run;
   TrackReport stray = head_on("C", kT0, 0.0);
   stray.lat_deg = -45.0;
@@ -111,10 +142,11 @@ TEST(RunStart, AStrayFirstPositionDoesNotFixTheProjection) {
   run.pipeline.process(stray);
   run.fly(0.0, 80.0, 0.0);
   EXPECT_EQ(run.opened, 1u);
-  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 1u);
-  EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 5u);  // before the restart
-  EXPECT_NEAR(run.pipeline.projection()->reference().lat_deg, 50.0, 0.05);
-  EXPECT_EQ(run.pipeline.tracks().size(), 2u);
+  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 0u);
+  EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 0u);
+  EXPECT_EQ(run.pipeline.tracks().size(), 2u);  // the stray one timed out
+  EXPECT_EQ(run.pipeline.rejections().total(), 0u);
+  EXPECT_GE(run.pipeline.statistics().zones_created, 2u);  // one of them at −45°, 170°
 }
 
 TEST(RunStart, AStrayFirstTimeDoesNotFixTheClock) {
@@ -203,16 +235,19 @@ TEST(RunStart, AFeedWhoseDelayGrewCatchesUpWithTheLiveTick) {
 
 TEST(RunStart, AnEstablishedRunIsNeverRestarted) {
   // Once five records were accepted, records elsewhere are only refused.
-  Feed run;
-  run.fly(0.0, 12.0, 0.0);
-  for (int i = 0; i < 20; ++i) {
-    TrackReport far = head_on(std::string("F") + std::to_string(i), kT0 + 12.0, 0.0);
-    far.lat_deg = -45.0;
-    run.pipeline.process(far);
+  for (const PipelineConfig& config : limited_coverage()) {
+    SCOPED_TRACE(kZoneModeNames.name(config.zone_mode));
+    Feed run(config);
+    run.fly(0.0, 12.0, 0.0);
+    for (int i = 0; i < 20; ++i) {
+      TrackReport far = head_on(std::string("F") + std::to_string(i), kT0 + 12.0, 0.0);
+      far.lat_deg = -45.0;
+      run.pipeline.process(far);
+    }
+    EXPECT_EQ(run.pipeline.statistics().runs_restarted, 0u);
+    EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 20u);
+    EXPECT_EQ(run.pipeline.tracks().size(), 2u);
   }
-  EXPECT_EQ(run.pipeline.statistics().runs_restarted, 0u);
-  EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 20u);
-  EXPECT_EQ(run.pipeline.tracks().size(), 2u);
 }
 
 TEST(TimeGuard, RulesOnTheirOwn) {

@@ -66,7 +66,9 @@ std::vector<BadRecord> bad_records() {
 }
 
 TEST(BadRecords, AreRefusedWithTheirReasonAndNeverReachTheTriangulation) {
-  Pipeline pipeline;
+  PipelineConfig limited;  // worldwide zones with an explicit coverage limit
+  limited.coverage_radius_m = 1.5e6;
+  Pipeline pipeline(limited);
   pipeline.process(report("GOOD01", kT0, 50.0, 8.0));
   pipeline.process(report("GOOD01", kT0 + 4.0, 50.0, 8.025));
   ASSERT_EQ(pipeline.live_tracks(), 1u);
@@ -90,7 +92,7 @@ TEST(BadRecords, AreRefusedWithTheirReasonAndNeverReachTheTriangulation) {
   EXPECT_EQ(kinetic_after.insertions, kinetic_before.insertions);
   EXPECT_EQ(kinetic_after.updates, kinetic_before.updates);
   EXPECT_EQ(pipeline.tracks()[good].lon_deg, good_lon);
-  EXPECT_TRUE(pipeline.kinetic().is_valid());
+  EXPECT_TRUE(pipeline.is_valid());
 }
 
 // Issue 17: a feed whose I062/220 held −165,100 ft/min lost those records whole, its
@@ -225,7 +227,7 @@ TEST(TrackTable, SilentTracksAreDroppedAfterTheTimeout) {
   EXPECT_EQ(pipeline.statistics().tracks_dropped, 1u);
   pipeline.advance_to(kT0 + 63.0);
   EXPECT_EQ(pipeline.live_tracks(), 0u);
-  EXPECT_TRUE(pipeline.kinetic().is_valid());
+  EXPECT_TRUE(pipeline.is_valid());
 }
 
 TEST(TrackTable, OnGroundTargetsMayBeIncluded) {
@@ -244,8 +246,9 @@ TEST(TrackTable, LateRecordsWithinTheLimitAreExtrapolatedToTheClock) {
   pipeline.process(report("BBB002", kT0 + 5.0, 50.2, 8.0));  // 5 s late: accepted
   EXPECT_EQ(pipeline.live_tracks(), 2u);
   EXPECT_EQ(pipeline.now(), kT0 + 10.0);
-  const kinetic::PointId p = pipeline.tracks()[pipeline.tracks().find("test", "BBB002")].point;
-  const geometry::Point2 at_clock = pipeline.kinetic().position_now(p);
+  const track::TrackSlot slot = pipeline.tracks().find("test", "BBB002");
+  const kinetic::PointId p = pipeline.tracks()[slot].point;
+  const geometry::Point2 at_clock = pipeline.home_zone(slot)->engine().position_now(p);
   const probe::Kinematics k = pipeline.tracks()[pipeline.tracks().find("test", "BBB002")].at(kT0 + 10.0);
   EXPECT_LT(geometry::norm(at_clock - k.position), 1e-6);
 }

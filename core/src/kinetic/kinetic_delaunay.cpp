@@ -782,4 +782,39 @@ void KineticDelaunay::continue_statistics(const KineticStatistics& earlier) {
   stats_.drifts_queued = own.drifts_queued;
 }
 
+void add_statistics(KineticStatistics& total, const KineticStatistics& part) {
+  const std::size_t largest = std::max(total.queue_max, part.queue_max);
+  total.certificates_solved += part.certificates_solved;
+  total.certificates_deferred += part.certificates_deferred;
+  total.events_computed += part.events_computed;
+  total.events_executed += part.events_executed;
+  total.events_discarded += part.events_discarded;
+  total.events_early += part.events_early;
+  total.tangencies_ignored += part.tangencies_ignored;
+  total.renewals += part.renewals;
+  total.insertions += part.insertions;
+  total.removals += part.removals;
+  total.updates += part.updates;
+  total.velocity_updates += part.velocity_updates;
+  total.kept_updates += part.kept_updates;
+  total.reinsertions += part.reinsertions;
+  total.drift_reinsertions += part.drift_reinsertions;
+  total.repairs += part.repairs;
+  total.repair_flips += part.repair_flips;
+  total.degenerate_flips += part.degenerate_flips;
+  total.repair_reinsertions += part.repair_reinsertions;
+  total.rebuilds += part.rebuilds;
+  total.renumberings += part.renumberings;
+  total.twins_created += part.twins_created;
+  total.twins_released += part.twins_released;
+  total.approaches_scheduled += part.approaches_scheduled;
+  total.approaches_merged += part.approaches_merged;
+  total.queue_now += part.queue_now;
+  total.renewals_queued += part.renewals_queued;
+  total.drifts_queued += part.drifts_queued;
+  total.queue_sum += part.queue_sum;
+  total.queue_samples += part.queue_samples;
+  total.queue_max = largest;
+}
+
 }  // namespace kew::kinetic

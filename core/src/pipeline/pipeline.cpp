@@ -1,6 +1,7 @@
 #include "kew/pipeline/pipeline.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <cmath>
 
@@ -14,6 +15,15 @@ constexpr double kFootToMetre = 0.3048;
 // Widens R_i so that rounding in positions and speeds can never drop a pair whose CPA
 // test is positive (metres; far below any separation minimum).
 constexpr double kSearchSlack_m = 1.0;
+// The largest point scale of a zone's plane (design §4.9: below 1.02) with room to spare,
+// and the zone margin's own slack (m).
+constexpr double kScaleBound = 1.05;
+constexpr double kMarginSlack_m = 1000.0;
+// ProbeMode::Brute in worldwide mode evaluates every pair whose last reports are within
+// this distance (m): far beyond any pair that can conflict, near enough for the owner
+// zone's plane to hold both.
+constexpr double kBruteReach_m = 2.5e6;
+constexpr double kEarthRadius_m = 6371008.8;  // mean radius, for the brute force's cut only
 
 geo::GeodeticPosition rounded_reference(const TrackReport& r) {
   return {std::round(r.lat_deg * 10.0) / 10.0, std::round(r.lon_deg * 10.0) / 10.0};
@@ -43,14 +53,12 @@ Pipeline::Pipeline(const PipelineConfig& config)
     : config_(config),
       tracks_(config.tracks),
       time_guard_(config.tracks.max_time_jump_s, config.tracks.max_lateness_s, track::kTimeJumpConfirm),
-      kdt_(std::in_place, config.kinetic, 0.0),
       alerts_(config.alerts, [this](track::TrackSlot slot) {
         const track::Track& track = tracks_[slot];
         return alert::PartyName{track.source, track.id};
       }),
       regions_(config.regions),
       rules_(config.eligibility, config.minima) {
-  if (config_.reference) projection_.emplace(*config_.reference, config_.coverage_radius_m);
   // Each region's parameters resolved against the defaults once; the defaults last.
   PairParameters defaults;
   defaults.minima = config_.minima;
@@ -75,6 +83,24 @@ Pipeline::Pipeline(const PipelineConfig& config)
     region_parameters_.push_back(p);
   }
   region_parameters_.push_back(defaults);
+  if (config_.zone_mode == ZoneMode::Worldwide) {
+    // Two aircraft whose last reports are D apart can come within S_h of each other
+    // within T only if D ≤ S_h + (v_i + v_j)·(T + age), each report at most the track
+    // timeout old and every speed at most max_ground_speed_kt (faster reports lose the
+    // speed, faster derived ones reset the track, design §4.3). The midpoint of such a
+    // pair is within D/2 of both, so a margin of D/2 holds both in the midpoint's zone.
+    const double fastest_mps = config_.tracks.max_ground_speed_kt * (1852.0 / 3600.0);
+    const double margin = 0.5 * largest_horizontal_m_ * kScaleBound +
+                          fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s) + kMarginSlack_m;
+    tiling_.emplace(margin);
+    zones_.resize(zone::ZoneTiling::key_end());
+  } else {
+    zones_.resize(1);
+  }
+}
+
+double Pipeline::single_coverage_m() const {
+  return config_.coverage_radius_m.value_or(PipelineConfig::kSingleCoverage_m);
 }
 
 Pipeline::PairParameters Pipeline::pair_parameters(std::size_t ra, std::size_t rb) const {
@@ -96,8 +122,9 @@ Pipeline::PairParameters Pipeline::pair_parameters(std::size_t ra, std::size_t r
   return p;
 }
 
-Pipeline::PairParameters Pipeline::parameters_of(track::TrackSlot p, track::TrackSlot q) const {
-  return pair_parameters(probe_state_[tracks_[p].point].region, probe_state_[tracks_[q].point].region);
+std::size_t Pipeline::region_of(track::TrackSlot slot) const {
+  const track::Track& track = tracks_[slot];
+  return zones_[track.plane]->state(track.point).region;
 }
 
 bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
@@ -107,19 +134,17 @@ bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinema
          probe::in_turn_conflict(kp, kq, minima);
 }
 
-double Pipeline::tolerance_bound_m() const {
+double Pipeline::tolerance_bound_m(const zone::Zone& zone) const {
   const kinetic::KineticConfig& k = config_.kinetic;
   if (k.tolerance_mode == kinetic::ToleranceMode::Absolute) return k.tolerance;
   // Relative τ bounds the lag by τ·|p|, and |p| is at most the plane radius of coverage.
-  const double k_max = projection_ ? projection_->max_scale() : 1.03;
-  return k.tolerance * config_.coverage_radius_m * k_max * 1.05;
+  const geo::Projection& plane = zone.projection();
+  return k.tolerance * plane.coverage_radius_m() * plane.max_scale() * 1.05;
 }
 
-double Pipeline::search_radius(double speed_mps) const {
-  const double k_max = projection_ ? projection_->max_scale() : 1.0;
-  const double v_max = speeds_.empty() ? 0.0 : speeds_.top_key();
-  return largest_horizontal_m_ * k_max + largest_lookahead_s_ * (speed_mps + v_max) + 2.0 * tolerance_bound_m() +
-         kSearchSlack_m;
+double Pipeline::search_radius(const zone::Zone& zone, double speed_mps) const {
+  return largest_horizontal_m_ * zone.projection().max_scale() + largest_lookahead_s_ * (speed_mps + zone.fastest_mps()) +
+         2.0 * tolerance_bound_m(zone) + kSearchSlack_m;
 }
 
 void Pipeline::process(const TrackReport& report) {
@@ -149,9 +174,15 @@ void Pipeline::restart_young_run() {
   // reuses guard_scratch_.
   std::vector<TrackReport> held;
   time_guard_.release(held);
-  if (!config_.reference) projection_.reset();
-  kdt_.emplace(config_.kinetic, 0.0);
-  next_renumber_ = 0.0;  // its schedule starts with the new run's clock
+  if (!config_.reference) {
+    projection_.reset();
+    coverage_centre_.reset();
+  }
+  // drop_all() emptied every zone: the new run's zones start with its clock, and so do
+  // their counters and renumbering schedules.
+  for (std::unique_ptr<zone::Zone>& zone : zones_) zone.reset();
+  zone_count_ = 0;
+  retired_kinetic_ = {};
   started_ = false;
   accepted_in_run_ = 0;
   late_since_accepted_ = false;
@@ -205,18 +236,31 @@ void Pipeline::end_of_input() {
 }
 
 void Pipeline::apply_record(const TrackReport& report) {
-  if (!projection_) projection_.emplace(rounded_reference(report), config_.coverage_radius_m);
   if (!started_) {
     started_ = true;
     epoch_ = std::floor(report.t);
     clock_ = epoch_;
+  }
+  if (!coverage_centre_) coverage_centre_ = config_.reference.value_or(rounded_reference(report));
+  if (config_.zone_mode == ZoneMode::Single && !projection_) {
+    projection_.emplace(*coverage_centre_, single_coverage_m());
+    zone_at(0);
   }
   // A plausible record that is not too late moves the clock (and may time out other
   // tracks, or this record's own previous track) before it is applied.
   if (report.t >= clock_ - tracks_.config().max_lateness_s) move_clock(std::max(clock_, report.t));
   restart_if_other_aircraft(report);
 
-  const track::AdmitResult admitted = tracks_.admit(report, clock_, *projection_);
+  track::AdmitResult admitted;
+  if (outside_limit(report)) {
+    tracks_.rejections().reject("outside_coverage", report.id);
+    admitted.refusal = "outside_coverage";
+  } else {
+    zone::Zone& home = home_of(report);
+    const zone::ZoneKey key = home.key();
+    admitted = tracks_.admit(report, clock_, home.projection(), key);
+    if (admitted.admission != track::Admission::Accepted) retire_if_empty(key);
+  }
   if (admitted.admission == track::Admission::Rejected) {
     if (admitted.refusal == "too_late") {
       newest_late_t_ = late_since_accepted_ ? std::max(newest_late_t_, report.t) : report.t;
@@ -239,10 +283,9 @@ void Pipeline::apply_record(const TrackReport& report) {
   young_refused_.clear();
   late_since_accepted_ = false;
   stats_.last_data_time = clock_;
-  track::Track& track = tracks_[admitted.slot];
   if (admitted.admission == track::Admission::AwaitingVelocity) {
     ++stats_.awaiting_velocity;
-    if (track.point != kinetic::kNoPoint) {
+    if (!members_of(admitted.slot).empty()) {
       // Velocity reset: the track leaves the probe until it has a velocity again.
       leave_engine(admitted.slot);
       alerts_.drop_track(admitted.slot, clock_, pending_events_);
@@ -255,6 +298,45 @@ void Pipeline::apply_record(const TrackReport& report) {
   if (report.track_end) end_track(admitted.slot);
 }
 
+bool Pipeline::outside_limit(const TrackReport& report) const {
+  // Single mode's plane refuses what lies beyond it (TrackTable::admit).
+  if (config_.zone_mode == ZoneMode::Single || !config_.coverage_radius_m) return false;
+  return geo::Projection::geodesic_distance_m(*coverage_centre_, {report.lat_deg, report.lon_deg}) >
+         *config_.coverage_radius_m;
+}
+
+zone::Zone& Pipeline::home_of(const TrackReport& report) {
+  return zone_at(tiling_ ? tiling_->home({report.lat_deg, report.lon_deg}) : 0);
+}
+
+zone::Zone& Pipeline::zone_at(zone::ZoneKey key) {
+  std::unique_ptr<zone::Zone>& zone = zones_[key];
+  if (!zone) {
+    if (tiling_) {
+      zone = std::make_unique<zone::Zone>(key, tiling_->name(key),
+                                          geo::Projection(tiling_->centre(key), tiling_->extent_m(key)),
+                                          config_.kinetic, engine_time(clock_));
+    } else {
+      zone = std::make_unique<zone::Zone>(key, "single", *projection_, config_.kinetic, engine_time(clock_));
+    }
+    ++zone_count_;
+    ++stats_.zones_created;
+  }
+  return *zone;
+}
+
+void Pipeline::retire_if_empty(zone::ZoneKey key) {
+  std::unique_ptr<zone::Zone>& zone = zones_[key];
+  // The single zone stays: its engine's counters are the run's, as they always were.
+  if (!zone || !tiling_ || zone->members() != 0) return;
+  // A track awaiting its velocity may still hold kinematics in this plane: the plane
+  // is the same function of the key when the zone comes back.
+  add_statistics(retired_kinetic_, zone->kinetic_statistics());
+  zone.reset();
+  --zone_count_;
+  ++stats_.zones_retired;
+}
+
 void Pipeline::restart_if_other_aircraft(const TrackReport& report) {
   if (!report.address || report.t < clock_ - tracks_.config().max_lateness_s) return;  // admit() refuses it
   const track::TrackSlot slot = tracks_.find(report.source, report.id);
@@ -263,9 +345,12 @@ void Pipeline::restart_if_other_aircraft(const TrackReport& report) {
   // Two 24-bit addresses are never one aircraft: the id was reused (design §4.5).
   if (!track.address || *track.address == *report.address) return;
   // Keep the old track when admit() is going to refuse the record anyway.
-  geo::ProjectionError error = geo::ProjectionError::None;
-  (void)projection_->project({report.lat_deg, report.lon_deg}, error);
-  if (error != geo::ProjectionError::None) return;
+  if (outside_limit(report)) return;
+  if (projection_) {
+    geo::ProjectionError error = geo::ProjectionError::None;
+    (void)projection_->project({report.lat_deg, report.lon_deg}, error);
+    if (error != geo::ProjectionError::None) return;
+  }
   ++stats_.tracks_restarted;
   drop_track(slot);
   tracks_.drop(slot);
@@ -299,45 +384,42 @@ void Pipeline::timed(double PhaseTimes::*phase, F&& f) {
 
 void Pipeline::move_clock(double t) {
   if (t <= clock_) return;
+  const auto advance_zones = [&](double at) {
+    timed(&PhaseTimes::maintenance_s, [&] {
+      for (const std::unique_ptr<zone::Zone>& zone : zones_)
+        if (zone) zone->advance(engine_time(at));
+    });
+  };
   tracks_.expire(t, [&](track::TrackSlot slot, const track::Track& track) {
     const double at = std::max(clock_, track.t + tracks_.config().track_timeout_s);
-    timed(&PhaseTimes::maintenance_s, [&] { kdt_->advance(engine_time(at)); });
+    advance_zones(at);
     clock_ = at;
     drop_track(slot);
   });
-  timed(&PhaseTimes::maintenance_s, [&] { kdt_->advance(engine_time(t)); });
+  advance_zones(t);
   clock_ = t;
-  if (config_.renumber_every_s > 0.0 && clock_ >= next_renumber_) {
-    if (next_renumber_ > 0.0) timed(&PhaseTimes::maintenance_s, [&] { renumber(); });
-    next_renumber_ = clock_ + config_.renumber_every_s;
+  if (config_.renumber_every_s > 0.0) {
+    for (const std::unique_ptr<zone::Zone>& zone : zones_) {
+      if (!zone || clock_ < zone->next_renumber) continue;
+      if (zone->next_renumber > 0.0) timed(&PhaseTimes::maintenance_s, [&] { renumber(*zone); });
+      zone->next_renumber = clock_ + config_.renumber_every_s;
+    }
   }
 }
 
-void Pipeline::renumber() {
-  std::vector<track::TrackSlot> slots;
-  std::vector<probe::Kinematics> reports;  // each track's latest report, now
-  std::vector<geometry::Point2> positions;
-  for (const track::TrackSlot slot : slot_of_point_) {
-    if (slot == track::kNoTrack) continue;
-    slots.push_back(slot);
-    reports.push_back(tracks_[slot].at(clock_));
-    positions.push_back(reports.back().position);
-  }
-  const kinetic::KineticStatistics earlier = kdt_->statistics();
-  std::vector<ProbeState> old_state = std::move(probe_state_);
-  probe_state_.clear();
-  slot_of_point_.clear();
-  kdt_.emplace(config_.kinetic, engine_time(clock_));
-  for (const std::uint32_t i : geometry::hilbert_order(positions)) {
-    track::Track& track = tracks_[slots[i]];
-    const kinetic::PointId old_point = track.point;
-    track.point = kdt_->insert(engine_time(clock_), reports[i].position, reports[i].velocity);
-    util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
-    util::grow_to(probe_state_, track.point + 1);
-    slot_of_point_[track.point] = slots[i];
-    probe_state_[track.point] = old_state[old_point];
-  }
-  kdt_->continue_statistics(earlier);
+void Pipeline::renumber(zone::Zone& zone) {
+  zone.renumber(
+      engine_time(clock_),
+      [&](track::TrackSlot slot) {
+        double scale = 1.0;
+        return probe::extrapolated(kinematics_in(zone.projection(), zone.key(), tracks_[slot], scale), clock_ - tracks_[slot].t);
+      },
+      [&](track::TrackSlot slot, kinetic::PointId point) {
+        for (Membership& m : members_[slot])
+          if (m.zone == zone.key()) m.point = point;
+        track::Track& track = tracks_[slot];
+        if (track.plane == zone.key()) track.point = point;
+      });
 }
 
 void Pipeline::advance_to(double t) {
@@ -350,13 +432,16 @@ void Pipeline::advance_to(double t) {
 }
 
 void Pipeline::leave_engine(track::TrackSlot slot) {
-  track::Track& track = tracks_[slot];
-  if (track.point != kinetic::kNoPoint) {
-    timed(&PhaseTimes::maintenance_s, [&] { kdt_->remove(track.point, engine_time(clock_)); });
-    slot_of_point_[track.point] = track::kNoTrack;
-    track.point = kinetic::kNoPoint;
-  }
-  speeds_.erase(slot);
+  if (slot >= members_.size() || members_[slot].empty()) return;
+  timed(&PhaseTimes::maintenance_s, [&] {
+    for (const Membership& m : members_[slot]) {
+      zones_[m.zone]->remove(m.point, engine_time(clock_));
+      retire_if_empty(m.zone);
+    }
+  });
+  members_[slot].clear();
+  tracks_[slot].point = kinetic::kNoPoint;
+  --live_tracks_;
 }
 
 void Pipeline::drop_track(track::TrackSlot slot) {
@@ -374,119 +459,297 @@ void Pipeline::drop_all() {
   }
 }
 
-kinetic::KineticAudit Pipeline::audit() { return kdt_->audit_and_repair(); }
+kinetic::KineticAudit Pipeline::audit() {
+  kinetic::KineticAudit total;
+  for (const std::unique_ptr<zone::Zone>& zone : zones_) {
+    if (!zone) continue;
+    const kinetic::KineticAudit a = zone->engine().audit_and_repair();
+    total.violations_found += a.violations_found;
+    total.violations_unrepaired += a.violations_unrepaired;
+  }
+  return total;
+}
+
+bool Pipeline::is_valid() const {
+  for (const std::unique_ptr<zone::Zone>& zone : zones_)
+    if (zone && !zone->engine().is_valid()) return false;
+  return true;
+}
+
+kinetic::KineticStatistics Pipeline::kinetic_statistics() const {
+  kinetic::KineticStatistics total = retired_kinetic_;
+  for (const std::unique_ptr<zone::Zone>& zone : zones_)
+    if (zone) add_statistics(total, zone->kinetic_statistics());
+  return total;
+}
+
+const zone::Zone* Pipeline::home_zone(track::TrackSlot slot) const {
+  const track::Track& track = tracks_[slot];
+  return track.in_use && track.plane < zones_.size() ? zones_[track.plane].get() : nullptr;
+}
+
+kinetic::PointId Pipeline::point_in(track::TrackSlot slot, zone::ZoneKey key) const {
+  for (const Membership& m : members_[slot])
+    if (m.zone == key) return m.point;
+  return kinetic::kNoPoint;
+}
+
+zone::ZoneKey Pipeline::owner_of(track::TrackSlot a, track::TrackSlot b) const {
+  if (!tiling_) return 0;
+  const track::Track& ta = tracks_[a];
+  const track::Track& tb = tracks_[b];
+  return tiling_->home(zone::ZoneTiling::midpoint({ta.lat_deg, ta.lon_deg}, {tb.lat_deg, tb.lon_deg}));
+}
+
+probe::Kinematics Pipeline::kinematics_in(const geo::Projection& plane, zone::ZoneKey key, const track::Track& track,
+                                          double& scale) {
+  if (track.plane == key) {
+    scale = track.plane_scale;
+    return track.kinematics;
+  }
+  // Another zone's plane: the reported position projected there, the ground velocity
+  // the track's own plane gave, turned and scaled for this one (both are conformal).
+  geo::ProjectionError ignored = geo::ProjectionError::None;
+  const geo::PlanePosition at = plane.project({track.lat_deg, track.lon_deg}, ignored);
+  probe::Kinematics k = track.kinematics;
+  k.position = at.p;
+  k.velocity = plane.velocity_to_plane(at, track.gs_kt * (1852.0 / 3600.0), track.trk_deg);
+  scale = at.scale;
+  return k;
+}
+
+std::span<const Pipeline::Membership> Pipeline::members_of(track::TrackSlot slot) const {
+  if (slot >= members_.size()) return {};
+  return {members_[slot].data(), members_[slot].size()};
+}
 
 void Pipeline::apply(track::TrackSlot slot) {
   track::Track& track = tracks_[slot];
-  const probe::Kinematics now = track.at(clock_);
+  util::grow_to(members_, static_cast<std::size_t>(slot) + 1);
+  auto& members = members_[slot];
+  if (members.empty()) ++live_tracks_;
+  // The zones that hold the track now (design §4.9): it leaves the others first.
+  zones_scratch_.clear();
+  if (tiling_) tiling_->zones_near({track.lat_deg, track.lon_deg}, zones_scratch_);
+  else zones_scratch_.push_back(0);
   timed(&PhaseTimes::maintenance_s, [&] {
-    if (track.point == kinetic::kNoPoint) {
-      track.point = kdt_->insert(engine_time(clock_), now.position, now.velocity);
-      util::grow_to(slot_of_point_, track.point + 1, track::kNoTrack);
-      slot_of_point_[track.point] = slot;
-    } else {
-      kdt_->update(track.point, engine_time(clock_), now.position, now.velocity);
+    for (std::size_t i = 0; i < members.size();) {
+      if (std::find(zones_scratch_.begin(), zones_scratch_.end(), members[i].zone) != zones_scratch_.end()) {
+        ++i;
+        continue;
+      }
+      const zone::ZoneKey left = members[i].zone;
+      zones_[left]->remove(members[i].point, engine_time(clock_));
+      members.erase(members.begin() + static_cast<std::ptrdiff_t>(i));
+      retire_if_empty(left);
     }
   });
-  speeds_.set(slot, geometry::norm(now.velocity));
-  util::grow_to(probe_state_, track.point + 1);
-  ProbeState& state = probe_state_[track.point];
-  state = {track.kinematics, track.t, track.plane_scale, track.intent.sel_t + config_.tracks.intent.max_age_s,
-           regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft),
-           slot};
-  if (config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps)
-    state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
+  // What every zone's probe state shares, whatever its plane.
+  zone::ProbeState shared;
+  shared.t = track.t;
+  shared.level_off_until_t = track.intent.sel_t + config_.tracks.intent.max_age_s;
+  shared.region = regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft);
+  shared.slot = slot;
+  const bool turning =
+      config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps;
+  std::vector<Membership>& now_in = membership_scratch_;
+  now_in.clear();
+  for (const zone::ZoneKey key : zones_scratch_) {
+    zone::Zone& zone = zone_at(key);
+    double scale = 1.0;
+    const probe::Kinematics k = kinematics_in(zone.projection(), key, track, scale);
+    kinetic::PointId point = kinetic::kNoPoint;
+    for (const Membership& m : members)
+      if (m.zone == key) point = m.point;
+    const auto started = tiling_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    timed(&PhaseTimes::maintenance_s, [&] {
+      point = zone.place(slot, point, engine_time(clock_), probe::extrapolated(k, clock_ - track.t));
+    });
+    if (tiling_) zone.statistics().busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    zone::ProbeState& state = zone.state(point);
+    state = shared;
+    state.kinematics = k;
+    state.scale = scale;
+    if (turning) state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
+    now_in.push_back({key, point});
+    if (key == track.plane) track.point = point;
+  }
+  members.assign(now_in.begin(), now_in.end());
   probe(slot);
 }
 
-void Pipeline::collect_candidates(track::TrackSlot slot) {
-  const track::Track& track = tracks_[slot];
+void Pipeline::collect_candidates(zone::Zone& zone, kinetic::PointId self) {
+  const zone::ProbeState& state = zone.state(self);
   candidates_.clear();
-  // Pairs pending confirmation or alerting are always evaluated, so they see their clear
-  // evaluations even when the search (edges mode) does not return them: they are marked
-  // here, test_candidates() takes those it meets among the candidates, and then the rest.
-  if (++candidate_round_ == 0) {  // wrapped: forget every mark
-    for (ProbeState& state : probe_state_) state.partner_round = 0;
-    candidate_round_ = 1;
-  }
-  partners_scratch_.clear();
-  alerts_.partners_of(slot, partners_scratch_);
-  // A pair's state ends when either track leaves the engine: a partner has a point.
-  for (const track::TrackSlot other : partners_scratch_) probe_state_[tracks_[other].point].partner_round = candidate_round_;
   // Each point once, never the track's own (within() marks what it visited).
   switch (config_.probe_mode) {
     case probe::ProbeMode::Exact:
       // Straight-line prediction: every j that can come within S_h of i within T is within
       // S_h + v_max·T (+ 2τ) of i's position T ahead (design §2.1), a disk that is smaller
       // the faster i flies; an arc stays only within |v_i|·T of its start.
-      if (config_.search_ahead && probe_state_[track.point].kinematics.turn_rate_rps == 0.0) {
-        const geometry::Point2 ahead = kdt_->position_now(track.point) + largest_lookahead_s_ * track.kinematics.velocity;
-        search_.within_around(*kdt_, track.point, ahead, search_radius(0.0), candidates_);
+      if (config_.search_ahead && state.kinematics.turn_rate_rps == 0.0) {
+        const geometry::Point2 ahead = zone.engine().position_now(self) + largest_lookahead_s_ * state.kinematics.velocity;
+        zone.search().within_around(zone.engine(), self, ahead, search_radius(zone, 0.0), candidates_);
       } else {
-        search_.within(*kdt_, track.point, search_radius(geometry::norm(track.kinematics.velocity)), candidates_);
+        zone.search().within(zone.engine(), self, search_radius(zone, geometry::norm(state.kinematics.velocity)),
+                             candidates_);
       }
       break;
     case probe::ProbeMode::Edges:
-      search_.neighbours(*kdt_, track.point, candidates_);
+      zone.search().neighbours(zone.engine(), self, candidates_);
       // A few points; within() gives each once by construction, this makes sure here.
       std::sort(candidates_.begin(), candidates_.end());
       candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
       break;
-    case probe::ProbeMode::Brute:
-      for (kinetic::PointId other = 0; other < slot_of_point_.size(); ++other)
-        if (slot_of_point_[other] != track::kNoTrack && other != track.point) candidates_.push_back(other);
+    case probe::ProbeMode::Brute:  // worldwide: brute_over_sphere() instead
+      for (kinetic::PointId other = 0; other < zone.point_end(); ++other)
+        if (zone.slot_of(other) != zone::kNoSlot && other != self) candidates_.push_back(other);
       break;
   }
 }
 
-Pipeline::PairKinematics Pipeline::pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
-                                                   track::TrackSlot other_slot) const {
-  const ProbeState& self = probe_state_[tracks_[slot].point];
-  const ProbeState& other = probe_state_[tracks_[other_slot].point];
+void Pipeline::brute_over_sphere(track::TrackSlot slot) {
+  // The oracle of the zoned search: every pair within reach on the sphere is judged in
+  // its owner's plane, each track projected there when it is not a member (the same
+  // function fills a member's state), whatever the memberships: a margin too narrow
+  // shows as a difference from the exact search.
+  const track::Track& me = tracks_[slot];
+  const auto unit = [](const track::Track& t, double v[3]) {
+    const double lat = t.lat_deg * (M_PI / 180.0), lon = t.lon_deg * (M_PI / 180.0);
+    v[0] = std::cos(lat) * std::cos(lon);
+    v[1] = std::cos(lat) * std::sin(lon);
+    v[2] = std::sin(lat);
+  };
+  double u[3];
+  unit(me, u);
+  const double min_cos = std::cos(kBruteReach_m / kEarthRadius_m);
+  for (track::TrackSlot other = 0; other < tracks_.slot_end(); ++other) {
+    if (other == slot || members_of(other).empty()) continue;
+    if (std::find(partners_scratch_.begin(), partners_scratch_.end(), other) != partners_scratch_.end()) continue;
+    double w[3];
+    unit(tracks_[other], w);
+    if (u[0] * w[0] + u[1] * w[1] + u[2] * w[2] < min_cos) continue;
+    ++stats_.candidates;
+    const zone::ZoneKey owner = owner_of(slot, other);
+    const zone::ProbeState self = state_in(owner, slot);
+    const PairKinematics pair = pair_kinematics(self, self.at(clock_), state_in(owner, other));
+    if (pair_in_conflict(pair.kp, pair.kq, pair.minima)) evaluated_.push_back({other, owner});
+  }
+}
+
+const geo::Projection& Pipeline::plane_of(zone::ZoneKey key) {
+  if (zones_[key]) return zones_[key]->projection();
+  util::grow_to(brute_planes_, zones_.size());
+  if (!brute_planes_[key]) brute_planes_[key].emplace(tiling_->centre(key), tiling_->extent_m(key));
+  return *brute_planes_[key];
+}
+
+zone::ProbeState Pipeline::state_in(zone::ZoneKey key, track::TrackSlot slot) {
+  const kinetic::PointId point = point_in(slot, key);
+  if (point != kinetic::kNoPoint) return zones_[key]->state(point);
+  const track::Track& t = tracks_[slot];
+  zone::ProbeState state;
+  state.kinematics = kinematics_in(plane_of(key), key, t, state.scale);
+  state.t = t.t;
+  state.level_off_until_t = t.intent.sel_t + config_.tracks.intent.max_age_s;
+  state.region = region_of(slot);
+  state.slot = slot;
+  if (config_.turn.enabled && t.turn_rate_dps && std::abs(*t.turn_rate_dps) >= config_.turn.min_rate_dps)
+    state.kinematics.turn_rate_rps = -*t.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
+  return state;
+}
+
+Pipeline::PairKinematics Pipeline::pair_kinematics(const zone::ProbeState& self, const probe::Kinematics& k_self,
+                                                   const zone::ProbeState& other) const {
   PairKinematics pair;
   pair.scale = geo::Projection::pair_scale(self.scale, other.scale);
-  pair.parameters = parameters_of(slot, other_slot);
+  pair.parameters = pair_parameters(self.region, other.region);
   pair.minima = pair.parameters.minima;
   pair.minima.horizontal_m *= pair.scale;
   // The lower slot goes first so that a pair's figures do not depend on which of its
   // two tracks was updated.
-  const bool self_first = slot < other_slot;
+  const bool self_first = self.slot < other.slot;
   const probe::Kinematics k_other = other.at(clock_);
-  pair.p = self_first ? slot : other_slot;
-  pair.q = self_first ? other_slot : slot;
+  pair.p = self_first ? self.slot : other.slot;
+  pair.q = self_first ? other.slot : self.slot;
   pair.kp = self_first ? k_self : k_other;
   pair.kq = self_first ? k_other : k_self;
   return pair;
 }
 
 void Pipeline::probe(track::TrackSlot slot) {
-  timed(&PhaseTimes::search_s, [&] { collect_candidates(slot); });
-  timed(&PhaseTimes::tests_s, [&] { test_candidates(slot); });
+  ++stats_.probes;
+  evaluated_.clear();
+  // Pairs pending confirmation or alerting are always evaluated, so they see their clear
+  // evaluations even when the search (edges mode) does not return them: they are marked
+  // in every zone, the candidate loops skip them, and each is evaluated once below, in
+  // the zone that owns it.
+  if (++candidate_round_ == 0) {  // wrapped: forget every mark
+    for (const std::unique_ptr<zone::Zone>& zone : zones_)
+      if (zone)
+        for (zone::ProbeState& state : zone->states()) state.partner_round = 0;
+    candidate_round_ = 1;
+  }
+  partners_scratch_.clear();
+  alerts_.partners_of(slot, partners_scratch_);
+  partner_met_.assign(partners_scratch_.size(), 0);
+  const bool brute_sphere = tiling_ && config_.probe_mode == probe::ProbeMode::Brute;
+  if (brute_sphere) timed(&PhaseTimes::tests_s, [&] { brute_over_sphere(slot); });
+  for (const Membership& m : members_[slot]) {
+    if (brute_sphere) break;
+    zone::Zone& zone = *zones_[m.zone];
+    const auto started = tiling_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    timed(&PhaseTimes::search_s, [&] {
+      // A pair's state ends when either track leaves the engines: a partner is a member
+      // of some zone, if not of this one.
+      for (const track::TrackSlot other : partners_scratch_) {
+        const kinetic::PointId point = point_in(other, m.zone);
+        if (point != kinetic::kNoPoint) zone.state(point).partner_round = candidate_round_;
+      }
+      collect_candidates(zone, m.point);
+    });
+    timed(&PhaseTimes::tests_s, [&] { test_candidates(zone, m.point, slot); });
+    for (std::size_t i = 0; i < partners_scratch_.size(); ++i) {
+      const kinetic::PointId point = point_in(partners_scratch_[i], m.zone);
+      if (point != kinetic::kNoPoint && zone.state(point).partner_round != candidate_round_) partner_met_[i] = 1;
+    }
+    ++zone.statistics().probes;
+    if (tiling_) zone.statistics().busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+  timed(&PhaseTimes::tests_s, [&] {
+    for (std::size_t i = 0; i < partners_scratch_.size(); ++i) {
+      const track::TrackSlot other = partners_scratch_[i];
+      if (!partner_met_[i]) ++stats_.candidates;  // the search did not find it
+      // Judged where the pair is owned; a pair no zone holds whole is too far apart to
+      // be in conflict (design §4.9) and is evaluated clear.
+      const zone::ZoneKey owner = owner_of(slot, other);
+      const bool held = point_in(slot, owner) != kinetic::kNoPoint && point_in(other, owner) != kinetic::kNoPoint;
+      evaluated_.push_back({other, held || brute_sphere ? owner : zone::kNoZone});
+    }
+    evaluate_pairs(slot);
+  });
 }
 
-void Pipeline::test_candidates(track::TrackSlot slot) {
-  ++stats_.probes;
-  stats_.candidates += candidates_.size();
-  const ProbeState& self = probe_state_[tracks_[slot].point];
+void Pipeline::test_candidates(zone::Zone& zone, kinetic::PointId self_point, track::TrackSlot slot) {
+  const zone::ProbeState& self = zone.state(self_point);
   const probe::Kinematics k_self = self.at(clock_);
+  stats_.candidates += candidates_.size();
   // Most candidates are clear and have no pair state, and for those the alert manager
   // does nothing: only pairs in conflict or with state (the partners, marked above) go
   // on, in slot order, which fixes the order of the events of one probe (design §2.5).
   // Sorting these few rather than every candidate found is the same order.
-  evaluated_.clear();
   constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     if (i + kPrefetchAhead < candidates_.size()) {
-      const ProbeState* ahead = &probe_state_[candidates_[i + kPrefetchAhead]];
+      const zone::ProbeState* ahead = &zone.state(candidates_[i + kPrefetchAhead]);
       __builtin_prefetch(ahead);
       __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
     }
     // pair_kinematics() without its copies: this loop runs ~100 times per update.
-    ProbeState& them = probe_state_[candidates_[i]];
+    zone::ProbeState& them = zone.state(candidates_[i]);
     const track::TrackSlot other = them.slot;
     if (them.partner_round == candidate_round_) {
-      them.partner_round = 0;  // met: not added again below
-      evaluated_.push_back(other);
+      them.partner_round = 0;  // met: evaluated once, after every zone
       continue;
     }
     const probe::Kinematics k_other = them.at(clock_);
@@ -494,17 +757,28 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
         regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;
     if (probe::vertically_apart_for_ever(k_self, k_other, minima)) continue;
     minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
-    if (slot < other ? pair_in_conflict(k_self, k_other, minima) : pair_in_conflict(k_other, k_self, minima))
-      evaluated_.push_back(other);
+    if (slot < other ? !pair_in_conflict(k_self, k_other, minima) : !pair_in_conflict(k_other, k_self, minima)) continue;
+    // In conflict here: judged here only when this zone owns the pair (design §4.9).
+    if (tiling_ && owner_of(slot, other) != zone.key()) continue;
+    evaluated_.push_back({other, zone.key()});
   }
-  for (const track::TrackSlot other : partners_scratch_) {  // partners the search did not find
-    if (probe_state_[tracks_[other].point].partner_round != candidate_round_) continue;
-    ++stats_.candidates;
-    evaluated_.push_back(other);
-  }
-  std::sort(evaluated_.begin(), evaluated_.end());
-  for (const track::TrackSlot other : evaluated_) {
-    const PairKinematics pair = pair_kinematics(slot, k_self, other);
+}
+
+void Pipeline::evaluate_pairs(track::TrackSlot slot) {
+  std::sort(evaluated_.begin(), evaluated_.end(),
+            [](const Evaluated& a, const Evaluated& b) { return a.other < b.other; });
+  for (const Evaluated& pick : evaluated_) {
+    const track::TrackSlot other = pick.other;
+    alert::Evaluation e;
+    if (pick.zone == zone::kNoZone) {
+      const PairParameters parameters = pair_parameters(region_of(slot), region_of(other));
+      e.confirm = parameters.confirm;
+      e.clear = parameters.clear;
+      alerts_.evaluate(std::min(slot, other), std::max(slot, other), e, clock_, [](AlertEvent&) {}, pending_events_);
+      continue;
+    }
+    const zone::ProbeState self = state_in(pick.zone, slot);
+    const PairKinematics pair = pair_kinematics(self, self.at(clock_), state_in(pick.zone, other));
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
     bool along_turn = false;
@@ -517,7 +791,6 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
         along_turn = true;
       }
     }
-    alert::Evaluation e;
     e.in_conflict = g.in_conflict;
     e.confirm = pair.parameters.confirm;
     e.clear = pair.parameters.clear;
@@ -530,7 +803,7 @@ void Pipeline::test_candidates(track::TrackSlot slot) {
     alerts_.evaluate(
         pair.p, pair.q, e, clock_,
         [&](AlertEvent& event) {
-          fill_event(event, pair.p, pair.q, g, pair.kp, pair.kq, along_turn);
+          fill_event(event, plane_of(pick.zone), pair.p, pair.q, g, pair.kp, pair.kq, along_turn);
           event.hypothesis = g.lost_now     ? Hypothesis::Proximity
                              : along_turn   ? Hypothesis::Turn
                              : g.level_off  ? Hypothesis::LevelOff
@@ -572,7 +845,8 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
   return true;
 }
 
-void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
+void Pipeline::fill_event(AlertEvent& event, const geo::Projection& projection, track::TrackSlot p, track::TrackSlot q,
+                          const probe::ConflictGeometry& g,
                           const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const {
   const track::Track& tp = tracks_[p];
   const track::Track& tq = tracks_[q];
@@ -584,7 +858,6 @@ void Pipeline::fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlo
   event.cpa_v_ft = g.cpa_v_m / kFootToMetre;
   event.sep_v_ft = g.sep_v_m / kFootToMetre;
   // Horizontal figures on the ellipsoid: the plane overstates lengths by the scale k.
-  const geo::Projection& projection = *projection_;
   const auto geodesic = [&](geometry::Point2 x, geometry::Point2 y) {
     return geo::Projection::geodesic_distance_m(projection.unproject(x), projection.unproject(y));
   };

@@ -80,7 +80,8 @@ void TrackTable::drop_optional_fields(TrackReport& r, unsigned bits) {
        "track angle rate", "deg/s");
 }
 
-AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection) {
+AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection,
+                               std::uint32_t plane_key) {
   AdmitResult result;
   const auto reject = [&](std::string_view reason) {
     rejections_.reject(reason, r.id);
@@ -92,7 +93,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     // Rare: only a record with a field to drop pays for the copy.
     TrackReport cleaned = r;
     drop_optional_fields(cleaned, bad_fields);
-    return admit(cleaned, now, projection);
+    return admit(cleaned, now, projection, plane_key);
   }
   if (r.t < now - config_.max_lateness_s) return reject("too_late");
 
@@ -121,7 +122,14 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     velocity = projection.velocity_to_plane(plane, *r.gs_kt * kKnotToMps, *r.trk_deg);
     has_velocity = true;
   } else if (can_derive) {
-    velocity = (1.0 / gap) * (plane.p - previous->kinematics.position);
+    // The previous position in this record's plane: a track that crossed into another
+    // zone was admitted in that zone's plane.
+    geometry::Point2 before = previous->kinematics.position;
+    if (previous->plane != plane_key) {
+      geo::ProjectionError ignored = geo::ProjectionError::None;
+      before = projection.project({previous->lat_deg, previous->lon_deg}, ignored).p;
+    }
+    velocity = (1.0 / gap) * (plane.p - before);
     has_velocity = true;
     derived = true;
     if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * kKnotToMps) {
@@ -132,7 +140,9 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
       result.velocity_reset = true;
     }
   } else if (previous && previous->has_velocity) {
-    velocity = previous->kinematics.velocity;
+    velocity = previous->plane == plane_key
+                   ? previous->kinematics.velocity
+                   : projection.velocity_to_plane(plane, previous->gs_kt * kKnotToMps, previous->trk_deg);
     has_velocity = true;
   }
 
@@ -182,6 +192,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   if (r.address) track.address = r.address;
   track.coasting = r.coasting;
   track.plane_scale = plane.scale;
+  track.plane = plane_key;
   track.kinematics.position = plane.p;
   track.kinematics.velocity = velocity;
   track.kinematics.altitude_m = r.alt_ft * kFootToMetre;

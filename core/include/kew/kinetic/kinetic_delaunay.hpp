@@ -111,6 +111,10 @@ struct KineticStatistics {
   double queue_mean() const { return queue_samples ? queue_sum / static_cast<double>(queue_samples) : 0.0; }
 };
 
+/// Adds the counters of `part` to `total` (engines of several zones): counts and the
+/// current queue sizes are summed, queue_max is the larger of the two.
+void add_statistics(KineticStatistics& total, const KineticStatistics& part);
+
 /// What update() did.
 enum class UpdateKind {
   Kept,          ///< within τ for KineticConfig::keep_model_s: the model stays as it was

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "kew/alert/alert_manager.hpp"
@@ -20,14 +22,36 @@
 #include "kew/track/time_guard.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/indexed_heap.hpp"
+#include "kew/util/name_table.hpp"
+#include "kew/zone/zone.hpp"
+#include "kew/zone/zone_tiling.hpp"
 
 namespace kew {
 
+/// How the sphere is projected (design §4.9).
+enum class ZoneMode : std::uint8_t {
+  /// Zones of a worldwide tiling, each with its own plane, created where traffic is.
+  Worldwide,
+  /// One plane around one reference, records beyond coverage_radius_m refused.
+  Single,
+};
+inline constexpr util::NameTable<ZoneMode, 2> kZoneModeNames({{
+    {ZoneMode::Worldwide, "worldwide"},
+    {ZoneMode::Single, "single"},
+}});
+
 struct PipelineConfig {
   track::TrackTableConfig tracks;
-  /// Projection centre; default: the first plausible record's position rounded to 0.1°.
+  ZoneMode zone_mode = ZoneMode::Worldwide;
+  /// Single: the plane's centre. Worldwide: the centre of the coverage limit, if one is
+  /// set. Default: the first plausible record's position rounded to 0.1°.
   std::optional<geo::GeodeticPosition> reference;
-  double coverage_radius_m = 1.5e6;
+  /// Records farther than this from the reference (geodesic, m) are refused as
+  /// outside_coverage. Single: the plane's radius, (0, 3,000 km], 1,500 km when empty.
+  /// Worldwide: an explicit limit, (0, 20,040 km]; empty: none.
+  std::optional<double> coverage_radius_m;
+  /// Single mode's plane radius when coverage_radius_m is empty (m).
+  static constexpr double kSingleCoverage_m = 1.5e6;
   kinetic::KineticConfig kinetic = default_kinetic();
   probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
   /// Exact mode: search around the predicted position p_i + v_i·T, over the smaller disk
@@ -85,11 +109,20 @@ struct PipelineStatistics {
   std::uint64_t tracks_restarted = 0;
   std::uint64_t probes = 0;             ///< probe runs (one per applied update)
   std::uint64_t candidates = 0;         ///< pairs evaluated, Σ over probes
+  std::uint64_t zones_created = 0;      ///< zones that came into existence (traffic arrived)
+  std::uint64_t zones_retired = 0;      ///< zones whose last member left
   double last_data_time = 0.0;          ///< the pipeline clock (UTC s); 0 before any record
+};
+
+/// A track's point in one zone (Pipeline::members_of).
+struct PipelineMembership {
+  zone::ZoneKey zone;
+  kinetic::PointId point;
 };
 
 class Pipeline {
  public:
+  using Membership = PipelineMembership;
   using AlertSink = std::function<void(const AlertEvent&)>;
 
   explicit Pipeline(const PipelineConfig& config = {});
@@ -132,14 +165,19 @@ class Pipeline {
   /// daemon shutting down), emitting the End events.
   void drop_all();
 
-  /// Exact audit of the triangulation at now(), repairing what it finds.
+  /// Exact audit of every zone's triangulation at now(), repairing what it finds; the
+  /// zones' findings summed.
   kinetic::KineticAudit audit();
+  /// Every zone's kinetic engine is a valid Delaunay triangulation (tests).
+  bool is_valid() const;
 
   double now() const { return clock_; }
   const PipelineStatistics& statistics() const { return stats_; }
   /// Zero unless PipelineConfig::time_phases.
   const PhaseTimes& phase_times() const { return phases_; }
-  const kinetic::KineticStatistics& kinetic_statistics() const { return kdt_->statistics(); }
+  /// The kinetic counters of every zone, summed (zones that were retired included);
+  /// queue_max is the largest of any zone.
+  kinetic::KineticStatistics kinetic_statistics() const;
   const Rejections& rejections() const { return tracks_.rejections(); }
   Rejections& rejections() { return tracks_.rejections(); }
   /// Optional fields dropped from records that passed the record-level checks (design
@@ -150,19 +188,31 @@ class Pipeline {
   /// "same_aircraft", "level_pair", or the exclusion of the first excluded party.
   const Rejections& suppressed() const { return suppressed_; }
   const track::TrackTable& tracks() const { return tracks_; }
-  /// Tracks in the kinetic engine (accepted with a velocity).
-  std::size_t live_tracks() const { return kdt_->size(); }
+  /// Tracks in the kinetic engines (accepted with a velocity), each counted once.
+  std::size_t live_tracks() const { return live_tracks_; }
   const alert::AlertManager& alerts() const { return alerts_; }
   alert::AlertManager& alerts() { return alerts_; }
-  const kinetic::KineticDelaunay& kinetic() const { return *kdt_; }
   const PipelineConfig& config() const { return config_; }
-  /// The projection in use (empty until the first plausible record fixes the reference).
+  /// Single mode: the plane in use (empty until the first plausible record fixes the
+  /// reference). Worldwide mode: always empty; each zone has its own.
   const std::optional<geo::Projection>& projection() const { return projection_; }
 
-  /// Search radius R_i of design §2.1 for a track moving at plane speed `speed_mps`, in
-  /// plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute bound), with the
-  /// largest S_h and T of the defaults and every region (design §4.8).
-  double search_radius(double speed_mps) const;
+  /// The zones that exist now, by key (null: no zone there); single mode has key 0 only.
+  const std::vector<std::unique_ptr<zone::Zone>>& zones() const { return zones_; }
+  std::size_t zone_count() const { return zone_count_; }
+  /// The zone whose plane holds the track's kinematics (its home), null when none.
+  const zone::Zone* home_zone(track::TrackSlot slot) const;
+  /// The worldwide tiling (empty in single mode).
+  const std::optional<zone::ZoneTiling>& tiling() const { return tiling_; }
+  /// Worldwide mode's zone margin (m, design §4.9): half the largest distance between
+  /// the last reports of two aircraft that can still come into conflict. 0 in single mode.
+  double zone_margin_m() const { return tiling_ ? tiling_->margin_m() : 0.0; }
+
+  /// Search radius R_i of design §2.1 in `zone` for a track moving at plane speed
+  /// `speed_mps`, in plane metres: S_h·k_max + T·(|v_i| + v_max) + 2τ (τ as an absolute
+  /// bound), with the largest S_h and T of the defaults and every region (design §4.8),
+  /// k_max and v_max the zone's.
+  double search_radius(const zone::Zone& zone, double speed_mps) const;
 
   /// The parameters that judge a pair whose aircraft are in regions `ra` and `rb`
   /// (region::RegionMap indices, kNone for none), by the rule of design §4.8.
@@ -194,14 +244,49 @@ class Pipeline {
   void restart_if_other_aircraft(const TrackReport& report);
   /// Drops a track its source ended (TrackReport::track_end).
   void end_track(track::TrackSlot slot);
+  /// Removes the track from every zone it is a member of.
   void leave_engine(track::TrackSlot slot);
-  /// Rebuilds the engine with the live tracks' points in Hilbert order of their positions
-  /// now, each at its track's latest report, and moves the probe states with them.
-  void renumber();
+  /// Rebuilds a zone's engine with its members' points in Hilbert order of their
+  /// positions now, each at its track's latest report, and moves the probe states with
+  /// them.
+  void renumber(zone::Zone& zone);
+  /// The zone of `key`, created (empty, its engine starting now) when it does not exist.
+  zone::Zone& zone_at(zone::ZoneKey key);
+  /// Forgets a zone without members; its kinetic counters are kept in the total.
+  void retire_if_empty(zone::ZoneKey key);
+  /// The plane and home zone of a report: single mode's plane, or the home zone's.
+  zone::Zone& home_of(const TrackReport& report);
+  /// The track's kinematics and point scale in `zone`'s plane, at the track's last
+  /// record: its own when the zone is the one it was admitted in, else projected there.
+  static probe::Kinematics kinematics_in(const geo::Projection& plane, zone::ZoneKey key, const track::Track& track,
+                                         double& scale);
+  /// The track's probe state in zone `key`: its member state, or one made the same way
+  /// in that zone's plane (ProbeMode::Brute in worldwide mode).
+  zone::ProbeState state_in(zone::ZoneKey key, track::TrackSlot slot);
+  /// The plane of zone `key`, which need not exist (brute force).
+  const geo::Projection& plane_of(zone::ZoneKey key);
+  std::span<const Membership> members_of(track::TrackSlot slot) const;
+  /// Single mode's plane radius (m).
+  double single_coverage_m() const;
+  /// A worldwide run's explicit coverage limit refuses the report.
+  bool outside_limit(const TrackReport& report) const;
+  /// The zone that judges pair (a, b) (design §4.9): the home of the midpoint of their
+  /// last reported positions (single mode: zone 0).
+  zone::ZoneKey owner_of(track::TrackSlot a, track::TrackSlot b) const;
+  /// The point of the track in `key`'s zone, kNoPoint when it is not a member.
+  kinetic::PointId point_in(track::TrackSlot slot, zone::ZoneKey key) const;
   void apply(track::TrackSlot slot);
   void probe(track::TrackSlot slot);
-  void collect_candidates(track::TrackSlot slot);
-  void test_candidates(track::TrackSlot slot);
+  /// The candidates of the track's point `self` in `zone` (design §2.1), into candidates_.
+  void collect_candidates(zone::Zone& zone, kinetic::PointId self);
+  /// Tests candidates_ in `zone` and appends the conflicting pairs the zone owns to
+  /// evaluated_.
+  void test_candidates(zone::Zone& zone, kinetic::PointId self, track::TrackSlot slot);
+  /// ProbeMode::Brute in worldwide mode: every track within reach on the sphere, each
+  /// pair judged in its owner's plane; the conflicting ones into evaluated_.
+  void brute_over_sphere(track::TrackSlot slot);
+  /// Evaluates evaluated_ (sorted by slot) through the alert manager.
+  void evaluate_pairs(track::TrackSlot slot);
   /// Runs f, adding its duration to `phase` when phases are timed.
   template <class F>
   void timed(double PhaseTimes::*phase, F&& f);
@@ -213,22 +298,23 @@ class Pipeline {
     double scale;  // the pair's projection scale
     PairParameters parameters;
   };
-  PairKinematics pair_kinematics(track::TrackSlot slot, const probe::Kinematics& k_self,
-                                 track::TrackSlot other_slot) const;
+  PairKinematics pair_kinematics(const zone::ProbeState& self, const probe::Kinematics& k_self,
+                                 const zone::ProbeState& other) const;
   /// The rules of design §4.5 for a pair the conflict test found in conflict: true when
   /// the pair is to be treated as clear (counted in suppressed_).
   bool suppressed_by_rules(const PairKinematics& pair);
-  void fill_event(AlertEvent& event, track::TrackSlot p, track::TrackSlot q, const probe::ConflictGeometry& g,
+  void fill_event(AlertEvent& event, const geo::Projection& plane, track::TrackSlot p, track::TrackSlot q,
+                  const probe::ConflictGeometry& g,
                   const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const;
   /// The conflict test of one ordered pair: linear (with vertical intent), then, when
   /// the turn hypothesis is on and either aircraft turns, along the arcs.
   bool pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
                         const probe::SeparationMinima& minima) const;
-  /// The parameters of the pair of tracks (slots, both in the engine) p and q.
-  PairParameters parameters_of(track::TrackSlot p, track::TrackSlot q) const;
+  /// The region (RegionMap index) of a track in the engine, from its last record.
+  std::size_t region_of(track::TrackSlot slot) const;
   void deliver();
   double engine_time(double t) const { return t - epoch_; }
-  double tolerance_bound_m() const;
+  double tolerance_bound_m(const zone::Zone& zone) const;
 
   PipelineConfig config_;
   track::TrackTable tracks_;
@@ -239,34 +325,29 @@ class Pipeline {
   double newest_late_t_ = 0.0;        // the newest such record's time
   std::uint64_t accepted_in_run_ = 0;
   double time_ceiling_ = std::numeric_limits<double>::infinity();
-  std::optional<geo::Projection> projection_;
-  // Optional only so that a restarted run (restart_young_run) can build a fresh engine.
-  std::optional<kinetic::KineticDelaunay> kdt_;
+  std::optional<geo::Projection> projection_;  // single mode
+  std::optional<zone::ZoneTiling> tiling_;     // worldwide mode
+  std::vector<std::unique_ptr<zone::Zone>> zones_;  // by key; null where no zone exists
+  std::size_t zone_count_ = 0;
+  kinetic::KineticStatistics retired_kinetic_;  // counters of zones no longer there
+  /// The zones a track in the engine is a member of, by slot, in key order.
+  std::vector<std::vector<Membership>> members_;
+  zone::ZoneKeys zones_scratch_;
+  std::vector<Membership> membership_scratch_;
+  std::size_t live_tracks_ = 0;
   alert::AlertManager alerts_;
-  probe::ProximitySearch search_;
-  util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every live track
-  // What the probe reads of each live track, by its engine point (so that renumbering
-  // the points orders it too), packed for the candidate loop (the Track is large and cold).
-  /// Two cache lines: the probe reads a hundred of these, scattered, per update.
-  struct alignas(64) ProbeState {
-    probe::Kinematics kinematics;  // at time t
-    double t = 0.0;
-    double scale = 1.0;
-    double level_off_until_t = 0.0;  // the selected altitude's age limit (UTC s)
-    std::size_t region = region::RegionMap::kNone;
-    track::TrackSlot slot = track::kNoTrack;  // the track it belongs to
-    std::uint32_t partner_round = 0;  // == candidate_round_: a pair partner of this probe
-    probe::Kinematics at(double at_t) const {
-      probe::Kinematics k = kinematics;
-      if (at_t > level_off_until_t) k.level_off_m = std::numeric_limits<double>::quiet_NaN();
-      return probe::extrapolated(k, at_t - t);
-    }
+  std::vector<kinetic::PointId> candidates_;  // the points one search found, once each
+  /// A pair the alert manager must see: the other track and the zone that judges it
+  /// (kNoZone: none holds both, too far apart to conflict).
+  struct Evaluated {
+    track::TrackSlot other;
+    zone::ZoneKey zone;
   };
-  std::vector<ProbeState> probe_state_;          // by point
-  std::vector<track::TrackSlot> slot_of_point_;  // kNoTrack: no live track
-  std::vector<kinetic::PointId> candidates_;     // the points one probe's search found, once each
-  std::vector<track::TrackSlot> evaluated_;      // those the alert manager must see, in slot order
+  std::vector<Evaluated> evaluated_;  // in slot order once sorted
   std::vector<track::TrackSlot> partners_scratch_;
+  std::vector<char> partner_met_;
+  std::vector<std::optional<geo::Projection>> brute_planes_;  // planes of zones not there
+  std::optional<geo::GeodeticPosition> coverage_centre_;   // of the reference or first record  // by partners_scratch_ index: a search met it
   std::uint32_t candidate_round_ = 0;
   region::RegionMap regions_;
   std::vector<PairParameters> region_parameters_;  // by region index; the defaults last
@@ -278,7 +359,6 @@ class Pipeline {
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
   double epoch_ = 0.0;  // engine time = data time − epoch (design §4.1: local time frames)
-  double next_renumber_ = 0.0;  // data time of the next renumbering (renumber_every_s)
   bool started_ = false;
   double clock_ = 0.0;
   PipelineStatistics stats_;

@@ -100,8 +100,13 @@ struct Track {
   double turn_reference_t = 0.0;          ///< the older track angle of the derivation
   double turn_reference_trk_deg = 0.0;
   bool has_turn_reference = false;
-  probe::Kinematics kinematics;             ///< plane kinematics at t
-  kinetic::PointId point = kinetic::kNoPoint;  ///< vertex in the kinetic engine, if any
+  probe::Kinematics kinematics;             ///< plane kinematics at t, in plane `plane`
+  /// Which plane `kinematics` and `plane_scale` are in: the key of the zone whose
+  /// projection admit() was given (design §4.9; 0 in single mode).
+  std::uint32_t plane = 0;
+  /// The track's vertex in the kinetic engine of zone `plane`; kNoPoint: the track is
+  /// in no engine (no velocity yet). Its points in other zones are the Pipeline's.
+  kinetic::PointId point = kinetic::kNoPoint;
 
   /// Plane kinematics extrapolated to time `at` (UTC s), probe::extrapolated.
   probe::Kinematics at(double at_t) const { return probe::extrapolated(kinematics, at_t - t); }
@@ -131,8 +136,11 @@ class TrackTable {
   /// reason is counted in rejections() and nothing else changes. An implausible optional
   /// field (speed, track angle, vertical rate, selected altitude, track angle rate) costs
   /// only that field (design §4.3): it is dropped, counted in dropped_fields(), and the
-  /// record judged without it.
-  AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection);
+  /// record judged without it. `plane` names the projection (Track::plane): a previous
+  /// position or velocity in another plane is carried over through its geodetic
+  /// position and ground velocity.
+  AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection,
+                    std::uint32_t plane = 0);
 
   /// Forgets a track (its slot may be reused by a later track).
   void drop(TrackSlot slot);
