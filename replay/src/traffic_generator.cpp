@@ -312,9 +312,8 @@ void TrafficGenerator::Impl::fill(const Slot& slot, double t, const Measurement&
   const detail::TruthState truth = slot.flight.at(t);
   double lat = truth.lat_deg, lon = truth.lon_deg;
   if (config.position_noise_m > 0) {
-    const detail::LocalScale scale = detail::local_scale(lat);
-    lat += measurement.north_sigmas * config.position_noise_m * scale.deg_lat_per_m;
-    lon += measurement.east_sigmas * config.position_noise_m * scale.deg_lon_per_m;
+    detail::offset_position(lat, lon, measurement.east_sigmas * config.position_noise_m,
+                            measurement.north_sigmas * config.position_noise_m);
   }
   const double alt = truth.alt_ft + measurement.altitude_sigmas * config.altitude_noise_ft;
 

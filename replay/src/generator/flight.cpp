@@ -17,6 +17,23 @@ constexpr double kRateOneTurnRadPerS = 3.0 / kDegreesPerRadian;
 // Outbound/inbound leg of a hold: 1 minute (Doc 8168 uses 1.5 min above FL140; one
 // value keeps every stack's pattern the same shape).
 constexpr double kHoldLegSeconds = 60.0;
+// Beyond this latitude offset_position steps in the tangent plane (flight.hpp).
+constexpr double kPolarCapDeg = 85.0;
+
+/// The WGS84 meridional and prime-vertical radii of curvature at a latitude, metres.
+struct Radii {
+  double meridional;
+  double prime_vertical;
+};
+
+Radii radii_of_curvature(double lat_deg) {
+  const double a = GeographicLib::Constants::WGS84_a();
+  const double f = GeographicLib::Constants::WGS84_f();
+  const double e2 = f * (2 - f);
+  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian);
+  const double w = std::sqrt(1 - e2 * sin_lat * sin_lat);
+  return {a * (1 - e2) / (w * w * w), a / w};
+}
 
 }  // namespace
 
@@ -27,15 +44,33 @@ double wrap_360(double deg) {
 }
 
 LocalScale local_scale(double lat_deg) {
-  const double a = GeographicLib::Constants::WGS84_a();
-  const double f = GeographicLib::Constants::WGS84_f();
-  const double e2 = f * (2 - f);
-  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian);
-  const double w = std::sqrt(1 - e2 * sin_lat * sin_lat);
-  const double meridional = a * (1 - e2) / (w * w * w);
-  const double prime_vertical = a / w;
+  const Radii radii = radii_of_curvature(lat_deg);
   const double cos_lat = std::cos(lat_deg / kDegreesPerRadian);
-  return {kDegreesPerRadian / meridional, kDegreesPerRadian / (prime_vertical * cos_lat)};
+  return {kDegreesPerRadian / radii.meridional, kDegreesPerRadian / (radii.prime_vertical * cos_lat)};
+}
+
+void offset_position(double& lat_deg, double& lon_deg, double east_m, double north_m) {
+  if (std::abs(lat_deg) <= kPolarCapDeg) {
+    const LocalScale scale = local_scale(lat_deg);
+    lat_deg += north_m * scale.deg_lat_per_m;
+    lon_deg += east_m * scale.deg_lon_per_m;
+    return;
+  }
+  // The point P and its unit east and north vectors E, N on the unit sphere, the step as
+  // the angles it subtends (east over the prime-vertical radius of curvature, north over
+  // the meridional one), and the stepped point P + e·E + n·N projected back onto the
+  // sphere: exact to first order, like the flat step, and defined at the pole too, where
+  // E and N follow the longitude given.
+  const Radii radii = radii_of_curvature(lat_deg);
+  const double e = east_m / radii.prime_vertical;
+  const double n = north_m / radii.meridional;
+  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian), cos_lat = std::cos(lat_deg / kDegreesPerRadian);
+  const double sin_lon = std::sin(lon_deg / kDegreesPerRadian), cos_lon = std::cos(lon_deg / kDegreesPerRadian);
+  const double x = cos_lat * cos_lon - e * sin_lon - n * sin_lat * cos_lon;
+  const double y = cos_lat * sin_lon + e * cos_lon - n * sin_lat * sin_lon;
+  const double z = sin_lat + n * cos_lat;
+  lat_deg = std::atan2(z, std::hypot(x, y)) * kDegreesPerRadian;
+  lon_deg = std::atan2(y, x) * kDegreesPerRadian;
 }
 
 // ---------------------------------------------------------------- SpeedSchedule

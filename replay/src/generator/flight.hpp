@@ -143,6 +143,14 @@ struct LocalScale {
 };
 LocalScale local_scale(double lat_deg);
 
+/// Moves a position (WGS84 degrees) by `east_m` and `north_m` metres, offsets of at most
+/// tens of kilometres (measurement noise). The longitude may leave [−180, 180]; callers
+/// normalise it. Beyond 85° of latitude, where a step east is no longer a change of
+/// longitude alone (at the pole, not one at all), the step is taken in the plane tangent
+/// at the point and projected back: positions near or at a pole move by the right
+/// distance and keep their latitude within [−90, 90].
+void offset_position(double& lat_deg, double& lon_deg, double east_m, double north_m);
+
 /// Degrees wrapped into [0, 360).
 double wrap_360(double deg);
 
