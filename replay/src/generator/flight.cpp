@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <GeographicLib/Constants.hpp>
@@ -211,6 +212,16 @@ VerticalProfile VerticalProfile::glide(double cruise_ft, double floor_ft, double
   return p;
 }
 
+VerticalProfile VerticalProfile::route(double departure_floor_ft, double climb_ft_per_m, double cruise_ft,
+                                       double floor_ft, double slope_ft_per_m, double route_m) {
+  VerticalProfile p = glide(cruise_ft, floor_ft, slope_ft_per_m);
+  p.kind = Kind::Route;
+  p.departure_floor_ft = departure_floor_ft;
+  p.climb_ft_per_m = climb_ft_per_m;
+  p.route_m = route_m;
+  return p;
+}
+
 void scheduled_altitude(const VerticalProfile& profile, double t, double& alt_ft, double& vr_fpm) {
   alt_ft = profile.start_ft;
   vr_fpm = 0;
@@ -239,11 +250,21 @@ TruthState Flight::at(double t) const {
   }
   if (vertical.kind == VerticalProfile::Kind::Scheduled) {
     scheduled_altitude(vertical, t, state.alt_ft, state.vr_fpm);
+    return state;
+  }
+  const double on_path = vertical.floor_ft + vertical.slope_ft_per_m * remaining_m;
+  // A glide never climbs: its climb lies above any altitude.
+  const double climbing = vertical.kind == VerticalProfile::Kind::Route
+                              ? vertical.departure_floor_ft + vertical.climb_ft_per_m * (vertical.route_m - remaining_m)
+                              : std::numeric_limits<double>::infinity();
+  state.alt_ft = std::min({vertical.cruise_ft, on_path, climbing});
+  // Along the path: d(alt)/dt = ±slope · ground speed (ft/s → ft/min).
+  if (on_path < vertical.cruise_ft && on_path <= climbing) {
+    state.vr_fpm = -vertical.slope_ft_per_m * state.gs_mps * 60.0;
+  } else if (climbing < vertical.cruise_ft) {
+    state.vr_fpm = vertical.climb_ft_per_m * state.gs_mps * 60.0;
   } else {
-    const double on_path = vertical.floor_ft + vertical.slope_ft_per_m * remaining_m;
-    state.alt_ft = std::min(vertical.cruise_ft, on_path);
-    // Descending along the path: d(alt)/dt = −slope · ground speed (ft/s → ft/min).
-    state.vr_fpm = on_path < vertical.cruise_ft ? -vertical.slope_ft_per_m * state.gs_mps * 60.0 : 0.0;
+    state.vr_fpm = 0.0;
   }
   return state;
 }
