@@ -1,6 +1,7 @@
 // TrafficGenerator (replay/include/kew/replay/traffic_generator.hpp): determinism, time
 // order, sampling counts, plausible values per scenario, holding stacks over one ground
-// point, and conflicts (5 NM / 1000 ft losses) arising in every scenario.
+// point, and conflicts (5 NM / 1000 ft losses) arising in every scenario; the table of
+// aerodromes (kew/replay/airports.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,13 +11,16 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include "kew/replay/airports.hpp"
 #include "kew/replay/traffic_generator.hpp"
 
 namespace kew::replay {
@@ -54,6 +58,8 @@ GeneratorConfig truth_config(Scenario scenario, std::size_t aircraft, double dur
   config.altitude_quantum_ft = 0;
   return config;
 }
+
+bool in_range(double value, double lo, double hi) { return std::isfinite(value) && value >= lo && value <= hi; }
 
 bool identical(const TrackReport& a, const TrackReport& b) {
   return a.t == b.t && a.id == b.id && a.source == b.source && a.lat_deg == b.lat_deg &&
@@ -494,6 +500,57 @@ TEST(TrafficGenerator, TmaArrivalsConvergeAndSlowDown) {
   EXPECT_GT(closer, 10'000);
   EXPECT_GT(slower, 1000);
   EXPECT_EQ(faster, 0);
+}
+
+// ------------------------------------------------------------------ aerodromes
+
+TEST(Airports, TableIsValidAndSpreadOverEveryContinent) {
+  const std::span<const Airport> airports = world_airports();
+  EXPECT_GE(airports.size(), 150u);
+  EXPECT_LE(airports.size(), 250u);
+  std::set<std::string_view> codes;
+  std::map<Continent, int> per_continent;
+  int arctic = 0;
+  for (const Airport& a : airports) {
+    ASSERT_EQ(a.icao.size(), 4u);
+    for (const char c : a.icao) EXPECT_TRUE(c >= 'A' && c <= 'Z') << a.icao;
+    EXPECT_TRUE(codes.insert(a.icao).second) << a.icao << " twice";
+    EXPECT_TRUE(in_range(a.lat_deg, -90, 90)) << a.icao;
+    EXPECT_TRUE(in_range(a.lon_deg, -180, 180)) << a.icao;
+    EXPECT_TRUE(in_range(a.elevation_ft, -100, 14'000)) << a.icao;  // Amsterdam (−11 ft) to La Paz
+    ++per_continent[a.continent];
+    if (a.lat_deg >= 70) ++arctic;
+  }
+  for (const Continent continent : {Continent::Africa, Continent::Antarctica, Continent::Asia, Continent::Europe,
+                                    Continent::NorthAmerica, Continent::Oceania, Continent::SouthAmerica}) {
+    EXPECT_GE(per_continent[continent], 4) << static_cast<int>(continent);
+  }
+  EXPECT_GE(arctic, 8);
+}
+
+TEST(Airports, KnownPositionsCatchSignAndDigitErrors) {
+  // Reference points as published (AIPs), to 0.01°: one per hemisphere pair at least, the
+  // ones either side of the antimeridian and the polar ones.
+  struct Known {
+    std::string_view icao;
+    double lat_deg, lon_deg, elevation_ft;
+  };
+  const Known known[] = {
+      {"EGLL", 51.47, -0.46, 83},      {"KJFK", 40.64, -73.78, 13},    {"RJTT", 35.55, 139.78, 35},
+      {"YSSY", -33.95, 151.18, 21},    {"SCCI", -53.00, -70.85, 139},  {"NZCH", -43.49, 172.53, 123},
+      {"PHNL", 21.32, -157.92, 13},    {"NFFN", -17.76, 177.44, 59},   {"NTAA", -17.55, -149.61, 5},
+      {"BGTL", 76.53, -68.70, 251},    {"ENSB", 78.25, 15.47, 88},     {"PABR", 71.29, -156.77, 44},
+      {"UHMA", 64.74, 177.74, 194},    {"FAOR", -26.14, 28.25, 5558},  {"SBGR", -23.44, -46.47, 2459},
+      {"SLLP", -16.51, -68.19, 13325}, {"NZSP", -90.00, 0.00, 9300},
+  };
+  const std::span<const Airport> airports = world_airports();
+  for (const Known& k : known) {
+    const auto found = std::find_if(airports.begin(), airports.end(), [&](const Airport& a) { return a.icao == k.icao; });
+    ASSERT_NE(found, airports.end()) << k.icao;
+    EXPECT_NEAR(found->lat_deg, k.lat_deg, 0.01) << k.icao;
+    EXPECT_NEAR(found->lon_deg, k.lon_deg, 0.01) << k.icao;
+    EXPECT_NEAR(found->elevation_ft, k.elevation_ft, 1) << k.icao;
+  }
 }
 
 }  // namespace
