@@ -126,6 +126,7 @@ std::string validate(const GeneratorConfig& c) {
   if (!in_range(c.termination_probability_per_hour, 0, 3600))
     return fmt::format("termination rate must be 0 to 3600 per hour (got {})", c.termination_probability_per_hour);
   if (!in_range(c.start_time, 0, 1e11)) return fmt::format("start time must be 0 to 1e11 s (got {})", c.start_time);
+  if (c.scenario == Scenario::Global) return {};  // flies the whole world: no region to check
   if (!in_range(c.center_lat_deg, -80, 80))
     return fmt::format("centre latitude must be -80 to 80 degrees (got {})", c.center_lat_deg);
   if (!in_range(c.center_lon_deg, -180, 180))
@@ -229,6 +230,7 @@ std::vector<SlotPlan> TrafficGenerator::Impl::plan_slots(std::mt19937_64& master
       case Scenario::Tma: plan.kind = FlightKind::Tma; break;
       case Scenario::Mixed: plan.kind = draw_kind(kMixedShares, kinds); break;
       case Scenario::Calibrated: plan.kind = draw_kind(kCalibratedShares, kinds); break;
+      case Scenario::Global: plan.kind = FlightKind::Global; break;
     }
     if (plan.kind == FlightKind::Stacks) {
       // Stacks are filled level by level, one aircraft per level.
