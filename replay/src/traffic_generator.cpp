@@ -126,6 +126,7 @@ std::string validate(const GeneratorConfig& c) {
   if (!in_range(c.termination_probability_per_hour, 0, 3600))
     return fmt::format("termination rate must be 0 to 3600 per hour (got {})", c.termination_probability_per_hour);
   if (!in_range(c.start_time, 0, 1e11)) return fmt::format("start time must be 0 to 1e11 s (got {})", c.start_time);
+  if (c.scenario == Scenario::Global) return {};  // flies the whole world: no region to check
   if (!in_range(c.center_lat_deg, -80, 80))
     return fmt::format("centre latitude must be -80 to 80 degrees (got {})", c.center_lat_deg);
   if (!in_range(c.center_lon_deg, -180, 180))
@@ -229,6 +230,7 @@ std::vector<SlotPlan> TrafficGenerator::Impl::plan_slots(std::mt19937_64& master
       case Scenario::Tma: plan.kind = FlightKind::Tma; break;
       case Scenario::Mixed: plan.kind = draw_kind(kMixedShares, kinds); break;
       case Scenario::Calibrated: plan.kind = draw_kind(kCalibratedShares, kinds); break;
+      case Scenario::Global: plan.kind = FlightKind::Global; break;
     }
     if (plan.kind == FlightKind::Stacks) {
       // Stacks are filled level by level, one aircraft per level.
@@ -312,9 +314,8 @@ void TrafficGenerator::Impl::fill(const Slot& slot, double t, const Measurement&
   const detail::TruthState truth = slot.flight.at(t);
   double lat = truth.lat_deg, lon = truth.lon_deg;
   if (config.position_noise_m > 0) {
-    const detail::LocalScale scale = detail::local_scale(lat);
-    lat += measurement.north_sigmas * config.position_noise_m * scale.deg_lat_per_m;
-    lon += measurement.east_sigmas * config.position_noise_m * scale.deg_lon_per_m;
+    detail::offset_position(lat, lon, measurement.east_sigmas * config.position_noise_m,
+                            measurement.north_sigmas * config.position_noise_m);
   }
   const double alt = truth.alt_ft + measurement.altitude_sigmas * config.altitude_noise_ft;
 

@@ -124,8 +124,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--start", config.start_time, "UTC seconds of the first radar period")
       ->default_str(fmt::format("{}", config.start_time));
-  app.add_option("--center", center, "region centre LAT,LON in degrees (default 50,8)");
-  app.add_option("--radius", config.radius_km, "region radius, km (20 to 2000)")->capture_default_str();
+  app.add_option("--center", center, "region centre LAT,LON in degrees (default 50,8; not used by global)");
+  app.add_option("--radius", config.radius_km, "region radius, km (20 to 2000; not used by global)")
+      ->capture_default_str();
   app.add_flag("--no-velocity", no_velocity, "write positions only (no gs_kt, trk_deg, vr_fpm)");
   app.add_flag("--no-header", no_header, "omit the first line, a '#' comment with every setting");
   app.add_option("-o,--output", output_path, "output file (default stdout); replaced if it exists");

@@ -1,6 +1,9 @@
 // TrafficGenerator (replay/include/kew/replay/traffic_generator.hpp): determinism, time
 // order, sampling counts, plausible values per scenario, holding stacks over one ground
-// point, and conflicts (5 NM / 1000 ft losses) arising in every scenario.
+// point, and conflicts (5 NM / 1000 ft losses) arising in every regional scenario; the
+// table of aerodromes (kew/replay/airports.hpp); the global scenario's coverage of the
+// poles, the oceans and the antimeridian, its noise near the poles, and speeds and tracks
+// that agree with the geodesics flown.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,13 +13,16 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include "kew/replay/airports.hpp"
 #include "kew/replay/traffic_generator.hpp"
 
 namespace kew::replay {
@@ -29,8 +35,11 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 // frame below errs by well under 1 % there, against thresholds met with wide margins).
 constexpr double kEarthRadiusM = 6'371'008.8;
 
-const Scenario kAllScenarios[] = {Scenario::Random, Scenario::Airways, Scenario::Stacks,
-                                  Scenario::Tma, Scenario::Mixed, Scenario::Calibrated};
+// Scenarios that fly within the region of center_lat/lon_deg and radius_km.
+const Scenario kRegionalScenarios[] = {Scenario::Random, Scenario::Airways, Scenario::Stacks,
+                                       Scenario::Tma, Scenario::Mixed, Scenario::Calibrated};
+const Scenario kAllScenarios[] = {Scenario::Random, Scenario::Airways, Scenario::Stacks, Scenario::Tma,
+                                  Scenario::Mixed, Scenario::Calibrated, Scenario::Global};
 
 std::vector<TrackReport> generate(const GeneratorConfig& config) {
   TrafficGenerator generator(config);
@@ -54,6 +63,8 @@ GeneratorConfig truth_config(Scenario scenario, std::size_t aircraft, double dur
   config.altitude_quantum_ft = 0;
   return config;
 }
+
+bool in_range(double value, double lo, double hi) { return std::isfinite(value) && value >= lo && value <= hi; }
 
 bool identical(const TrackReport& a, const TrackReport& b) {
   return a.t == b.t && a.id == b.id && a.source == b.source && a.lat_deg == b.lat_deg &&
@@ -346,10 +357,24 @@ Envelope envelope_of(Scenario scenario) {
     case Scenario::Airways: return {380, 580, 21'000, 42'000};  // overtakers fly up to 80 kt faster
     case Scenario::Stacks: return {210, 230, 3'000, 18'000};
     case Scenario::Tma: return {160, 480, 1'500, 38'000};
+    // From 1,500 ft above the aerodromes (Amsterdam lies 11 ft below sea level) to FL410.
+    case Scenario::Global: return {420, 500, 1'475, 41'000};
     case Scenario::Mixed:
     case Scenario::Calibrated: break;
   }
   return {160, 580, 1'500, 42'000};
+}
+
+/// A record (with its velocity) within the envelope: altitude, ground speed, a track in
+/// [0, 360) and a vertical rate of at most 3000 ft/min.
+void expect_within(const Envelope& envelope, const TrackReport& r) {
+  EXPECT_GE(r.alt_ft, envelope.min_ft) << r.id;
+  EXPECT_LE(r.alt_ft, envelope.max_ft) << r.id;
+  EXPECT_GE(*r.gs_kt, envelope.min_kt) << r.id;
+  EXPECT_LE(*r.gs_kt, envelope.max_kt) << r.id;
+  EXPECT_GE(*r.trk_deg, 0.0);
+  EXPECT_LT(*r.trk_deg, 360.0);
+  EXPECT_LE(std::abs(*r.vr_fpm), 3000.0) << r.id;
 }
 
 class ScenarioTest : public ::testing::TestWithParam<Scenario> {};
@@ -374,15 +399,9 @@ TEST_P(ScenarioTest, ValuesArePlausible) {
     EXPECT_EQ(r.source, "gen");
     EXPECT_FALSE(r.on_ground);
     EXPECT_LE(distance_from_centre_m(config, r), config.radius_km * 1000 * 1.02) << r.id;
-    EXPECT_GE(r.alt_ft, envelope.min_ft) << r.id;
-    EXPECT_LE(r.alt_ft, envelope.max_ft) << r.id;
     EXPECT_EQ(std::fmod(r.alt_ft, 25.0), 0.0) << "Mode S altitude quantum";
     ASSERT_TRUE(r.gs_kt && r.trk_deg && r.vr_fpm);
-    EXPECT_GE(*r.gs_kt, envelope.min_kt) << r.id;
-    EXPECT_LE(*r.gs_kt, envelope.max_kt) << r.id;
-    EXPECT_GE(*r.trk_deg, 0.0);
-    EXPECT_LT(*r.trk_deg, 360.0);
-    EXPECT_LE(std::abs(*r.vr_fpm), 3000.0) << r.id;
+    expect_within(envelope, r);
     if (*r.vr_fpm != 0) ++level_changes;
   }
   EXPECT_GT(level_changes, 100) << "some aircraft climb or descend";
@@ -402,7 +421,7 @@ TEST_P(ScenarioTest, ConflictsOccurNaturally) {
   EXPECT_GE(pairs.size(), 20u) << to_string(GetParam());
 }
 
-INSTANTIATE_TEST_SUITE_P(AllScenarios, ScenarioTest, ::testing::ValuesIn(kAllScenarios),
+INSTANTIATE_TEST_SUITE_P(RegionalScenarios, ScenarioTest, ::testing::ValuesIn(kRegionalScenarios),
                          [](const ::testing::TestParamInfo<Scenario>& param_info) {
                            return std::string(to_string(param_info.param));
                          });
@@ -494,6 +513,206 @@ TEST(TrafficGenerator, TmaArrivalsConvergeAndSlowDown) {
   EXPECT_GT(closer, 10'000);
   EXPECT_GT(slower, 1000);
   EXPECT_EQ(faster, 0);
+}
+
+// ------------------------------------------------------------------ aerodromes
+
+TEST(Airports, TableIsValidAndSpreadOverEveryContinent) {
+  const std::span<const Airport> airports = world_airports();
+  EXPECT_GE(airports.size(), 150u);
+  EXPECT_LE(airports.size(), 250u);
+  std::set<std::string_view> codes;
+  std::map<Continent, int> per_continent;
+  int arctic = 0;
+  for (const Airport& a : airports) {
+    ASSERT_EQ(a.icao.size(), 4u);
+    for (const char c : a.icao) EXPECT_TRUE(c >= 'A' && c <= 'Z') << a.icao;
+    EXPECT_TRUE(codes.insert(a.icao).second) << a.icao << " twice";
+    EXPECT_TRUE(in_range(a.lat_deg, -90, 90)) << a.icao;
+    EXPECT_TRUE(in_range(a.lon_deg, -180, 180)) << a.icao;
+    EXPECT_TRUE(in_range(a.elevation_ft, -100, 14'000)) << a.icao;  // Amsterdam (−11 ft) to La Paz
+    ++per_continent[a.continent];
+    if (a.lat_deg >= 70) ++arctic;
+  }
+  for (const Continent continent : {Continent::Africa, Continent::Antarctica, Continent::Asia, Continent::Europe,
+                                    Continent::NorthAmerica, Continent::Oceania, Continent::SouthAmerica}) {
+    EXPECT_GE(per_continent[continent], 4) << static_cast<int>(continent);
+  }
+  EXPECT_GE(arctic, 8);
+}
+
+TEST(Airports, KnownPositionsCatchSignAndDigitErrors) {
+  // Reference points as published (AIPs), to 0.01°: one per hemisphere pair at least, the
+  // ones either side of the antimeridian and the polar ones.
+  struct Known {
+    std::string_view icao;
+    double lat_deg, lon_deg, elevation_ft;
+  };
+  const Known known[] = {
+      {"EGLL", 51.47, -0.46, 83},      {"KJFK", 40.64, -73.78, 13},    {"RJTT", 35.55, 139.78, 35},
+      {"YSSY", -33.95, 151.18, 21},    {"SCCI", -53.00, -70.85, 139},  {"NZCH", -43.49, 172.53, 123},
+      {"PHNL", 21.32, -157.92, 13},    {"NFFN", -17.76, 177.44, 59},   {"NTAA", -17.55, -149.61, 5},
+      {"BGTL", 76.53, -68.70, 251},    {"ENSB", 78.25, 15.47, 88},     {"PABR", 71.29, -156.77, 44},
+      {"UHMA", 64.74, 177.74, 194},    {"FAOR", -26.14, 28.25, 5558},  {"SBGR", -23.44, -46.47, 2459},
+      {"SLLP", -16.51, -68.19, 13325}, {"NZSP", -90.00, 0.00, 9300},
+  };
+  const std::span<const Airport> airports = world_airports();
+  for (const Known& k : known) {
+    const auto found = std::find_if(airports.begin(), airports.end(), [&](const Airport& a) { return a.icao == k.icao; });
+    ASSERT_NE(found, airports.end()) << k.icao;
+    EXPECT_NEAR(found->lat_deg, k.lat_deg, 0.01) << k.icao;
+    EXPECT_NEAR(found->lon_deg, k.lon_deg, 0.01) << k.icao;
+    EXPECT_NEAR(found->elevation_ft, k.elevation_ft, 1) << k.icao;
+  }
+}
+
+// ------------------------------------------------------------------ global
+
+TEST(TrafficGenerator, GlobalIsDeterministicAndIgnoresTheRegion) {
+  GeneratorConfig config;
+  config.scenario = Scenario::Global;
+  config.aircraft = 500;
+  config.duration_s = 120;
+  config.termination_probability_per_hour = 30;  // replacements departing from the aerodromes
+  const std::vector<TrackReport> first = generate(config);
+  ASSERT_GT(first.size(), 500u * 25u);
+  // No region: a centre and a radius out of every other scenario's range are neither
+  // refused nor used.
+  config.center_lat_deg = 89;
+  config.center_lon_deg = -170;
+  config.radius_km = 5;
+  EXPECT_EQ(validate(config), "");
+  const std::vector<TrackReport> second = generate(config);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t i = 0; i < first.size(); ++i) ASSERT_TRUE(identical(first[i], second[i])) << "record " << i;
+}
+
+TEST(TrafficGenerator, GlobalValuesArePlausible) {
+  GeneratorConfig config;
+  config.scenario = Scenario::Global;
+  config.aircraft = 2000;
+  config.duration_s = 120;
+  const Envelope envelope = envelope_of(Scenario::Global);
+  TrafficGenerator generator(config);
+  TrackReport r;
+  std::size_t records = 0, cruising = 0, climbing = 0, descending = 0;
+  while (generator.next(r)) {
+    ++records;
+    ASSERT_TRUE(in_range(r.lat_deg, -90, 90)) << r.id << " " << r.lat_deg;
+    ASSERT_TRUE(in_range(r.lon_deg, -180, 180)) << r.id << " " << r.lon_deg;
+    ASSERT_TRUE(r.gs_kt && r.trk_deg && r.vr_fpm);
+    expect_within(envelope, r);
+    if (r.alt_ft >= 29'000 && *r.vr_fpm == 0) {
+      ++cruising;
+      // Semicircular levels: whole thousands of feet from FL290.
+      EXPECT_EQ(std::fmod(r.alt_ft, 1000.0), 0.0) << r.id;
+    }
+    if (*r.vr_fpm > 0) ++climbing;
+    if (*r.vr_fpm < 0) ++descending;
+  }
+  // Spread along their routes from the start, not all departing: most cruise, and some
+  // climb and descend near the aerodromes.
+  const auto share = [&](std::size_t n) { return static_cast<double>(n) / static_cast<double>(records); };
+  EXPECT_GT(share(cruising), 0.7);
+  EXPECT_GT(share(climbing), 0.01);
+  EXPECT_GT(share(descending), 0.01);
+  EXPECT_GT(generator.aircraft_started(), config.aircraft) << "flights reaching their destination are replaced";
+}
+
+TEST(TrafficGenerator, GlobalNoiseMovesPositionsByTheRightDistanceAtThePoles) {
+  // Near a pole a step east is no change of longitude alone (at the pole, none at all): the
+  // noisy positions must stay within ±90° and ±180° and lie as far from the true ones as
+  // the noise says, up to 6σ east and north, and with a mean square of 2σ². 20,000
+  // aircraft put a few within 0.6° of a pole (three samples each, 10 s apart), where the
+  // largest noise allowed (σ = 10 km) reaches across the pole.
+  GeneratorConfig clean = truth_config(Scenario::Global, 20'000, 30);
+  clean.period_s = 10;
+  GeneratorConfig noisy = clean;
+  noisy.position_noise_m = 10'000;
+  std::map<std::pair<std::string, double>, std::pair<double, double>> truth;
+  {
+    TrafficGenerator generator(clean);
+    TrackReport r;
+    while (generator.next(r)) truth[{r.id, r.t}] = {r.lat_deg, r.lon_deg};
+  }
+  TrafficGenerator generator(noisy);
+  TrackReport r;
+  std::size_t in_caps = 0, near_poles = 0;
+  double squares_in_caps = 0;
+  while (generator.next(r)) {
+    ASSERT_TRUE(in_range(r.lat_deg, -90, 90)) << r.id << " " << r.lat_deg;
+    ASSERT_TRUE(in_range(r.lon_deg, -180, 180)) << r.id << " " << r.lon_deg;
+    const auto found = truth.find({r.id, r.t});
+    ASSERT_NE(found, truth.end()) << r.id << " at " << r.t;
+    const auto [lat, lon] = found->second;
+    double distance = 0;
+    GeographicLib::Geodesic::WGS84().Inverse(lat, lon, r.lat_deg, r.lon_deg, distance);
+    EXPECT_LE(distance, 6 * std::sqrt(2.0) * noisy.position_noise_m) << r.id << " at " << lat << ", " << lon;
+    if (std::abs(lat) > 85) {
+      ++in_caps;
+      squares_in_caps += distance * distance;
+    }
+    if (std::abs(lat) > 89.4) ++near_poles;
+  }
+  EXPECT_GE(near_poles, 5u);
+  ASSERT_GE(in_caps, 200u);
+  const double sigma2 = noisy.position_noise_m * noisy.position_noise_m;
+  EXPECT_NEAR(squares_in_caps / static_cast<double>(in_caps) / (2 * sigma2), 1.0, 0.2);
+}
+
+TEST(TrafficGenerator, GlobalTrafficFliesThePolesTheOceansAndTheAntimeridian) {
+  const GeneratorConfig config = truth_config(Scenario::Global, 2000, 600);
+  TrafficGenerator generator(config);
+  TrackReport r;
+  std::map<std::string, double> last_lon;
+  std::set<std::string> polar, north_atlantic, north_pacific, crossing;
+  while (generator.next(r)) {
+    if (r.lat_deg > 80) polar.insert(r.id);
+    if (r.lat_deg >= 30 && r.lat_deg <= 50 && r.lon_deg >= -50 && r.lon_deg <= -20) north_atlantic.insert(r.id);
+    if (r.lat_deg >= 10 && r.lat_deg <= 40 && (r.lon_deg >= 165 || r.lon_deg <= -165)) north_pacific.insert(r.id);
+    const auto [it, first] = last_lon.emplace(r.id, r.lon_deg);
+    // One aircraft's consecutive records either side of ±180°: a crossing, not a jump.
+    if (!first && ((it->second > 170 && r.lon_deg < -170) || (it->second < -170 && r.lon_deg > 170))) {
+      crossing.insert(r.id);
+    }
+    it->second = r.lon_deg;
+  }
+  EXPECT_GE(polar.size(), 10u);
+  EXPECT_GE(north_atlantic.size(), 10u);
+  EXPECT_GE(north_pacific.size(), 5u);
+  EXPECT_GE(crossing.size(), 3u);
+}
+
+TEST(TrafficGenerator, GlobalSpeedsAndTracksAgreeWithTheGeodesicsFlown) {
+  // Consecutive true samples of one aircraft lie on its geodesic: their distance over
+  // their time is its ground speed, and the geodesic between them sets out on its track.
+  // A longitude jump at the antimeridian or a wrong azimuth near a pole shows here.
+  const GeneratorConfig config = truth_config(Scenario::Global, 2000, 300);
+  TrafficGenerator generator(config);
+  TrackReport r;
+  std::map<std::string, TrackReport> previous;
+  std::size_t pairs = 0, near_pole = 0, across_antimeridian = 0;
+  while (generator.next(r)) {
+    const auto found = previous.find(r.id);
+    if (found != previous.end()) {
+      const TrackReport& p = found->second;
+      double distance = 0, azimuth1 = 0, azimuth2 = 0;
+      GeographicLib::Geodesic::WGS84().Inverse(p.lat_deg, p.lon_deg, r.lat_deg, r.lon_deg, distance, azimuth1,
+                                               azimuth2);
+      const double speed_kt = distance / (r.t - p.t) / kMpsPerKnot;
+      // 1 ms time rounding over 4 s and 0.1 kt speed rounding: a few tenths of a knot.
+      EXPECT_NEAR(speed_kt, *r.gs_kt, 0.5) << r.id << " at " << r.lat_deg << ", " << r.lon_deg;
+      const double track_error = std::remainder(azimuth1 - *p.trk_deg, 360.0);
+      EXPECT_NEAR(track_error, 0.0, 0.05) << r.id << " at " << p.lat_deg << ", " << p.lon_deg;
+      ++pairs;
+      if (std::abs(r.lat_deg) > 85) ++near_pole;
+      if (std::abs(r.lon_deg - p.lon_deg) > 180) ++across_antimeridian;
+    }
+    previous[r.id] = r;
+  }
+  EXPECT_GT(pairs, 2000u * 70u);
+  EXPECT_GT(near_pole, 100u);
+  EXPECT_GE(across_antimeridian, 1u);
 }
 
 }  // namespace

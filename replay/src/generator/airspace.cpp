@@ -124,6 +124,7 @@ Airspace::Airspace(const GeneratorConfig& config, const std::vector<SlotPlan>& p
   // In a mixed scenario the stacks feed the TMA, so they sit around its terminal.
   lay_out_stacks(stacks, config.scenario == Scenario::Mixed || calibrated_, layout);
   lay_out_arrivals(count_of(plans, FlightKind::Tma), layout);
+  if (count_of(plans, FlightKind::Global) > 0) global_ = std::make_unique<GlobalRoutes>();
 }
 
 void Airspace::lay_out_airways(std::size_t aircraft, RandomStream& layout) {
@@ -202,6 +203,7 @@ Flight Airspace::initial(const SlotPlan& plan, double t, RandomStream& rng,
       return airway_flight(t, rng, true);
     case FlightKind::Stacks: return holding_flight(plan, t, rng, true);
     case FlightKind::Tma: return arrival_flight(t, rng, true);
+    case FlightKind::Global: return global_->initial(t, rng);
   }
   return random_flight(t, rng, true);
 }
@@ -212,6 +214,7 @@ Flight Airspace::successor(const SlotPlan& plan, double t, RandomStream& rng) co
     case FlightKind::Airways: return airway_flight(t, rng, false);
     case FlightKind::Stacks: return holding_flight(plan, t, rng, false);
     case FlightKind::Tma: return arrival_flight(t, rng, false);
+    case FlightKind::Global: return global_->successor(t, rng);
   }
   return random_flight(t, rng, false);
 }

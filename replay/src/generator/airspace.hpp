@@ -1,21 +1,24 @@
 #pragma once
-// The fixed structure of a generated scenario (airways, holding stacks, arrival routes)
-// and the rules that place an aircraft in it, either already under way at the start of
-// the run or appearing later to replace one that ended.
+// The fixed structure of a generated scenario (airways, holding stacks, arrival routes,
+// the global scenario's city pairs) and the rules that place an aircraft in it, either
+// already under way at the start of the run or appearing later to replace one that ended.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <GeographicLib/GeodesicLine.hpp>
 
 #include "generator/flight.hpp"
+#include "generator/global_routes.hpp"
 #include "generator/random_stream.hpp"
 #include "kew/replay/traffic_generator.hpp"
 
 namespace kew::replay::detail {
 
-/// The kind of traffic one aircraft slot carries (Mixed picks one of these per slot).
-enum class FlightKind : std::uint8_t { Random, Airways, Stacks, Tma };
+/// The kind of traffic one aircraft slot carries (Mixed picks one of the first four per
+/// slot; Global flies between the world's aerodromes, with no region).
+enum class FlightKind : std::uint8_t { Random, Airways, Stacks, Tma, Global };
 
 /// What a slot is for. Stack slots own one level of one stack for the whole run.
 struct SlotPlan {
@@ -30,7 +33,8 @@ inline constexpr std::uint32_t kStackLevels = 12;
 class Airspace {
  public:
   /// Lays out the structures needed by `plans` (routes scale with the number of
-  /// aircraft using them) around the config's centre, drawing from `layout`.
+  /// aircraft using them) around the config's centre, drawing from `layout`; classifies
+  /// the world's city pairs when a plan is Global.
   Airspace(const GeneratorConfig& config, const std::vector<SlotPlan>& plans, RandomStream& layout);
   Airspace(const Airspace&) = delete;
   Airspace& operator=(const Airspace&) = delete;
@@ -41,7 +45,8 @@ class Airspace {
   Flight initial(const SlotPlan& plan, double t, RandomStream& rng, const Flight* airway_leader) const;
 
   /// A flight appearing at `t` in place of one that ended: entering the region, an
-  /// airway or the TMA at its edge, or a stack at the slot's level.
+  /// airway or the TMA at its edge, a stack at the slot's level, or departing an
+  /// aerodrome of the world.
   Flight successor(const SlotPlan& plan, double t, RandomStream& rng) const;
 
  private:
@@ -71,6 +76,7 @@ class Airspace {
   std::vector<Route> airways_;
   std::vector<Stack> stacks_;
   std::vector<Route> arrivals_;  // outbound from their terminal; length_m: where arrivals enter
+  std::unique_ptr<GlobalRoutes> global_;  // Global plans only
 };
 
 }  // namespace kew::replay::detail

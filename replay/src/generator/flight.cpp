@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <GeographicLib/Constants.hpp>
@@ -17,6 +18,23 @@ constexpr double kRateOneTurnRadPerS = 3.0 / kDegreesPerRadian;
 // Outbound/inbound leg of a hold: 1 minute (Doc 8168 uses 1.5 min above FL140; one
 // value keeps every stack's pattern the same shape).
 constexpr double kHoldLegSeconds = 60.0;
+// Beyond this latitude offset_position steps in the tangent plane (flight.hpp).
+constexpr double kPolarCapDeg = 85.0;
+
+/// The WGS84 meridional and prime-vertical radii of curvature at a latitude, metres.
+struct Radii {
+  double meridional;
+  double prime_vertical;
+};
+
+Radii radii_of_curvature(double lat_deg) {
+  const double a = GeographicLib::Constants::WGS84_a();
+  const double f = GeographicLib::Constants::WGS84_f();
+  const double e2 = f * (2 - f);
+  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian);
+  const double w = std::sqrt(1 - e2 * sin_lat * sin_lat);
+  return {a * (1 - e2) / (w * w * w), a / w};
+}
 
 }  // namespace
 
@@ -27,15 +45,33 @@ double wrap_360(double deg) {
 }
 
 LocalScale local_scale(double lat_deg) {
-  const double a = GeographicLib::Constants::WGS84_a();
-  const double f = GeographicLib::Constants::WGS84_f();
-  const double e2 = f * (2 - f);
-  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian);
-  const double w = std::sqrt(1 - e2 * sin_lat * sin_lat);
-  const double meridional = a * (1 - e2) / (w * w * w);
-  const double prime_vertical = a / w;
+  const Radii radii = radii_of_curvature(lat_deg);
   const double cos_lat = std::cos(lat_deg / kDegreesPerRadian);
-  return {kDegreesPerRadian / meridional, kDegreesPerRadian / (prime_vertical * cos_lat)};
+  return {kDegreesPerRadian / radii.meridional, kDegreesPerRadian / (radii.prime_vertical * cos_lat)};
+}
+
+void offset_position(double& lat_deg, double& lon_deg, double east_m, double north_m) {
+  if (std::abs(lat_deg) <= kPolarCapDeg) {
+    const LocalScale scale = local_scale(lat_deg);
+    lat_deg += north_m * scale.deg_lat_per_m;
+    lon_deg += east_m * scale.deg_lon_per_m;
+    return;
+  }
+  // The point P and its unit east and north vectors E, N on the unit sphere, the step as
+  // the angles it subtends (east over the prime-vertical radius of curvature, north over
+  // the meridional one), and the stepped point P + e·E + n·N projected back onto the
+  // sphere: exact to first order, like the flat step, and defined at the pole too, where
+  // E and N follow the longitude given.
+  const Radii radii = radii_of_curvature(lat_deg);
+  const double e = east_m / radii.prime_vertical;
+  const double n = north_m / radii.meridional;
+  const double sin_lat = std::sin(lat_deg / kDegreesPerRadian), cos_lat = std::cos(lat_deg / kDegreesPerRadian);
+  const double sin_lon = std::sin(lon_deg / kDegreesPerRadian), cos_lon = std::cos(lon_deg / kDegreesPerRadian);
+  const double x = cos_lat * cos_lon - e * sin_lon - n * sin_lat * cos_lon;
+  const double y = cos_lat * sin_lon + e * cos_lon - n * sin_lat * sin_lon;
+  const double z = sin_lat + n * cos_lat;
+  lat_deg = std::atan2(z, std::hypot(x, y)) * kDegreesPerRadian;
+  lon_deg = std::atan2(y, x) * kDegreesPerRadian;
 }
 
 // ---------------------------------------------------------------- SpeedSchedule
@@ -176,6 +212,16 @@ VerticalProfile VerticalProfile::glide(double cruise_ft, double floor_ft, double
   return p;
 }
 
+VerticalProfile VerticalProfile::route(double departure_floor_ft, double climb_ft_per_m, double cruise_ft,
+                                       double floor_ft, double slope_ft_per_m, double route_m) {
+  VerticalProfile p = glide(cruise_ft, floor_ft, slope_ft_per_m);
+  p.kind = Kind::Route;
+  p.departure_floor_ft = departure_floor_ft;
+  p.climb_ft_per_m = climb_ft_per_m;
+  p.route_m = route_m;
+  return p;
+}
+
 void scheduled_altitude(const VerticalProfile& profile, double t, double& alt_ft, double& vr_fpm) {
   alt_ft = profile.start_ft;
   vr_fpm = 0;
@@ -204,11 +250,21 @@ TruthState Flight::at(double t) const {
   }
   if (vertical.kind == VerticalProfile::Kind::Scheduled) {
     scheduled_altitude(vertical, t, state.alt_ft, state.vr_fpm);
+    return state;
+  }
+  const double on_path = vertical.floor_ft + vertical.slope_ft_per_m * remaining_m;
+  // A glide never climbs: its climb lies above any altitude.
+  const double climbing = vertical.kind == VerticalProfile::Kind::Route
+                              ? vertical.departure_floor_ft + vertical.climb_ft_per_m * (vertical.route_m - remaining_m)
+                              : std::numeric_limits<double>::infinity();
+  state.alt_ft = std::min({vertical.cruise_ft, on_path, climbing});
+  // Along the path: d(alt)/dt = ±slope · ground speed (ft/s → ft/min).
+  if (on_path < vertical.cruise_ft && on_path <= climbing) {
+    state.vr_fpm = -vertical.slope_ft_per_m * state.gs_mps * 60.0;
+  } else if (climbing < vertical.cruise_ft) {
+    state.vr_fpm = vertical.climb_ft_per_m * state.gs_mps * 60.0;
   } else {
-    const double on_path = vertical.floor_ft + vertical.slope_ft_per_m * remaining_m;
-    state.alt_ft = std::min(vertical.cruise_ft, on_path);
-    // Descending along the path: d(alt)/dt = −slope · ground speed (ft/s → ft/min).
-    state.vr_fpm = on_path < vertical.cruise_ft ? -vertical.slope_ft_per_m * state.gs_mps * 60.0 : 0.0;
+    state.vr_fpm = 0.0;
   }
   return state;
 }

@@ -91,9 +91,9 @@ class Racetrack {
 
 /// Altitude as a function of time (level, then a climb or descent at a constant rate to
 /// a target level) or of the distance left on the leg (an arrival's descent path, capped
-/// at its cruise level).
+/// at its cruise level; a route's climb from its departure, cruise and descent).
 struct VerticalProfile {
-  enum class Kind { Scheduled, Glide } kind = Kind::Scheduled;
+  enum class Kind { Scheduled, Glide, Route } kind = Kind::Scheduled;
   // Scheduled
   double start_ft = 0;          ///< altitude until change_time
   double change_time = 0;       ///< UTC s when the climb/descent starts (may be in the past)
@@ -103,10 +103,20 @@ struct VerticalProfile {
   double cruise_ft = 0;
   double floor_ft = 0;
   double slope_ft_per_m = 0;
+  // Route: the glide's altitude, and also at most departure_floor + climb · (route − remaining)
+  double departure_floor_ft = 0;
+  double climb_ft_per_m = 0;
+  double route_m = 0;           ///< length of the whole route; the leg flies its last part
 
   static VerticalProfile level(double alt_ft);
   static VerticalProfile change(double start_ft, double change_time, double rate_fpm, double target_ft);
   static VerticalProfile glide(double cruise_ft, double floor_ft, double slope_ft_per_m);
+  /// From departure_floor_ft over the route's start, climbing climb_ft_per_m (> 0) feet per
+  /// metre flown to cruise_ft, then descending slope_ft_per_m (> 0) feet per metre to
+  /// floor_ft over its end, route_m (> 0) metres from its start. A route too short to
+  /// reach its cruise level turns from the climb to the descent where the two meet.
+  static VerticalProfile route(double departure_floor_ft, double climb_ft_per_m, double cruise_ft,
+                               double floor_ft, double slope_ft_per_m, double route_m);
 };
 
 /// One aircraft from its appearance to its end: optionally a holding pattern until
@@ -142,6 +152,14 @@ struct LocalScale {
   double deg_lon_per_m = 0;
 };
 LocalScale local_scale(double lat_deg);
+
+/// Moves a position (WGS84 degrees) by `east_m` and `north_m` metres, offsets of at most
+/// tens of kilometres (measurement noise). The longitude may leave [−180, 180]; callers
+/// normalise it. Beyond 85° of latitude, where a step east is no longer a change of
+/// longitude alone (at the pole, not one at all), the step is taken in the plane tangent
+/// at the point and projected back: positions near or at a pole move by the right
+/// distance and keep their latitude within [−90, 90].
+void offset_position(double& lat_deg, double& lon_deg, double east_m, double north_m);
 
 /// Degrees wrapped into [0, 360).
 double wrap_360(double deg);

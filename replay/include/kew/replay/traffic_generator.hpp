@@ -2,12 +2,12 @@
 // Synthetic radar traffic for tests, benchmarks and `kew-gen` (design §5.6).
 //
 // A fixed number of aircraft "slots" fly scenario-specific paths (great circles on
-// WGS84, holding racetracks, converging arrivals) and are sampled like a radar: every
-// slot is seen once per period at its own phase, with jitter, position and altitude
-// noise, and missed updates. Records come out one at a time in non-decreasing time
-// order (a heap merges the slots' sample times), so 100,000 aircraft for an hour never
-// need more than one pending sample per aircraft in memory. See replay/README.md for the
-// scenarios and the sampling model.
+// WGS84, holding racetracks, converging arrivals, routes between the world's
+// aerodromes) and are sampled like a radar: every slot is seen once per period at its
+// own phase, with jitter, position and altitude noise, and missed updates. Records come
+// out one at a time in non-decreasing time order (a heap merges the slots' sample
+// times), so 100,000 aircraft for an hour never need more than one pending sample per
+// aircraft in memory. See replay/README.md for the scenarios and the sampling model.
 //
 // Determinism: the same GeneratorConfig gives the same records, bit for bit, on the same
 // platform. Every random draw uses only integer arithmetic and IEEE-754 basic operations
@@ -42,16 +42,21 @@ enum class Scenario {
   /// cruise on airways with route-allocated levels, lower traffic climbing and
   /// descending on semicircular levels, TMA arrivals, a few small holding stacks.
   Calibrated,
+  /// Worldwide: great-circle routes between 240 real aerodromes (kew/replay/airports.hpp),
+  /// regional and long-haul, over the oceans, the polar caps and the antimeridian, at
+  /// semicircular levels FL290–FL410, 420–500 kt. No region: center and radius are unused.
+  Global,
 };
 
 /// The names of `kew-gen --scenario` (exact, lower case).
-inline constexpr util::NameTable<Scenario, 6> kScenarioNames({{
+inline constexpr util::NameTable<Scenario, 7> kScenarioNames({{
     {Scenario::Random, "random"},
     {Scenario::Airways, "airways"},
     {Scenario::Stacks, "stacks"},
     {Scenario::Tma, "tma"},
     {Scenario::Mixed, "mixed"},
     {Scenario::Calibrated, "calibrated"},
+    {Scenario::Global, "global"},
 }});
 constexpr std::string_view to_string(Scenario scenario) { return kScenarioNames.name(scenario); }
 
@@ -87,10 +92,10 @@ struct GeneratorConfig {
   /// UTC seconds of the start of the first radar period; finite, ≥ 0.
   double start_time = 1714400000.0;
   /// Centre of the region (WGS84 degrees): latitude in [−80, 80], longitude in
-  /// [−180, 180]. TMA arrivals converge on it.
+  /// [−180, 180]. TMA arrivals converge on it. Not used, nor checked, by Scenario::Global.
   double center_lat_deg = 50.0;
   double center_lon_deg = 8.0;
-  /// Radius of the region, km in [20, 2000].
+  /// Radius of the region, km in [20, 2000]. Not used, nor checked, by Scenario::Global.
   double radius_km = 400;
   /// Records carry gs_kt, trk_deg and vr_fpm (the true velocity) when true; positions
   /// only when false.
