@@ -1,6 +1,8 @@
 #include "kew/config/shared_config.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -15,6 +17,14 @@ namespace {
 
 using ranges::kFoot;
 using ranges::kNauticalMile;
+
+void read_pipeline(TableReader& r, PipelineConfig& p) {
+  // 0: one thread per core the machine has (design §3.3).
+  std::size_t threads = 0;
+  r.integer("threads", threads, 0, 256);
+  p.threads = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+  r.integer("batch_records", p.batch_records, 1, 1'000'000);
+}
 
 void read_projection(TableReader& r, PipelineConfig& p) {
   double lat = NAN, lon = NAN;
@@ -123,11 +133,19 @@ void read_radar(TableReader& r, protocol::RadarSite& site) {
 
 }  // namespace
 
+SharedConfig::SharedConfig() {
+  // The tools' defaults, not the library's: every core, and batches long enough for the
+  // zones of one to work in parallel (design §3.3).
+  pipeline.threads = std::max(1u, std::thread::hardware_concurrency());
+  pipeline.batch_records = kDefaultBatchRecords;
+}
+
 SharedConfig read_shared_config(const Document& document) {
   std::vector<std::string_view> known(kSharedSections.begin(), kSharedSections.end());
   known.insert(known.end(), kDaemonSections.begin(), kDaemonSections.end());
   document.refuse_unknown_sections(known);
   SharedConfig config;
+  document.section("pipeline", [&](TableReader& r) { read_pipeline(r, config.pipeline); });
   document.section("projection", [&](TableReader& r) { read_projection(r, config.pipeline); });
   document.section("tracks", [&](TableReader& r) { read_tracks(r, config.pipeline.tracks); });
   document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline); });

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,60 @@ INSTANTIATE_TEST_SUITE_P(Places, ZoneEquivalence,
                                            Place{"NorthPole", 80.0, 30.0, 1300.0},
                                            Place{"FourZoneCorner", 0.0, 0.0, 300.0}),
                          [](const ::testing::TestParamInfo<Place>& param) { return std::string(param.param.name); });
+
+}  // namespace
+}  // namespace kew
+
+namespace kew {
+namespace {
+
+// Zones in parallel (design §3.3): the same records give the same events, byte for byte,
+// whatever the number of threads and the size of a batch.
+std::vector<std::string> events_with(const std::vector<TrackReport>& records, std::size_t threads, std::size_t batch) {
+  PipelineConfig config;
+  config.threads = threads;
+  config.batch_records = batch;
+  config.renumber_every_s = 20.0;
+  Pipeline pipeline(config);
+  std::vector<std::string> out;
+  pipeline.set_alert_sink([&](const AlertEvent& e) {
+    out.push_back(std::to_string(e.seq) + " " + e.id + " " + std::to_string(static_cast<int>(e.state)) + " " +
+                  std::to_string(e.t) + " " + std::to_string(e.t_los_s) + " " + std::to_string(e.cpa_h_m) + " " +
+                  std::to_string(e.sep_h_m) + " " + e.a.id + " " + e.b.id + " " + std::to_string(e.a.lat_deg));
+  });
+  for (const TrackReport& r : records) pipeline.process(r);
+  pipeline.end_of_input();
+  pipeline.drop_all();
+  return out;
+}
+
+TEST(ZonesInParallel, ThreadsAndBatchesChangeNoByte) {
+  // Two regions far apart (Europe, the North Pacific across the antimeridian), so that
+  // many zones work in each batch.
+  std::vector<TrackReport> records;
+  for (const auto& [lat, lon] : {std::pair{50.0, 8.0}, std::pair{52.0, 180.0}}) {
+    replay::GeneratorConfig traffic;
+    traffic.scenario = replay::Scenario::Mixed;
+    traffic.aircraft = 1500;
+    traffic.duration_s = 60.0;
+    traffic.seed = static_cast<std::uint64_t>(lon) + 3;
+    traffic.center_lat_deg = lat;
+    traffic.center_lon_deg = lon;
+    traffic.radius_km = 900.0;
+    replay::TrafficGenerator generator(traffic);
+    for (TrackReport r; generator.next(r);) {
+      r.id += lon > 100.0 ? "P" : "E";
+      records.push_back(r);
+    }
+  }
+  std::stable_sort(records.begin(), records.end(), [](const TrackReport& a, const TrackReport& b) { return a.t < b.t; });
+  const std::vector<std::string> serial = events_with(records, 1, 1);
+  ASSERT_GE(serial.size(), 20u) << "the traffic must alert";
+  for (const auto& [threads, batch] : {std::pair<std::size_t, std::size_t>{1, 700}, {2, 1}, {2, 64}, {4, 5000}}) {
+    SCOPED_TRACE("threads " + std::to_string(threads) + ", batch " + std::to_string(batch));
+    EXPECT_EQ(events_with(records, threads, batch), serial);
+  }
+}
 
 }  // namespace
 }  // namespace kew

@@ -247,8 +247,8 @@ TEST(TrackTable, LateRecordsWithinTheLimitAreExtrapolatedToTheClock) {
   EXPECT_EQ(pipeline.live_tracks(), 2u);
   EXPECT_EQ(pipeline.now(), kT0 + 10.0);
   const track::TrackSlot slot = pipeline.tracks().find("test", "BBB002");
-  const kinetic::PointId p = pipeline.tracks()[slot].point;
-  const geometry::Point2 at_clock = pipeline.home_zone(slot)->engine().position_now(p);
+  const zone::Zone& home = *pipeline.home_zone(slot);
+  const geometry::Point2 at_clock = home.engine().position_now(home.point_of(slot));
   const probe::Kinematics k = pipeline.tracks()[pipeline.tracks().find("test", "BBB002")].at(kT0 + 10.0);
   EXPECT_LT(geometry::norm(at_clock - k.position), 1e-6);
 }

@@ -54,7 +54,8 @@ Pipeline::Pipeline(const PipelineConfig& config)
       tracks_(config.tracks),
       time_guard_(config.tracks.max_time_jump_s, config.tracks.max_lateness_s, track::kTimeJumpConfirm),
       alerts_(config.alerts, [this](track::TrackSlot slot) {
-        const track::Track& track = tracks_[slot];
+        // The alert stage names parties as they were when it judged them.
+        const track::Track& track = view_[slot].track;
         return alert::PartyName{track.source, track.id};
       }),
       regions_(config.regions),
@@ -93,11 +94,14 @@ Pipeline::Pipeline(const PipelineConfig& config)
     const double margin = 0.5 * largest_horizontal_m_ * kScaleBound +
                           fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s) + kMarginSlack_m;
     tiling_.emplace(margin);
-    zones_.resize(zone::ZoneTiling::key_end());
+    work_.resize(zone::ZoneTiling::key_end());
   } else {
-    zones_.resize(1);
+    work_.resize(1);
   }
+  if (config_.threads > 1) pool_ = std::make_unique<util::WorkerPool>(config_.threads);
 }
+
+Pipeline::~Pipeline() = default;
 
 double Pipeline::single_coverage_m() const {
   return config_.coverage_radius_m.value_or(PipelineConfig::kSingleCoverage_m);
@@ -122,11 +126,6 @@ Pipeline::PairParameters Pipeline::pair_parameters(std::size_t ra, std::size_t r
   return p;
 }
 
-std::size_t Pipeline::region_of(track::TrackSlot slot) const {
-  const track::Track& track = tracks_[slot];
-  return zones_[track.plane]->state(track.point).region;
-}
-
 bool Pipeline::pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
                                 const probe::SeparationMinima& minima) const {
   if (probe::in_conflict(kp, kq, minima)) return true;
@@ -147,6 +146,9 @@ double Pipeline::search_radius(const zone::Zone& zone, double speed_mps) const {
          2.0 * tolerance_bound_m(zone) + kSearchSlack_m;
 }
 
+// ---------------------------------------------------------------------------------------
+// The track stage.
+
 void Pipeline::process(const TrackReport& report) {
   ++stats_.records;
   const std::string_view problem = tracks_.plausibility_problem(report);
@@ -160,6 +162,7 @@ void Pipeline::process(const TrackReport& report) {
   }
   process_plausible(report);
   if (young_refused_.size() >= kYoungRun) restart_young_run();
+  if (steps_.size() >= config_.batch_records) flush();
 }
 
 void Pipeline::restart_young_run() {
@@ -180,7 +183,7 @@ void Pipeline::restart_young_run() {
   }
   // drop_all() emptied every zone: the new run's zones start with its clock, and so do
   // their counters and renumbering schedules.
-  for (std::unique_ptr<zone::Zone>& zone : zones_) zone.reset();
+  for (ZoneWork& w : work_) w = ZoneWork{};
   zone_count_ = 0;
   retired_kinetic_ = {};
   started_ = false;
@@ -233,6 +236,7 @@ void Pipeline::end_of_input() {
   guard_scratch_.clear();
   time_guard_.release(guard_scratch_);
   apply_released();
+  flush();
 }
 
 void Pipeline::apply_record(const TrackReport& report) {
@@ -257,9 +261,7 @@ void Pipeline::apply_record(const TrackReport& report) {
     admitted.refusal = "outside_coverage";
   } else {
     zone::Zone& home = home_of(report);
-    const zone::ZoneKey key = home.key();
-    admitted = tracks_.admit(report, clock_, home.projection(), key);
-    if (admitted.admission != track::Admission::Accepted) retire_if_empty(key);
+    admitted = tracks_.admit(report, clock_, home.projection(), home.key());
   }
   if (admitted.admission == track::Admission::Rejected) {
     if (admitted.refusal == "too_late") {
@@ -285,11 +287,10 @@ void Pipeline::apply_record(const TrackReport& report) {
   stats_.last_data_time = clock_;
   if (admitted.admission == track::Admission::AwaitingVelocity) {
     ++stats_.awaiting_velocity;
-    if (!members_of(admitted.slot).empty()) {
+    if (tracks_[admitted.slot].in_engine) {
       // Velocity reset: the track leaves the probe until it has a velocity again.
       leave_engine(admitted.slot);
-      alerts_.drop_track(admitted.slot, clock_, pending_events_);
-      deliver();
+      steps_.push_back({AlertStep::Kind::DropAlerts, admitted.slot, 0, 0, 0, clock_});
     }
     if (report.track_end) end_track(admitted.slot);
     return;
@@ -309,32 +310,28 @@ zone::Zone& Pipeline::home_of(const TrackReport& report) {
   return zone_at(tiling_ ? tiling_->home({report.lat_deg, report.lon_deg}) : 0);
 }
 
+void Pipeline::touch(zone::ZoneKey key) {
+  ZoneWork& w = work_[key];
+  if (w.touched) return;
+  w.touched = true;
+  touched_.push_back(key);
+}
+
 zone::Zone& Pipeline::zone_at(zone::ZoneKey key) {
-  std::unique_ptr<zone::Zone>& zone = zones_[key];
-  if (!zone) {
+  ZoneWork& w = work_[key];
+  if (!w.zone) {
     if (tiling_) {
-      zone = std::make_unique<zone::Zone>(key, tiling_->name(key),
-                                          geo::Projection(tiling_->centre(key), tiling_->extent_m(key)),
-                                          config_.kinetic, engine_time(clock_));
+      w.zone = std::make_unique<zone::Zone>(key, tiling_->name(key),
+                                            geo::Projection(tiling_->centre(key), tiling_->extent_m(key)),
+                                            config_.kinetic, engine_time(clock_));
     } else {
-      zone = std::make_unique<zone::Zone>(key, "single", *projection_, config_.kinetic, engine_time(clock_));
+      w.zone = std::make_unique<zone::Zone>(key, "single", *projection_, config_.kinetic, engine_time(clock_));
     }
     ++zone_count_;
     ++stats_.zones_created;
+    touch(key);  // retired at the end of the batch if nothing joins it
   }
-  return *zone;
-}
-
-void Pipeline::retire_if_empty(zone::ZoneKey key) {
-  std::unique_ptr<zone::Zone>& zone = zones_[key];
-  // The single zone stays: its engine's counters are the run's, as they always were.
-  if (!zone || !tiling_ || zone->members() != 0) return;
-  // A track awaiting its velocity may still hold kinematics in this plane: the plane
-  // is the same function of the key when the zone comes back.
-  add_statistics(retired_kinetic_, zone->kinetic_statistics());
-  zone.reset();
-  --zone_count_;
-  ++stats_.zones_retired;
+  return *w.zone;
 }
 
 void Pipeline::restart_if_other_aircraft(const TrackReport& report) {
@@ -372,54 +369,36 @@ double thread_cpu_s() {
 }  // namespace
 
 template <class F>
-void Pipeline::timed(double PhaseTimes::*phase, F&& f) {
+void Pipeline::timed(PhaseTimes& into, double PhaseTimes::*phase, F&& f) const {
   if (!config_.time_phases) {
     f();
     return;
   }
   const double start = thread_cpu_s();
   f();
-  phases_.*phase += thread_cpu_s() - start;
+  into.*phase += thread_cpu_s() - start;
 }
 
 void Pipeline::move_clock(double t) {
   if (t <= clock_) return;
-  const auto advance_zones = [&](double at) {
-    timed(&PhaseTimes::maintenance_s, [&] {
-      for (const std::unique_ptr<zone::Zone>& zone : zones_)
-        if (zone) zone->advance(engine_time(at));
-    });
-  };
+  // A zone's engine advances to the time of each operation on it (insert, update and
+  // remove advance first), and to the clock at the end of a batch.
   tracks_.expire(t, [&](track::TrackSlot slot, const track::Track& track) {
-    const double at = std::max(clock_, track.t + tracks_.config().track_timeout_s);
-    advance_zones(at);
-    clock_ = at;
+    clock_ = std::max(clock_, track.t + tracks_.config().track_timeout_s);
     drop_track(slot);
   });
-  advance_zones(t);
   clock_ = t;
   if (config_.renumber_every_s > 0.0) {
-    for (const std::unique_ptr<zone::Zone>& zone : zones_) {
-      if (!zone || clock_ < zone->next_renumber) continue;
-      if (zone->next_renumber > 0.0) timed(&PhaseTimes::maintenance_s, [&] { renumber(*zone); });
-      zone->next_renumber = clock_ + config_.renumber_every_s;
+    for (std::size_t key = 0; key < work_.size(); ++key) {
+      ZoneWork& w = work_[key];
+      if (!w.zone || clock_ < w.next_renumber) continue;
+      if (w.next_renumber > 0.0) {
+        w.ops.push_back({ZoneOp::Kind::Renumber, track::kNoTrack, 0, clock_});
+        touch(static_cast<zone::ZoneKey>(key));
+      }
+      w.next_renumber = clock_ + config_.renumber_every_s;
     }
   }
-}
-
-void Pipeline::renumber(zone::Zone& zone) {
-  zone.renumber(
-      engine_time(clock_),
-      [&](track::TrackSlot slot) {
-        double scale = 1.0;
-        return probe::extrapolated(kinematics_in(zone.projection(), zone.key(), tracks_[slot], scale), clock_ - tracks_[slot].t);
-      },
-      [&](track::TrackSlot slot, kinetic::PointId point) {
-        for (Membership& m : members_[slot])
-          if (m.zone == zone.key()) m.point = point;
-        track::Track& track = tracks_[slot];
-        if (track.plane == zone.key()) track.point = point;
-      });
 }
 
 void Pipeline::advance_to(double t) {
@@ -429,26 +408,29 @@ void Pipeline::advance_to(double t) {
   // beyond their reach, or they would be refused for ever.
   if (late_since_accepted_) t = std::min(t, newest_late_t_ + tracks_.config().max_lateness_s);
   move_clock(t);
+  flush();
 }
 
 void Pipeline::leave_engine(track::TrackSlot slot) {
-  if (slot >= members_.size() || members_[slot].empty()) return;
-  timed(&PhaseTimes::maintenance_s, [&] {
-    for (const Membership& m : members_[slot]) {
-      zones_[m.zone]->remove(m.point, engine_time(clock_));
-      retire_if_empty(m.zone);
-    }
-  });
+  track::Track& track = tracks_[slot];
+  if (!track.in_engine) return;
+  for (const zone::ZoneKey key : members_[slot]) {
+    ZoneWork& w = work_[key];
+    w.ops.push_back({ZoneOp::Kind::Remove, slot, 0, clock_});
+    --w.members;
+    touch(key);
+  }
   members_[slot].clear();
-  tracks_[slot].point = kinetic::kNoPoint;
+  track.in_engine = false;
   --live_tracks_;
 }
 
 void Pipeline::drop_track(track::TrackSlot slot) {
+  const bool in_engine = tracks_[slot].in_engine;
   leave_engine(slot);
-  alerts_.drop_track(slot, clock_, pending_events_);
+  // A track that never had a velocity has no alerts.
+  if (in_engine) steps_.push_back({AlertStep::Kind::DropAlerts, slot, 0, 0, 0, clock_});
   ++stats_.tracks_dropped;
-  deliver();
 }
 
 void Pipeline::drop_all() {
@@ -457,48 +439,301 @@ void Pipeline::drop_all() {
     drop_track(slot);
     tracks_.drop(slot);
   }
+  flush();
 }
 
-kinetic::KineticAudit Pipeline::audit() {
-  kinetic::KineticAudit total;
-  for (const std::unique_ptr<zone::Zone>& zone : zones_) {
-    if (!zone) continue;
-    const kinetic::KineticAudit a = zone->engine().audit_and_repair();
-    total.violations_found += a.violations_found;
-    total.violations_unrepaired += a.violations_unrepaired;
+void Pipeline::apply(track::TrackSlot slot) {
+  track::Track& track = tracks_[slot];
+  util::grow_to(members_, static_cast<std::size_t>(slot) + 1);
+  std::vector<zone::ZoneKey>& members = members_[slot];
+  if (!track.in_engine) ++live_tracks_;
+  track.in_engine = true;
+  // The zones that hold the track now (design §4.9): it leaves the others first.
+  zones_scratch_.clear();
+  if (tiling_) tiling_->zones_near({track.lat_deg, track.lon_deg}, zones_scratch_);
+  else zones_scratch_.push_back(0);
+  for (const zone::ZoneKey key : members) {
+    if (std::find(zones_scratch_.begin(), zones_scratch_.end(), key) != zones_scratch_.end()) continue;
+    ZoneWork& w = work_[key];
+    w.ops.push_back({ZoneOp::Kind::Remove, slot, 0, clock_});
+    --w.members;
+    touch(key);
   }
-  return total;
+  // What every zone's probe state shares, whatever its plane; and the track as the
+  // alert stage will judge it.
+  const auto snapshot = static_cast<std::uint32_t>(snapshots_.size());
+  Snapshot& s = snapshots_.emplace_back();
+  s.track = track;
+  s.base.t = track.t;
+  s.base.level_off_until_t = track.intent.sel_t + config_.tracks.intent.max_age_s;
+  s.base.lat_deg = track.lat_deg;
+  s.base.lon_deg = track.lon_deg;
+  s.base.region = regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft);
+  s.base.slot = slot;
+  if (config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps)
+    s.base.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
+  const auto first_zone = static_cast<std::uint32_t>(step_zones_.size());
+  for (const zone::ZoneKey key : zones_scratch_) {
+    zone_at(key);
+    ZoneWork& w = work_[key];
+    if (std::find(members.begin(), members.end(), key) == members.end()) ++w.members;
+    w.ops.push_back({ZoneOp::Kind::Place, slot, snapshot, clock_});
+    w.ops.push_back({ZoneOp::Kind::Probe, slot, snapshot, clock_});
+    touch(key);
+    step_zones_.push_back(key);
+  }
+  members.assign(zones_scratch_.begin(), zones_scratch_.end());
+  steps_.push_back({AlertStep::Kind::Update, slot, snapshot, first_zone,
+                    static_cast<std::uint32_t>(zones_scratch_.size()), clock_});
 }
 
-bool Pipeline::is_valid() const {
-  for (const std::unique_ptr<zone::Zone>& zone : zones_)
-    if (zone && !zone->engine().is_valid()) return false;
+// ---------------------------------------------------------------------------------------
+// The batch: zones in parallel, then the alert stage in record order.
+
+void Pipeline::flush() {
+  if (touched_.empty() && steps_.empty()) return;
+  const auto run_one = [&](std::size_t i) { run_zone(work_[touched_[i]]); };
+  if (pool_) pool_->run(touched_.size(), run_one);
+  else
+    for (std::size_t i = 0; i < touched_.size(); ++i) run_one(i);
+  for (const zone::ZoneKey key : touched_) {
+    PhaseTimes& p = work_[key].phases;
+    phases_.maintenance_s += p.maintenance_s;
+    phases_.search_s += p.search_s;
+    phases_.tests_s += p.tests_s;
+    p = {};
+  }
+  timed(phases_, &PhaseTimes::tests_s, [&] {
+    for (const AlertStep& step : steps_) run_step(step);
+  });
+  for (const zone::ZoneKey key : touched_) {
+    ZoneWork& w = work_[key];
+    w.touched = false;
+    w.ops.clear();
+    w.probes.clear();
+    w.found.clear();
+    w.cursor = 0;
+    // The single zone stays: its engine's counters are the run's, as they always were.
+    if (w.zone && w.members == 0 && tiling_) {
+      add_statistics(retired_kinetic_, w.zone->kinetic_statistics());
+      w.zone.reset();
+      w.next_renumber = 0.0;
+      --zone_count_;
+      ++stats_.zones_retired;
+    }
+  }
+  touched_.clear();
+  steps_.clear();
+  step_zones_.clear();
+  snapshots_.clear();
+}
+
+void Pipeline::run_zone(ZoneWork& w) {
+  zone::Zone& zone = *w.zone;
+  const auto started = std::chrono::steady_clock::now();
+  for (const ZoneOp& op : w.ops) {
+    switch (op.kind) {
+      case ZoneOp::Kind::Place: {
+        const Snapshot& s = snapshots_[op.snapshot];
+        double scale = 1.0;
+        const probe::Kinematics k = kinematics_in(zone.projection(), zone.key(), s.track, scale);
+        kinetic::PointId point = kinetic::kNoPoint;
+        timed(w.phases, &PhaseTimes::maintenance_s, [&] {
+          point = zone.place(op.slot, engine_time(op.t), probe::extrapolated(k, op.t - s.track.t));
+        });
+        zone::ProbeState& state = zone.state(point);
+        state = s.base;
+        state.kinematics = k;
+        state.kinematics.turn_rate_rps = s.base.kinematics.turn_rate_rps;
+        state.scale = scale;
+        break;
+      }
+      case ZoneOp::Kind::Remove:
+        timed(w.phases, &PhaseTimes::maintenance_s, [&] { zone.remove(op.slot, engine_time(op.t)); });
+        break;
+      case ZoneOp::Kind::Renumber:
+        timed(w.phases, &PhaseTimes::maintenance_s, [&] { zone.renumber(engine_time(op.t), op.t); });
+        break;
+      case ZoneOp::Kind::Probe: {
+        ProbeResult result;
+        result.first = static_cast<std::uint32_t>(w.found.size());
+        // Worldwide brute force is the alert stage's (brute_over_sphere).
+        if (!(tiling_ && config_.probe_mode == probe::ProbeMode::Brute)) {
+          const kinetic::PointId self = zone.point_of(op.slot);
+          timed(w.phases, &PhaseTimes::search_s, [&] { collect_candidates(w, self); });
+          timed(w.phases, &PhaseTimes::tests_s, [&] { test_candidates(w, self, op.t); });
+          result.candidates = w.candidates.size();
+        }
+        result.count = static_cast<std::uint32_t>(w.found.size()) - result.first;
+        w.probes.push_back(result);
+        ++zone.statistics().probes;
+        break;
+      }
+    }
+  }
+  timed(w.phases, &PhaseTimes::maintenance_s, [&] { zone.advance(engine_time(clock_)); });
+  zone.statistics().busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+void Pipeline::collect_candidates(ZoneWork& w, kinetic::PointId self) {
+  zone::Zone& zone = *w.zone;
+  const zone::ProbeState& state = zone.state(self);
+  w.candidates.clear();
+  // Each point once, never the track's own (within() marks what it visited).
+  switch (config_.probe_mode) {
+    case probe::ProbeMode::Exact:
+      // Straight-line prediction: every j that can come within S_h of i within T is within
+      // S_h + v_max·T (+ 2τ) of i's position T ahead (design §2.1), a disk that is smaller
+      // the faster i flies; an arc stays only within |v_i|·T of its start.
+      if (config_.search_ahead && state.kinematics.turn_rate_rps == 0.0) {
+        const geometry::Point2 ahead = zone.engine().position_now(self) + largest_lookahead_s_ * state.kinematics.velocity;
+        zone.search().within_around(zone.engine(), self, ahead, search_radius(zone, 0.0), w.candidates);
+      } else {
+        zone.search().within(zone.engine(), self, search_radius(zone, geometry::norm(state.kinematics.velocity)),
+                             w.candidates);
+      }
+      break;
+    case probe::ProbeMode::Edges:
+      zone.search().neighbours(zone.engine(), self, w.candidates);
+      // A few points; within() gives each once by construction, this makes sure here.
+      std::sort(w.candidates.begin(), w.candidates.end());
+      w.candidates.erase(std::unique(w.candidates.begin(), w.candidates.end()), w.candidates.end());
+      break;
+    case probe::ProbeMode::Brute:  // one plane; worldwide: brute_over_sphere()
+      for (kinetic::PointId other = 0; other < zone.point_end(); ++other)
+        if (zone.slot_of(other) != zone::kNoSlot && other != self) w.candidates.push_back(other);
+      break;
+  }
+}
+
+void Pipeline::test_candidates(ZoneWork& w, kinetic::PointId self_point, double now) {
+  zone::Zone& zone = *w.zone;
+  const zone::ProbeState& self = zone.state(self_point);
+  const probe::Kinematics k_self = self.at(now);
+  const track::TrackSlot slot = self.slot;
+  // Most candidates are clear: only pairs in conflict go on to the alert stage, which
+  // adds the partners and sorts the few by slot (design §2.5).
+  constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
+  const std::vector<kinetic::PointId>& candidates = w.candidates;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (i + kPrefetchAhead < candidates.size()) {
+      const zone::ProbeState* ahead = &zone.state(candidates[i + kPrefetchAhead]);
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
+    }
+    const zone::ProbeState& them = zone.state(candidates[i]);
+    const track::TrackSlot other = them.slot;
+    const probe::Kinematics k_other = them.at(now);
+    probe::SeparationMinima minima =
+        regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;
+    if (probe::vertically_apart_for_ever(k_self, k_other, minima)) continue;
+    minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
+    if (slot < other ? !pair_in_conflict(k_self, k_other, minima) : !pair_in_conflict(k_other, k_self, minima)) continue;
+    // In conflict here: judged here only when this zone owns the pair (design §4.9).
+    if (tiling_ &&
+        tiling_->home(zone::ZoneTiling::midpoint({self.lat_deg, self.lon_deg}, {them.lat_deg, them.lon_deg})) !=
+            zone.key())
+      continue;
+    w.found.push_back(other);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// The alert stage.
+
+void Pipeline::run_step(const AlertStep& step) {
+  judged_at_ = step.t;
+  if (step.kind == AlertStep::Kind::DropAlerts) {
+    view_[step.slot].track.in_engine = false;
+    alerts_.drop_track(step.slot, step.t, pending_events_);
+    deliver();
+    return;
+  }
+  const track::TrackSlot slot = step.slot;
+  util::grow_to(view_, static_cast<std::size_t>(slot) + 1);
+  view_[slot] = std::move(snapshots_[step.snapshot]);
+  ++stats_.probes;
+  evaluated_.clear();
+  for (std::uint32_t i = step.first_zone; i < step.first_zone + step.zone_count; ++i) {
+    ZoneWork& w = work_[step_zones_[i]];
+    const ProbeResult& r = w.probes[w.cursor++];
+    stats_.candidates += r.candidates;
+    for (std::uint32_t f = r.first; f < r.first + r.count; ++f) evaluated_.push_back({w.found[f], step_zones_[i]});
+  }
+  const bool brute_sphere = tiling_ && config_.probe_mode == probe::ProbeMode::Brute;
+  if (brute_sphere) brute_over_sphere(slot);
+  // Pairs pending confirmation or alerting are always evaluated, so they see their clear
+  // evaluations even when the search (edges mode) does not return them: each once, in
+  // the zone that owns it.
+  partners_scratch_.clear();
+  alerts_.partners_of(slot, partners_scratch_);
+  const std::size_t found = evaluated_.size();
+  for (const track::TrackSlot other : partners_scratch_) {
+    const auto end = evaluated_.begin() + static_cast<std::ptrdiff_t>(found);
+    if (std::find_if(evaluated_.begin(), end, [&](const Evaluated& e) { return e.other == other; }) != end) continue;
+    ++stats_.candidates;  // the search did not find it in conflict
+    // A pair no zone holds whole is too far apart to be in conflict (design §4.9) and
+    // is evaluated clear.
+    const zone::ZoneKey owner = owner_of(view_[slot].track, view_[other].track);
+    const bool held = brute_sphere || holds_both(owner, view_[slot].track, view_[other].track);
+    evaluated_.push_back({other, held ? owner : zone::kNoZone});
+  }
+  evaluate_pairs(slot);
+}
+
+zone::ZoneKey Pipeline::owner_of(const track::Track& a, const track::Track& b) const {
+  if (!tiling_) return 0;
+  return tiling_->home(zone::ZoneTiling::midpoint({a.lat_deg, a.lon_deg}, {b.lat_deg, b.lon_deg}));
+}
+
+bool Pipeline::holds_both(zone::ZoneKey key, const track::Track& a, const track::Track& b) {
+  if (!tiling_) return true;
+  for (const track::Track* t : {&a, &b}) {
+    tiling_->zones_near({t->lat_deg, t->lon_deg}, zones_scratch_);
+    if (std::find(zones_scratch_.begin(), zones_scratch_.end(), key) == zones_scratch_.end()) return false;
+  }
   return true;
 }
 
-kinetic::KineticStatistics Pipeline::kinetic_statistics() const {
-  kinetic::KineticStatistics total = retired_kinetic_;
-  for (const std::unique_ptr<zone::Zone>& zone : zones_)
-    if (zone) add_statistics(total, zone->kinetic_statistics());
-  return total;
+void Pipeline::brute_over_sphere(track::TrackSlot slot) {
+  // The oracle of the zoned search: every pair within reach on the sphere is judged in
+  // its owner's plane, each track projected there as a zone projects a member, whatever
+  // the memberships: a margin too narrow shows as a difference from the exact search.
+  const auto unit = [](const track::Track& t, double v[3]) {
+    const double lat = t.lat_deg * (M_PI / 180.0), lon = t.lon_deg * (M_PI / 180.0);
+    v[0] = std::cos(lat) * std::cos(lon);
+    v[1] = std::cos(lat) * std::sin(lon);
+    v[2] = std::sin(lat);
+  };
+  double u[3];
+  unit(view_[slot].track, u);
+  const double min_cos = std::cos(kBruteReach_m / kEarthRadius_m);
+  for (track::TrackSlot other = 0; other < view_.size(); ++other) {
+    if (other == slot || !view_[other].track.in_engine) continue;
+    double w[3];
+    unit(view_[other].track, w);
+    if (u[0] * w[0] + u[1] * w[1] + u[2] * w[2] < min_cos) continue;
+    ++stats_.candidates;
+    const zone::ZoneKey owner = owner_of(view_[slot].track, view_[other].track);
+    const zone::ProbeState self = state_in(owner, slot);
+    const PairKinematics pair = pair_kinematics(self, self.at(judged_at_), state_in(owner, other), judged_at_);
+    if (pair_in_conflict(pair.kp, pair.kq, pair.minima)) evaluated_.push_back({other, owner});
+  }
 }
 
-const zone::Zone* Pipeline::home_zone(track::TrackSlot slot) const {
-  const track::Track& track = tracks_[slot];
-  return track.in_use && track.plane < zones_.size() ? zones_[track.plane].get() : nullptr;
+const geo::Projection& Pipeline::plane_of(zone::ZoneKey key) {
+  if (work_[key].zone) return work_[key].zone->projection();
+  util::grow_to(brute_planes_, work_.size());
+  if (!brute_planes_[key]) brute_planes_[key].emplace(tiling_->centre(key), tiling_->extent_m(key));
+  return *brute_planes_[key];
 }
 
-kinetic::PointId Pipeline::point_in(track::TrackSlot slot, zone::ZoneKey key) const {
-  for (const Membership& m : members_[slot])
-    if (m.zone == key) return m.point;
-  return kinetic::kNoPoint;
-}
-
-zone::ZoneKey Pipeline::owner_of(track::TrackSlot a, track::TrackSlot b) const {
-  if (!tiling_) return 0;
-  const track::Track& ta = tracks_[a];
-  const track::Track& tb = tracks_[b];
-  return tiling_->home(zone::ZoneTiling::midpoint({ta.lat_deg, ta.lon_deg}, {tb.lat_deg, tb.lon_deg}));
+zone::ProbeState Pipeline::state_in(zone::ZoneKey key, track::TrackSlot slot) {
+  const Snapshot& v = view_[slot];
+  zone::ProbeState state = v.base;
+  state.kinematics = kinematics_in(plane_of(key), key, v.track, state.scale);
+  state.kinematics.turn_rate_rps = v.base.kinematics.turn_rate_rps;
+  return state;
 }
 
 probe::Kinematics Pipeline::kinematics_in(const geo::Projection& plane, zone::ZoneKey key, const track::Track& track,
@@ -518,149 +753,8 @@ probe::Kinematics Pipeline::kinematics_in(const geo::Projection& plane, zone::Zo
   return k;
 }
 
-std::span<const Pipeline::Membership> Pipeline::members_of(track::TrackSlot slot) const {
-  if (slot >= members_.size()) return {};
-  return {members_[slot].data(), members_[slot].size()};
-}
-
-void Pipeline::apply(track::TrackSlot slot) {
-  track::Track& track = tracks_[slot];
-  util::grow_to(members_, static_cast<std::size_t>(slot) + 1);
-  auto& members = members_[slot];
-  if (members.empty()) ++live_tracks_;
-  // The zones that hold the track now (design §4.9): it leaves the others first.
-  zones_scratch_.clear();
-  if (tiling_) tiling_->zones_near({track.lat_deg, track.lon_deg}, zones_scratch_);
-  else zones_scratch_.push_back(0);
-  timed(&PhaseTimes::maintenance_s, [&] {
-    for (std::size_t i = 0; i < members.size();) {
-      if (std::find(zones_scratch_.begin(), zones_scratch_.end(), members[i].zone) != zones_scratch_.end()) {
-        ++i;
-        continue;
-      }
-      const zone::ZoneKey left = members[i].zone;
-      zones_[left]->remove(members[i].point, engine_time(clock_));
-      members.erase(members.begin() + static_cast<std::ptrdiff_t>(i));
-      retire_if_empty(left);
-    }
-  });
-  // What every zone's probe state shares, whatever its plane.
-  zone::ProbeState shared;
-  shared.t = track.t;
-  shared.level_off_until_t = track.intent.sel_t + config_.tracks.intent.max_age_s;
-  shared.region = regions_.empty() ? region::RegionMap::kNone : regions_.locate(track.lat_deg, track.lon_deg, track.alt_ft);
-  shared.slot = slot;
-  const bool turning =
-      config_.turn.enabled && track.turn_rate_dps && std::abs(*track.turn_rate_dps) >= config_.turn.min_rate_dps;
-  std::vector<Membership>& now_in = membership_scratch_;
-  now_in.clear();
-  for (const zone::ZoneKey key : zones_scratch_) {
-    zone::Zone& zone = zone_at(key);
-    double scale = 1.0;
-    const probe::Kinematics k = kinematics_in(zone.projection(), key, track, scale);
-    kinetic::PointId point = kinetic::kNoPoint;
-    for (const Membership& m : members)
-      if (m.zone == key) point = m.point;
-    const auto started = tiling_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-    timed(&PhaseTimes::maintenance_s, [&] {
-      point = zone.place(slot, point, engine_time(clock_), probe::extrapolated(k, clock_ - track.t));
-    });
-    if (tiling_) zone.statistics().busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    zone::ProbeState& state = zone.state(point);
-    state = shared;
-    state.kinematics = k;
-    state.scale = scale;
-    if (turning) state.kinematics.turn_rate_rps = -*track.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
-    now_in.push_back({key, point});
-    if (key == track.plane) track.point = point;
-  }
-  members.assign(now_in.begin(), now_in.end());
-  probe(slot);
-}
-
-void Pipeline::collect_candidates(zone::Zone& zone, kinetic::PointId self) {
-  const zone::ProbeState& state = zone.state(self);
-  candidates_.clear();
-  // Each point once, never the track's own (within() marks what it visited).
-  switch (config_.probe_mode) {
-    case probe::ProbeMode::Exact:
-      // Straight-line prediction: every j that can come within S_h of i within T is within
-      // S_h + v_max·T (+ 2τ) of i's position T ahead (design §2.1), a disk that is smaller
-      // the faster i flies; an arc stays only within |v_i|·T of its start.
-      if (config_.search_ahead && state.kinematics.turn_rate_rps == 0.0) {
-        const geometry::Point2 ahead = zone.engine().position_now(self) + largest_lookahead_s_ * state.kinematics.velocity;
-        zone.search().within_around(zone.engine(), self, ahead, search_radius(zone, 0.0), candidates_);
-      } else {
-        zone.search().within(zone.engine(), self, search_radius(zone, geometry::norm(state.kinematics.velocity)),
-                             candidates_);
-      }
-      break;
-    case probe::ProbeMode::Edges:
-      zone.search().neighbours(zone.engine(), self, candidates_);
-      // A few points; within() gives each once by construction, this makes sure here.
-      std::sort(candidates_.begin(), candidates_.end());
-      candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
-      break;
-    case probe::ProbeMode::Brute:  // worldwide: brute_over_sphere() instead
-      for (kinetic::PointId other = 0; other < zone.point_end(); ++other)
-        if (zone.slot_of(other) != zone::kNoSlot && other != self) candidates_.push_back(other);
-      break;
-  }
-}
-
-void Pipeline::brute_over_sphere(track::TrackSlot slot) {
-  // The oracle of the zoned search: every pair within reach on the sphere is judged in
-  // its owner's plane, each track projected there when it is not a member (the same
-  // function fills a member's state), whatever the memberships: a margin too narrow
-  // shows as a difference from the exact search.
-  const track::Track& me = tracks_[slot];
-  const auto unit = [](const track::Track& t, double v[3]) {
-    const double lat = t.lat_deg * (M_PI / 180.0), lon = t.lon_deg * (M_PI / 180.0);
-    v[0] = std::cos(lat) * std::cos(lon);
-    v[1] = std::cos(lat) * std::sin(lon);
-    v[2] = std::sin(lat);
-  };
-  double u[3];
-  unit(me, u);
-  const double min_cos = std::cos(kBruteReach_m / kEarthRadius_m);
-  for (track::TrackSlot other = 0; other < tracks_.slot_end(); ++other) {
-    if (other == slot || members_of(other).empty()) continue;
-    if (std::find(partners_scratch_.begin(), partners_scratch_.end(), other) != partners_scratch_.end()) continue;
-    double w[3];
-    unit(tracks_[other], w);
-    if (u[0] * w[0] + u[1] * w[1] + u[2] * w[2] < min_cos) continue;
-    ++stats_.candidates;
-    const zone::ZoneKey owner = owner_of(slot, other);
-    const zone::ProbeState self = state_in(owner, slot);
-    const PairKinematics pair = pair_kinematics(self, self.at(clock_), state_in(owner, other));
-    if (pair_in_conflict(pair.kp, pair.kq, pair.minima)) evaluated_.push_back({other, owner});
-  }
-}
-
-const geo::Projection& Pipeline::plane_of(zone::ZoneKey key) {
-  if (zones_[key]) return zones_[key]->projection();
-  util::grow_to(brute_planes_, zones_.size());
-  if (!brute_planes_[key]) brute_planes_[key].emplace(tiling_->centre(key), tiling_->extent_m(key));
-  return *brute_planes_[key];
-}
-
-zone::ProbeState Pipeline::state_in(zone::ZoneKey key, track::TrackSlot slot) {
-  const kinetic::PointId point = point_in(slot, key);
-  if (point != kinetic::kNoPoint) return zones_[key]->state(point);
-  const track::Track& t = tracks_[slot];
-  zone::ProbeState state;
-  state.kinematics = kinematics_in(plane_of(key), key, t, state.scale);
-  state.t = t.t;
-  state.level_off_until_t = t.intent.sel_t + config_.tracks.intent.max_age_s;
-  state.region = region_of(slot);
-  state.slot = slot;
-  if (config_.turn.enabled && t.turn_rate_dps && std::abs(*t.turn_rate_dps) >= config_.turn.min_rate_dps)
-    state.kinematics.turn_rate_rps = -*t.turn_rate_dps * (M_PI / 180.0);  // clockwise over ground
-  return state;
-}
-
 Pipeline::PairKinematics Pipeline::pair_kinematics(const zone::ProbeState& self, const probe::Kinematics& k_self,
-                                                   const zone::ProbeState& other) const {
+                                                   const zone::ProbeState& other, double now) const {
   PairKinematics pair;
   pair.scale = geo::Projection::pair_scale(self.scale, other.scale);
   pair.parameters = pair_parameters(self.region, other.region);
@@ -669,7 +763,7 @@ Pipeline::PairKinematics Pipeline::pair_kinematics(const zone::ProbeState& self,
   // The lower slot goes first so that a pair's figures do not depend on which of its
   // two tracks was updated.
   const bool self_first = self.slot < other.slot;
-  const probe::Kinematics k_other = other.at(clock_);
+  const probe::Kinematics k_other = other.at(now);
   pair.p = self_first ? self.slot : other.slot;
   pair.q = self_first ? other.slot : self.slot;
   pair.kp = self_first ? k_self : k_other;
@@ -677,108 +771,22 @@ Pipeline::PairKinematics Pipeline::pair_kinematics(const zone::ProbeState& self,
   return pair;
 }
 
-void Pipeline::probe(track::TrackSlot slot) {
-  ++stats_.probes;
-  evaluated_.clear();
-  // Pairs pending confirmation or alerting are always evaluated, so they see their clear
-  // evaluations even when the search (edges mode) does not return them: they are marked
-  // in every zone, the candidate loops skip them, and each is evaluated once below, in
-  // the zone that owns it.
-  if (++candidate_round_ == 0) {  // wrapped: forget every mark
-    for (const std::unique_ptr<zone::Zone>& zone : zones_)
-      if (zone)
-        for (zone::ProbeState& state : zone->states()) state.partner_round = 0;
-    candidate_round_ = 1;
-  }
-  partners_scratch_.clear();
-  alerts_.partners_of(slot, partners_scratch_);
-  partner_met_.assign(partners_scratch_.size(), 0);
-  const bool brute_sphere = tiling_ && config_.probe_mode == probe::ProbeMode::Brute;
-  if (brute_sphere) timed(&PhaseTimes::tests_s, [&] { brute_over_sphere(slot); });
-  for (const Membership& m : members_[slot]) {
-    if (brute_sphere) break;
-    zone::Zone& zone = *zones_[m.zone];
-    const auto started = tiling_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-    timed(&PhaseTimes::search_s, [&] {
-      // A pair's state ends when either track leaves the engines: a partner is a member
-      // of some zone, if not of this one.
-      for (const track::TrackSlot other : partners_scratch_) {
-        const kinetic::PointId point = point_in(other, m.zone);
-        if (point != kinetic::kNoPoint) zone.state(point).partner_round = candidate_round_;
-      }
-      collect_candidates(zone, m.point);
-    });
-    timed(&PhaseTimes::tests_s, [&] { test_candidates(zone, m.point, slot); });
-    for (std::size_t i = 0; i < partners_scratch_.size(); ++i) {
-      const kinetic::PointId point = point_in(partners_scratch_[i], m.zone);
-      if (point != kinetic::kNoPoint && zone.state(point).partner_round != candidate_round_) partner_met_[i] = 1;
-    }
-    ++zone.statistics().probes;
-    if (tiling_) zone.statistics().busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  }
-  timed(&PhaseTimes::tests_s, [&] {
-    for (std::size_t i = 0; i < partners_scratch_.size(); ++i) {
-      const track::TrackSlot other = partners_scratch_[i];
-      if (!partner_met_[i]) ++stats_.candidates;  // the search did not find it
-      // Judged where the pair is owned; a pair no zone holds whole is too far apart to
-      // be in conflict (design §4.9) and is evaluated clear.
-      const zone::ZoneKey owner = owner_of(slot, other);
-      const bool held = point_in(slot, owner) != kinetic::kNoPoint && point_in(other, owner) != kinetic::kNoPoint;
-      evaluated_.push_back({other, held || brute_sphere ? owner : zone::kNoZone});
-    }
-    evaluate_pairs(slot);
-  });
-}
-
-void Pipeline::test_candidates(zone::Zone& zone, kinetic::PointId self_point, track::TrackSlot slot) {
-  const zone::ProbeState& self = zone.state(self_point);
-  const probe::Kinematics k_self = self.at(clock_);
-  stats_.candidates += candidates_.size();
-  // Most candidates are clear and have no pair state, and for those the alert manager
-  // does nothing: only pairs in conflict or with state (the partners, marked above) go
-  // on, in slot order, which fixes the order of the events of one probe (design §2.5).
-  // Sorting these few rather than every candidate found is the same order.
-  constexpr std::size_t kPrefetchAhead = 4;  // the candidates are scattered in memory
-  for (std::size_t i = 0; i < candidates_.size(); ++i) {
-    if (i + kPrefetchAhead < candidates_.size()) {
-      const zone::ProbeState* ahead = &zone.state(candidates_[i + kPrefetchAhead]);
-      __builtin_prefetch(ahead);
-      __builtin_prefetch(reinterpret_cast<const char*>(ahead) + 64);
-    }
-    // pair_kinematics() without its copies: this loop runs ~100 times per update.
-    zone::ProbeState& them = zone.state(candidates_[i]);
-    const track::TrackSlot other = them.slot;
-    if (them.partner_round == candidate_round_) {
-      them.partner_round = 0;  // met: evaluated once, after every zone
-      continue;
-    }
-    const probe::Kinematics k_other = them.at(clock_);
-    probe::SeparationMinima minima =
-        regions_.empty() ? config_.minima : pair_parameters(self.region, them.region).minima;
-    if (probe::vertically_apart_for_ever(k_self, k_other, minima)) continue;
-    minima.horizontal_m *= geo::Projection::pair_scale(self.scale, them.scale);
-    if (slot < other ? !pair_in_conflict(k_self, k_other, minima) : !pair_in_conflict(k_other, k_self, minima)) continue;
-    // In conflict here: judged here only when this zone owns the pair (design §4.9).
-    if (tiling_ && owner_of(slot, other) != zone.key()) continue;
-    evaluated_.push_back({other, zone.key()});
-  }
-}
-
 void Pipeline::evaluate_pairs(track::TrackSlot slot) {
   std::sort(evaluated_.begin(), evaluated_.end(),
             [](const Evaluated& a, const Evaluated& b) { return a.other < b.other; });
+  const double now = judged_at_;
   for (const Evaluated& pick : evaluated_) {
     const track::TrackSlot other = pick.other;
     alert::Evaluation e;
     if (pick.zone == zone::kNoZone) {
-      const PairParameters parameters = pair_parameters(region_of(slot), region_of(other));
+      const PairParameters parameters = pair_parameters(view_[slot].base.region, view_[other].base.region);
       e.confirm = parameters.confirm;
       e.clear = parameters.clear;
-      alerts_.evaluate(std::min(slot, other), std::max(slot, other), e, clock_, [](AlertEvent&) {}, pending_events_);
+      alerts_.evaluate(std::min(slot, other), std::max(slot, other), e, now, [](AlertEvent&) {}, pending_events_);
       continue;
     }
     const zone::ProbeState self = state_in(pick.zone, slot);
-    const PairKinematics pair = pair_kinematics(self, self.at(clock_), state_in(pick.zone, other));
+    const PairKinematics pair = pair_kinematics(self, self.at(now), state_in(pick.zone, other), now);
     // Most pairs are clear: decide that without the figures, which only events need.
     probe::ConflictGeometry g;
     bool along_turn = false;
@@ -801,7 +809,7 @@ void Pipeline::evaluate_pairs(track::TrackSlot slot) {
       e.cpa_v_ft = g.cpa_v_m / kFootToMetre;
     }
     alerts_.evaluate(
-        pair.p, pair.q, e, clock_,
+        pair.p, pair.q, e, now,
         [&](AlertEvent& event) {
           fill_event(event, plane_of(pick.zone), pair.p, pair.q, g, pair.kp, pair.kq, along_turn);
           event.hypothesis = g.lost_now     ? Hypothesis::Proximity
@@ -816,8 +824,8 @@ void Pipeline::evaluate_pairs(track::TrackSlot slot) {
 }
 
 bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
-  const track::Track& tp = tracks_[pair.p];
-  const track::Track& tq = tracks_[pair.q];
+  const track::Track& tp = view_[pair.p].track;
+  const track::Track& tq = view_[pair.q].track;
   if (rules_.same_address(tp, tq)) {
     suppressed_.reject("same_aircraft");
     return true;
@@ -838,18 +846,18 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
     suppressed_.reject("same_aircraft");
     return true;
   }
-  eligibility::Exclusion why = rules_.exclusion(tp, clock_);
-  if (why == eligibility::Exclusion::None) why = rules_.exclusion(tq, clock_);
+  eligibility::Exclusion why = rules_.exclusion(tp, judged_at_);
+  if (why == eligibility::Exclusion::None) why = rules_.exclusion(tq, judged_at_);
   if (why == eligibility::Exclusion::None) return false;
   suppressed_.reject(eligibility::kExclusionNames.name(why));
   return true;
 }
 
 void Pipeline::fill_event(AlertEvent& event, const geo::Projection& projection, track::TrackSlot p, track::TrackSlot q,
-                          const probe::ConflictGeometry& g,
-                          const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const {
-  const track::Track& tp = tracks_[p];
-  const track::Track& tq = tracks_[q];
+                          const probe::ConflictGeometry& g, const probe::Kinematics& kp, const probe::Kinematics& kq,
+                          bool along_turn) const {
+  const track::Track& tp = view_[p].track;
+  const track::Track& tq = view_[q].track;
   const bool p_first = ordered_before(tp, tq);
   event.a = party_of(p_first ? tp : tq);
   event.b = party_of(p_first ? tq : tp);
@@ -870,6 +878,40 @@ void Pipeline::deliver() {
   if (sink_)
     for (const AlertEvent& event : pending_events_) sink_(event);
   pending_events_.clear();
+}
+
+// ---------------------------------------------------------------------------------------
+// Readers.
+
+kinetic::KineticAudit Pipeline::audit() {
+  flush();
+  kinetic::KineticAudit total;
+  for (ZoneWork& w : work_) {
+    if (!w.zone) continue;
+    w.zone->advance(engine_time(clock_));
+    const kinetic::KineticAudit a = w.zone->engine().audit_and_repair();
+    total.violations_found += a.violations_found;
+    total.violations_unrepaired += a.violations_unrepaired;
+  }
+  return total;
+}
+
+bool Pipeline::is_valid() const {
+  for (const ZoneWork& w : work_)
+    if (w.zone && !w.zone->engine().is_valid()) return false;
+  return true;
+}
+
+kinetic::KineticStatistics Pipeline::kinetic_statistics() const {
+  kinetic::KineticStatistics total = retired_kinetic_;
+  for (const ZoneWork& w : work_)
+    if (w.zone) add_statistics(total, w.zone->kinetic_statistics());
+  return total;
+}
+
+const zone::Zone* Pipeline::home_zone(track::TrackSlot slot) const {
+  const track::Track& track = tracks_[slot];
+  return track.in_use && track.plane < work_.size() ? work_[track.plane].zone.get() : nullptr;
 }
 
 }  // namespace kew

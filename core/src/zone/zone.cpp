@@ -9,50 +9,57 @@ Zone::Zone(ZoneKey key, std::string name, const geo::Projection& projection, con
            double engine_now)
     : key_(key), name_(std::move(name)), projection_(projection), config_(config), engine_(std::in_place, config, engine_now) {}
 
-kinetic::PointId Zone::place(TrackSlot slot, kinetic::PointId point, double engine_t, const probe::Kinematics& now_k) {
-  if (point == kinetic::kNoPoint) {
-    point = engine_->insert(engine_t, now_k.position, now_k.velocity);
-    util::grow_to(slot_of_point_, point + 1, kNoSlot);
-    util::grow_to(states_, point + 1);
-    slot_of_point_[point] = slot;
+kinetic::PointId Zone::place(TrackSlot slot, double engine_t, const probe::Kinematics& now_k) {
+  const auto [it, inserted] = point_of_slot_.try_emplace(slot, kinetic::kNoPoint);
+  if (inserted) {
+    it->second = engine_->insert(engine_t, now_k.position, now_k.velocity);
+    util::grow_to(slot_of_point_, it->second + 1, kNoSlot);
+    util::grow_to(states_, it->second + 1);
+    slot_of_point_[it->second] = slot;
   } else {
-    engine_->update(point, engine_t, now_k.position, now_k.velocity);
+    engine_->update(it->second, engine_t, now_k.position, now_k.velocity);
   }
-  speeds_.set(point, geometry::norm(now_k.velocity));
+  speeds_.set(it->second, geometry::norm(now_k.velocity));
   ++statistics_.updates;
-  return point;
+  return it->second;
 }
 
-void Zone::remove(kinetic::PointId point, double engine_t) {
-  engine_->remove(point, engine_t);
-  slot_of_point_[point] = kNoSlot;
-  speeds_.erase(point);
+void Zone::remove(TrackSlot slot, double engine_t) {
+  const auto it = point_of_slot_.find(slot);
+  if (it == point_of_slot_.end()) return;
+  engine_->remove(it->second, engine_t);
+  slot_of_point_[it->second] = kNoSlot;
+  speeds_.erase(it->second);
+  point_of_slot_.erase(it);
 }
 
-void Zone::renumber_points(double engine_t, const std::vector<TrackSlot>& slots,
-                           const std::vector<probe::Kinematics>& now, std::vector<kinetic::PointId>& new_points) {
-  std::vector<geometry::Point2> positions;
-  positions.reserve(now.size());
-  for (const probe::Kinematics& k : now) positions.push_back(k.position);
-  // The old point of each member, in slot_of_point_ order (as `slots` was collected).
+void Zone::renumber(double engine_t, double at) {
   std::vector<kinetic::PointId> old_points;
-  for (kinetic::PointId p = 0; p < slot_of_point_.size(); ++p)
-    if (slot_of_point_[p] != kNoSlot) old_points.push_back(p);
+  std::vector<probe::Kinematics> now;
+  std::vector<geometry::Point2> positions;
+  for (kinetic::PointId p = 0; p < slot_of_point_.size(); ++p) {
+    if (slot_of_point_[p] == kNoSlot) continue;
+    old_points.push_back(p);
+    // The last report extrapolated: the position and velocity place() was given.
+    now.push_back(probe::extrapolated(states_[p].kinematics, at - states_[p].t));
+    positions.push_back(now.back().position);
+  }
   const kinetic::KineticStatistics earlier = engine_->statistics();
   std::vector<ProbeState> old_states = std::move(states_);
+  std::vector<TrackSlot> old_slots = std::move(slot_of_point_);
   states_.clear();
   slot_of_point_.clear();
   speeds_ = {};
   engine_.emplace(config_, engine_t);
-  new_points.assign(slots.size(), kinetic::kNoPoint);
   for (const std::uint32_t i : geometry::hilbert_order(positions)) {
     const kinetic::PointId point = engine_->insert(engine_t, now[i].position, now[i].velocity);
     util::grow_to(slot_of_point_, point + 1, kNoSlot);
     util::grow_to(states_, point + 1);
-    slot_of_point_[point] = slots[i];
+    const TrackSlot slot = old_slots[old_points[i]];
+    slot_of_point_[point] = slot;
     states_[point] = old_states[old_points[i]];
     speeds_.set(point, geometry::norm(now[i].velocity));
-    new_points[i] = point;
+    point_of_slot_[slot] = point;
   }
   engine_->continue_statistics(earlier);
 }

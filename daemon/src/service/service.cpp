@@ -70,7 +70,7 @@ template <class F>
 void for_each_live_track(const Pipeline& pipeline, F&& f) {
   for (track::TrackSlot slot = 0; slot < pipeline.tracks().slot_end(); ++slot) {
     const track::Track& track = pipeline.tracks()[slot];
-    if (track.in_use && track.point != kinetic::kNoPoint) f(track);
+    if (track.in_use && track.in_engine) f(track);
   }
 }
 
@@ -228,8 +228,16 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
   figures.last_record_unix_s = wall;
   const std::uint64_t accepted = pipeline_.statistics().accepted;
   const std::uint64_t refused = pipeline_.rejections().total();
+  // Events come out when the batch runs: when this record fills it, or right after the
+  // handler that delivered the records (a datagram, a read, a replay step) returns.
+  if (!batch_arrival_) batch_arrival_ = arrival;
+  record_arrival_ = batch_arrival_;
   pipeline_.process(report);
   record_arrival_.reset();
+  if (!flush_posted_) {
+    flush_posted_ = true;
+    boost::asio::post(io_, [this] { flush_pipeline(); });
+  }
   if (pipeline_.rejections().total() != refused) figures.pipeline_refused.reject(pipeline_.rejections().last_reason());
   if (pipeline_.statistics().accepted == accepted) return;
   health_.accepted(std::chrono::steady_clock::now());
@@ -242,6 +250,15 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
       ws_tracks_.push_back(slot);
     }
   }
+}
+
+void Service::flush_pipeline() {
+  flush_posted_ = false;
+  // The record-to-alert latency of a batch counts from its first record's arrival.
+  record_arrival_ = batch_arrival_;
+  pipeline_.flush();
+  record_arrival_.reset();
+  batch_arrival_.reset();
 }
 
 void Service::begin_run() {
@@ -523,6 +540,8 @@ void Service::shutdown() {
   stopping_ = true;
   sd_notify(0, "STOPPING=1");
   for (auto& input : inputs_) input->stop();
+  // Records already taken are judged, and their alerts sent, before subscribers go.
+  flush_pipeline();
   boost::system::error_code ignored;
   signals_.cancel(ignored);
   tick_timer_.cancel();
@@ -619,7 +638,7 @@ void Service::flush_websockets() {
     for (const track::TrackSlot slot : ws_tracks_) {
       ws_track_marked_[slot] = false;
       const track::Track& track = pipeline_.tracks()[slot];
-      if (!track.in_use || track.point == kinetic::kNoPoint) continue;
+      if (!track.in_use || !track.in_engine) continue;
       line_.clear();
       protocol::append_live_track_json(line_, track, now, last_alert_seq_);
       http_->push(line_);

@@ -56,6 +56,8 @@ class Service {
  private:
   /// A record decoded by inputs_[input].
   void on_report(const TrackReport& report, std::size_t input);
+  /// Runs the pipeline's pending batch (posted after the handler that took its records).
+  void flush_pipeline();
   void on_alert(const AlertEvent& event);
   /// Before the inputs start: the run id, the START line, the End ("restart") of every
   /// alert the last run left open, and the numbering continued (design §4.7).
@@ -127,6 +129,10 @@ class Service {
   /// While a record is processed: when it reached on_report (alert events it causes are
   /// measured from there).
   std::optional<std::chrono::steady_clock::time_point> record_arrival_;
+  // The arrival of the first record of the pipeline's pending batch, and whether a
+  // flush of it is posted.
+  std::optional<std::chrono::steady_clock::time_point> batch_arrival_;
+  bool flush_posted_ = false;
   /// Tracks updated since the last tick, for the WebSocket clients (only while any).
   std::vector<track::TrackSlot> ws_tracks_;
   std::vector<bool> ws_track_marked_;

@@ -19,7 +19,12 @@ namespace kew::config {
 
 class Document;
 
+/// Records in a batch when [pipeline] batch_records is not set (PipelineConfig).
+inline constexpr std::size_t kDefaultBatchRecords = 512;
+
 struct SharedConfig {
+  /// The service's defaults: PipelineConfig's, with every core and kDefaultBatchRecords.
+  SharedConfig();
   PipelineConfig pipeline;  ///< regions: the [[region]] tables, then [regions] geojson's
   protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits
   /// The GeoJSON file of [regions] geojson, absolute; empty when none.
@@ -27,8 +32,8 @@ struct SharedConfig {
 };
 
 /// Top-level tables read into SharedConfig.
-inline constexpr std::array<std::string_view, 10> kSharedSections = {
-    "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar", "region", "regions"};
+inline constexpr std::array<std::string_view, 11> kSharedSections = {
+    "pipeline", "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar", "region", "regions"};
 /// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
 /// kewd file and leaves them unread.
 inline constexpr std::array<std::string_view, 5> kDaemonSections = {"service", "cat004", "modbus", "http", "input"};

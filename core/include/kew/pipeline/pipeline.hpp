@@ -1,8 +1,13 @@
 #pragma once
-// The single-threaded heart of kew (design §3): TrackReports in, alert events out.
-// record → track table (order, plausibility) → projection → kinetic engine advance(t)
-// then update(track) → probe → alert manager → sink. Deterministic: the same records
-// in the same order give the same events. Used by kew-replay and kewd alike.
+// The heart of kew (design §3): TrackReports in, alert events out. Three stages:
+//  1. the track stage, in record order: track table (order, plausibility), projection
+//     into the record's home zone, and the work each zone has to do (place, remove,
+//     probe, renumber);
+//  2. the zones, each on its own (in parallel across zones, design §3.3): kinetic engine,
+//     candidate search and conflict test of the pairs the zone owns;
+//  3. the alert stage, in record order: partners, eligibility rules, alert manager, sink.
+// Deterministic: the same records in the same order give the same events, whatever the
+// number of threads or the size of a batch. Used by kew-replay and kewd alike.
 
 #include <cstdint>
 #include <functional>
@@ -23,6 +28,7 @@
 #include "kew/track/track_table.hpp"
 #include "kew/util/indexed_heap.hpp"
 #include "kew/util/name_table.hpp"
+#include "kew/util/worker_pool.hpp"
 #include "kew/zone/zone.hpp"
 #include "kew/zone/zone_tiling.hpp"
 
@@ -63,6 +69,13 @@ struct PipelineConfig {
   /// probe's per-track state, kept by point, with them, so that the candidate search and
   /// the tests read neighbours from nearby memory. Alerts and their order do not change.
   double renumber_every_s = 0.0;
+  /// Threads that work on the zones, the calling thread included (≥ 1). Single mode
+  /// has one zone: more threads do not help it.
+  std::size_t threads = 1;
+  /// Records taken before the zones and the alert stage run (≥ 1): 1 delivers each
+  /// record's events from process() itself; more lets the zones of a batch work in
+  /// parallel, and events come out of flush() (or the process() that fills a batch).
+  std::size_t batch_records = 1;
   /// Time the three parts of the work on updates (Pipeline::phase_times); off except in
   /// benchmarks (two reads of the thread's CPU clock per part and update, about 1 µs).
   bool time_phases = false;
@@ -114,18 +127,12 @@ struct PipelineStatistics {
   double last_data_time = 0.0;          ///< the pipeline clock (UTC s); 0 before any record
 };
 
-/// A track's point in one zone (Pipeline::members_of).
-struct PipelineMembership {
-  zone::ZoneKey zone;
-  kinetic::PointId point;
-};
-
 class Pipeline {
  public:
-  using Membership = PipelineMembership;
   using AlertSink = std::function<void(const AlertEvent&)>;
 
   explicit Pipeline(const PipelineConfig& config = {});
+  ~Pipeline();
   // The alert manager looks track names up in this object's track table.
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
@@ -154,6 +161,11 @@ class Pipeline {
   /// The input ended: records still held ahead of the clock, which nothing contradicted,
   /// are applied.
   void end_of_input();
+
+  /// Runs the zones and the alert stage over the records taken so far, delivering their
+  /// events. Readers of the pipeline's state (tracks, alerts, statistics) call it first
+  /// when batch_records > 1.
+  void flush();
 
   /// Moves the clock to t (UTC s) without a record — live mode's periodic tick: drops
   /// tracks that timed out and executes kinetic events up to t. Ignored if t ≤ now().
@@ -197,8 +209,12 @@ class Pipeline {
   /// reference). Worldwide mode: always empty; each zone has its own.
   const std::optional<geo::Projection>& projection() const { return projection_; }
 
-  /// The zones that exist now, by key (null: no zone there); single mode has key 0 only.
-  const std::vector<std::unique_ptr<zone::Zone>>& zones() const { return zones_; }
+  /// Calls f(const zone::Zone&) for every zone that exists now, in key order.
+  template <class F>
+  void for_each_zone(F&& f) const {
+    for (const ZoneWork& w : work_)
+      if (w.zone) f(static_cast<const zone::Zone&>(*w.zone));
+  }
   std::size_t zone_count() const { return zone_count_; }
   /// The zone whose plane holds the track's kinematics (its home), null when none.
   const zone::Zone* home_zone(track::TrackSlot slot) const;
@@ -230,6 +246,8 @@ class Pipeline {
   /// refused when this many in a row were too late or outside coverage: its first record
   /// set the clock or the projection for a feed that is elsewhere (design §4.1–4.2).
   static constexpr std::size_t kYoungRun = 5;
+
+  // ---- The track stage (1): records in order; writes the track table and the batch.
   void restart_young_run();
   /// process() after the plausibility and wall-clock checks.
   void process_plausible(const TrackReport& report);
@@ -239,6 +257,7 @@ class Pipeline {
   /// Applies the records the time guard released into guard_scratch_, in order.
   void apply_released();
   void move_clock(double t);
+  /// Takes the track out of the zones and ends its alerts (the table keeps it).
   void drop_track(track::TrackSlot slot);
   /// Drops the track of `report`'s id when it carries another 24-bit address.
   void restart_if_other_aircraft(const TrackReport& report);
@@ -246,50 +265,86 @@ class Pipeline {
   void end_track(track::TrackSlot slot);
   /// Removes the track from every zone it is a member of.
   void leave_engine(track::TrackSlot slot);
-  /// Rebuilds a zone's engine with its members' points in Hilbert order of their
-  /// positions now, each at its track's latest report, and moves the probe states with
-  /// them.
-  void renumber(zone::Zone& zone);
+  /// Places an accepted track in the zones that hold it now and asks them to probe.
+  void apply(track::TrackSlot slot);
   /// The zone of `key`, created (empty, its engine starting now) when it does not exist.
   zone::Zone& zone_at(zone::ZoneKey key);
-  /// Forgets a zone without members; its kinetic counters are kept in the total.
-  void retire_if_empty(zone::ZoneKey key);
   /// The plane and home zone of a report: single mode's plane, or the home zone's.
   zone::Zone& home_of(const TrackReport& report);
-  /// The track's kinematics and point scale in `zone`'s plane, at the track's last
-  /// record: its own when the zone is the one it was admitted in, else projected there.
-  static probe::Kinematics kinematics_in(const geo::Projection& plane, zone::ZoneKey key, const track::Track& track,
-                                         double& scale);
-  /// The track's probe state in zone `key`: its member state, or one made the same way
-  /// in that zone's plane (ProbeMode::Brute in worldwide mode).
-  zone::ProbeState state_in(zone::ZoneKey key, track::TrackSlot slot);
-  /// The plane of zone `key`, which need not exist (brute force).
-  const geo::Projection& plane_of(zone::ZoneKey key);
-  std::span<const Membership> members_of(track::TrackSlot slot) const;
-  /// Single mode's plane radius (m).
-  double single_coverage_m() const;
   /// A worldwide run's explicit coverage limit refuses the report.
   bool outside_limit(const TrackReport& report) const;
-  /// The zone that judges pair (a, b) (design §4.9): the home of the midpoint of their
-  /// last reported positions (single mode: zone 0).
-  zone::ZoneKey owner_of(track::TrackSlot a, track::TrackSlot b) const;
-  /// The point of the track in `key`'s zone, kNoPoint when it is not a member.
-  kinetic::PointId point_in(track::TrackSlot slot, zone::ZoneKey key) const;
-  void apply(track::TrackSlot slot);
-  void probe(track::TrackSlot slot);
-  /// The candidates of the track's point `self` in `zone` (design §2.1), into candidates_.
-  void collect_candidates(zone::Zone& zone, kinetic::PointId self);
-  /// Tests candidates_ in `zone` and appends the conflicting pairs the zone owns to
-  /// evaluated_.
-  void test_candidates(zone::Zone& zone, kinetic::PointId self, track::TrackSlot slot);
+  /// Single mode's plane radius (m).
+  double single_coverage_m() const;
+
+  // ---- The zones (2): each on its own, in parallel.
+  struct ZoneOp {
+    enum class Kind : std::uint8_t { Place, Remove, Probe, Renumber };
+    Kind kind;
+    track::TrackSlot slot;
+    std::uint32_t snapshot;  // Place, Probe: the track as of the op
+    double t;                // data time of the op (the clock of its record)
+  };
+  struct ProbeResult {
+    std::uint32_t first = 0, count = 0;  // in ZoneWork::found
+    std::uint64_t candidates = 0;        // points the search returned
+  };
+  /// A zone and the work of the batch on it.
+  struct ZoneWork {
+    std::unique_ptr<zone::Zone> zone;
+    std::size_t members = 0;  // as the track stage placed them
+    double next_renumber = 0.0;
+    bool touched = false;     // in touched_
+    std::vector<ZoneOp> ops;
+    std::vector<ProbeResult> probes;        // of the Probe ops, in order
+    std::vector<track::TrackSlot> found;    // conflicting pairs the zone owns
+    std::size_t cursor = 0;                 // the alert stage's next probe
+    PhaseTimes phases;
+    std::vector<kinetic::PointId> candidates;
+  };
+  void touch(zone::ZoneKey key);
+  void run_zone(ZoneWork& work);
+  /// The candidates of the track's point `self` in `zone` (design §2.1).
+  void collect_candidates(ZoneWork& work, kinetic::PointId self);
+  /// Tests the candidates and appends the conflicting pairs the zone owns to `found`.
+  void test_candidates(ZoneWork& work, kinetic::PointId self, double now);
+
+  // ---- The alert stage (3): records in order; writes the alert manager.
+  /// What the zones and the alert stage know of a track after one of its records.
+  struct Snapshot {
+    track::Track track;
+    zone::ProbeState base;  // everything but the plane: t, region, intent, turn, slot
+  };
+  struct AlertStep {
+    enum class Kind : std::uint8_t { Update, DropAlerts };
+    Kind kind;
+    track::TrackSlot slot;
+    std::uint32_t snapshot = 0;                   // Update
+    std::uint32_t first_zone = 0, zone_count = 0;  // Update: in step_zones_
+    double t;                                     // the clock of its record
+  };
+  void run_step(const AlertStep& step);
   /// ProbeMode::Brute in worldwide mode: every track within reach on the sphere, each
   /// pair judged in its owner's plane; the conflicting ones into evaluated_.
   void brute_over_sphere(track::TrackSlot slot);
   /// Evaluates evaluated_ (sorted by slot) through the alert manager.
   void evaluate_pairs(track::TrackSlot slot);
-  /// Runs f, adding its duration to `phase` when phases are timed.
+  /// The zone that judges pair (a, b) (design §4.9): the home of the midpoint of their
+  /// last reported positions (single mode: zone 0).
+  zone::ZoneKey owner_of(const track::Track& a, const track::Track& b) const;
+  /// Whether zone `key` holds both tracks (members of it by their last reports).
+  bool holds_both(zone::ZoneKey key, const track::Track& a, const track::Track& b);
+  /// The track's kinematics and point scale in `key`'s plane, at the track's last
+  /// record: its own when that plane is the one it was admitted in, else projected there.
+  static probe::Kinematics kinematics_in(const geo::Projection& plane, zone::ZoneKey key, const track::Track& track,
+                                         double& scale);
+  /// The track's probe state in zone `key`, made from the alert stage's view of it as
+  /// a zone makes a member's.
+  zone::ProbeState state_in(zone::ZoneKey key, track::TrackSlot slot);
+  /// The plane of zone `key`, which need not exist (brute force).
+  const geo::Projection& plane_of(zone::ZoneKey key);
+  /// Runs f, adding its duration to `phase` of `into` when phases are timed.
   template <class F>
-  void timed(double PhaseTimes::*phase, F&& f);
+  void timed(PhaseTimes& into, double PhaseTimes::*phase, F&& f) const;
   /// A pair as the probe evaluates it: lower slot first, minima scaled for the pair.
   struct PairKinematics {
     track::TrackSlot p, q;
@@ -299,7 +354,7 @@ class Pipeline {
     PairParameters parameters;
   };
   PairKinematics pair_kinematics(const zone::ProbeState& self, const probe::Kinematics& k_self,
-                                 const zone::ProbeState& other) const;
+                                 const zone::ProbeState& other, double now) const;
   /// The rules of design §4.5 for a pair the conflict test found in conflict: true when
   /// the pair is to be treated as clear (counted in suppressed_).
   bool suppressed_by_rules(const PairKinematics& pair);
@@ -310,13 +365,12 @@ class Pipeline {
   /// the turn hypothesis is on and either aircraft turns, along the arcs.
   bool pair_in_conflict(const probe::Kinematics& kp, const probe::Kinematics& kq,
                         const probe::SeparationMinima& minima) const;
-  /// The region (RegionMap index) of a track in the engine, from its last record.
-  std::size_t region_of(track::TrackSlot slot) const;
   void deliver();
   double engine_time(double t) const { return t - epoch_; }
   double tolerance_bound_m(const zone::Zone& zone) const;
 
   PipelineConfig config_;
+  // The track stage's state.
   track::TrackTable tracks_;
   track::TimeGuard time_guard_;
   std::vector<TrackReport> guard_scratch_;
@@ -327,16 +381,23 @@ class Pipeline {
   double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::Projection> projection_;  // single mode
   std::optional<zone::ZoneTiling> tiling_;     // worldwide mode
-  std::vector<std::unique_ptr<zone::Zone>> zones_;  // by key; null where no zone exists
+  std::optional<geo::GeodeticPosition> coverage_centre_;  // of the reference or first record
+  std::vector<ZoneWork> work_;  // by zone key
   std::size_t zone_count_ = 0;
   kinetic::KineticStatistics retired_kinetic_;  // counters of zones no longer there
-  /// The zones a track in the engine is a member of, by slot, in key order.
-  std::vector<std::vector<Membership>> members_;
+  std::vector<std::vector<zone::ZoneKey>> members_;  // by slot: the zones holding the track
   zone::ZoneKeys zones_scratch_;
-  std::vector<Membership> membership_scratch_;
   std::size_t live_tracks_ = 0;
+  // The batch: what the track stage took, for the zones and the alert stage.
+  std::vector<Snapshot> snapshots_;
+  std::vector<AlertStep> steps_;
+  std::vector<zone::ZoneKey> step_zones_;
+  std::vector<zone::ZoneKey> touched_;  // zones with work in the batch, or created in it
+  std::unique_ptr<util::WorkerPool> pool_;
+  // The alert stage's state.
+  std::vector<Snapshot> view_;  // by slot: each track as of the step being judged
+  double judged_at_ = 0.0;      // the clock of that step
   alert::AlertManager alerts_;
-  std::vector<kinetic::PointId> candidates_;  // the points one search found, once each
   /// A pair the alert manager must see: the other track and the zone that judges it
   /// (kNoZone: none holds both, too far apart to conflict).
   struct Evaluated {
@@ -345,10 +406,7 @@ class Pipeline {
   };
   std::vector<Evaluated> evaluated_;  // in slot order once sorted
   std::vector<track::TrackSlot> partners_scratch_;
-  std::vector<char> partner_met_;
   std::vector<std::optional<geo::Projection>> brute_planes_;  // planes of zones not there
-  std::optional<geo::GeodeticPosition> coverage_centre_;   // of the reference or first record  // by partners_scratch_ index: a search met it
-  std::uint32_t candidate_round_ = 0;
   region::RegionMap regions_;
   std::vector<PairParameters> region_parameters_;  // by region index; the defaults last
   double largest_horizontal_m_ = 0.0;              // S_h and T of the search radius

@@ -104,9 +104,9 @@ struct Track {
   /// Which plane `kinematics` and `plane_scale` are in: the key of the zone whose
   /// projection admit() was given (design §4.9; 0 in single mode).
   std::uint32_t plane = 0;
-  /// The track's vertex in the kinetic engine of zone `plane`; kNoPoint: the track is
-  /// in no engine (no velocity yet). Its points in other zones are the Pipeline's.
-  kinetic::PointId point = kinetic::kNoPoint;
+  /// The track is in the kinetic engines of the zones that hold it (it has a velocity);
+  /// the Pipeline sets it.
+  bool in_engine = false;
 
   /// Plane kinematics extrapolated to time `at` (UTC s), probe::extrapolated.
   probe::Kinematics at(double at_t) const { return probe::extrapolated(kinematics, at_t - t); }

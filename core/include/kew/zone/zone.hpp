@@ -2,12 +2,14 @@
 // One zone's engine (design §4.9): its plane, the kinetic Delaunay triangulation of its
 // members (the tracks within its margin), the candidate search over it, and what the
 // probe reads of each member in this plane. The track table stays one, in the Pipeline;
-// a zone knows its members only by slot and point. Single-threaded: one caller at a time.
+// a zone knows its members by slot, and maps each to its engine point itself. One caller
+// at a time; different zones may be worked on by different threads (design §3.3).
 
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "kew/geo/projection.hpp"
@@ -31,6 +33,7 @@ struct alignas(64) ProbeState {
   double t = 0.0;                ///< data time of the track's last record (UTC s)
   double scale = 1.0;            ///< this plane's point scale at the position
   double level_off_until_t = 0.0;  ///< the selected altitude's age limit (UTC s)
+  double lat_deg = 0.0, lon_deg = 0.0;  ///< the last reported position (owner of a pair)
   std::size_t region = region::RegionMap::kNone;
   TrackSlot slot = kNoSlot;       ///< the track it belongs to
   std::uint32_t partner_round = 0;  ///< == the probe's round: a pair partner of this probe
@@ -58,12 +61,17 @@ class Zone {
   const std::string& name() const { return name_; }
   const geo::Projection& projection() const { return projection_; }
 
-  /// Inserts slot's track at `now_k` (this plane, at engine time t) when `point` is
-  /// kNoPoint, else moves its point (velocity-only or reinsertion, as the engine
-  /// decides); returns the point. The caller then fills state(point).
-  kinetic::PointId place(TrackSlot slot, kinetic::PointId point, double engine_t, const probe::Kinematics& now_k);
-  /// Removes a member's point at engine time t.
-  void remove(kinetic::PointId point, double engine_t);
+  /// Inserts slot's track at `now_k` (this plane, at engine time t) when it is not a
+  /// member, else moves its point (velocity-only or reinsertion, as the engine decides);
+  /// returns the point. The caller then fills state(point).
+  kinetic::PointId place(TrackSlot slot, double engine_t, const probe::Kinematics& now_k);
+  /// Removes a member at engine time t (nothing when it is not one).
+  void remove(TrackSlot slot, double engine_t);
+  /// The member's point, kNoPoint when the track is not a member.
+  kinetic::PointId point_of(TrackSlot slot) const {
+    const auto it = point_of_slot_.find(slot);
+    return it == point_of_slot_.end() ? kinetic::kNoPoint : it->second;
+  }
   /// Executes kinetic events up to engine time t.
   void advance(double engine_t) { engine_->advance(engine_t); }
 
@@ -81,11 +89,10 @@ class Zone {
   const kinetic::KineticDelaunay& engine() const { return *engine_; }
   probe::ProximitySearch& search() { return search_; }
 
-  /// Rebuilds the engine at engine time t with the members inserted along a Hilbert
-  /// curve, each at `latest(slot)` (its last report extrapolated to t), and moves their
-  /// probe states with them; `moved(slot, new_point)` tells the owner of each new point.
-  template <class Latest, class Moved>
-  void renumber(double engine_t, Latest&& latest, Moved&& moved);
+  /// Rebuilds the engine at engine time t (data time `at`) with the members inserted
+  /// along a Hilbert curve, each at its last report extrapolated to `at`, and moves
+  /// their probe states with them (design §8.3.1).
+  void renumber(double engine_t, double at);
 
   ZoneStatistics& statistics() { return statistics_; }
   const ZoneStatistics& statistics() const { return statistics_; }
@@ -96,9 +103,6 @@ class Zone {
   double next_renumber = 0.0;
 
  private:
-  void renumber_points(double engine_t, const std::vector<TrackSlot>& slots, const std::vector<probe::Kinematics>& now,
-                       std::vector<kinetic::PointId>& new_points);
-
   ZoneKey key_;
   std::string name_;
   geo::Projection projection_;
@@ -109,21 +113,8 @@ class Zone {
   util::IndexedHeap<std::greater<double>> speeds_;  // plane speed of every member, by point
   std::vector<ProbeState> states_;                  // by point
   std::vector<TrackSlot> slot_of_point_;            // kNoSlot: a free point
+  std::unordered_map<TrackSlot, kinetic::PointId> point_of_slot_;
   ZoneStatistics statistics_;
 };
-
-template <class Latest, class Moved>
-void Zone::renumber(double engine_t, Latest&& latest, Moved&& moved) {
-  std::vector<TrackSlot> slots;
-  std::vector<probe::Kinematics> now;
-  for (const TrackSlot slot : slot_of_point_) {
-    if (slot == kNoSlot) continue;
-    slots.push_back(slot);
-    now.push_back(latest(slot));
-  }
-  std::vector<kinetic::PointId> new_points;
-  renumber_points(engine_t, slots, now, new_points);
-  for (std::size_t i = 0; i < slots.size(); ++i) moved(slots[i], new_points[i]);
-}
 
 }  // namespace kew::zone
