@@ -492,6 +492,11 @@ void Pipeline::apply(track::TrackSlot slot) {
 
 void Pipeline::flush() {
   if (touched_.empty() && steps_.empty()) return;
+  // The zones with the most work first, so that the last ones to finish are small.
+  if (pool_)
+    std::stable_sort(touched_.begin(), touched_.end(), [&](zone::ZoneKey a, zone::ZoneKey b) {
+      return work_[a].ops.size() > work_[b].ops.size();
+    });
   const auto run_one = [&](std::size_t i) { run_zone(work_[touched_[i]]); };
   if (pool_) pool_->run(touched_.size(), run_one);
   else
