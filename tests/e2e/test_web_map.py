@@ -158,6 +158,14 @@ class WebMap(unittest.TestCase):
         self.assertGreater(len(api_tracks), 100)
         self.assertEqual(self.js("return document.getElementById('aircraft-count').dataset.count"), str(len(api_tracks)))
 
+        # The zones of /api/zones are drawn, one outline each, with their track counts.
+        def zones_match():
+            api = {z["name"]: z["tracks"] for z in self.get("/api/zones")["list"]}
+            drawn = dict(zip(self.page("path[data-zone]", "data-zone"), map(int, self.page("path[data-zone]", "data-tracks"))))
+            return api if api and drawn == api else None
+        zones = wait_until(zones_match, 25, "the page to outline every zone of /api/zones")
+        self.assertEqual(sum(zones.values()) >= len(api_tracks), True, "every track is in at least one zone")
+
         # Every active alert is a pair line of its severity and a row of the list, most
         # severe first.
         def alerts_match():

@@ -29,6 +29,8 @@ window.Kew = window.Kew || {};
     });
   }
 
+  Kew.getJson = getJson;
+
   Kew.Connection = class {
     // handlers: onSnapshot(objects), onBatch(objects), onPoll({tracks, alerts, status}),
     // onStatus(status), onReconcile(tracksReply), onState(state, detail)

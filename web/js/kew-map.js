@@ -37,6 +37,11 @@ window.Kew = window.Kew || {};
   Kew.addBaseMap(map);
   const aircraft = new Kew.AircraftLayer(map);
   const alertLines = new Kew.AlertLines(map);
+  const zones = new Kew.ZoneLayer(map);
+  L.control.layers(null, { zones: zones.group }, { position: "bottomleft" }).addTo(map);
+  const ZONES_INTERVAL_MS = 10000;
+  const refreshZones = () =>
+    Kew.getJson("api/zones").then((z) => zones.update(z)).catch(() => {});
   map.on("dragstart zoomstart", (e) => {
     if (e.hard !== true && fitted) userMoved = true;
   });
@@ -331,6 +336,8 @@ window.Kew = window.Kew || {};
     document.body.classList.toggle("replay", !!replay);
   }
   setInterval(renderHealth, 1000);
+  refreshZones();
+  setInterval(refreshZones, ZONES_INTERVAL_MS);
 
   Kew.state = state; // for the browser's console and tests
   Kew.map = map;

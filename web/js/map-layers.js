@@ -214,6 +214,46 @@ window.Kew = window.Kew || {};
     }
   };
 
+  // The zones of design §4.9 (GET /api/zones): each core as a faint outline with its
+  // name, tracks and the time its work took, in a layer the user may hide. A single
+  // plane has no cores to draw.
+  Kew.ZoneLayer = class {
+    constructor(map) {
+      map.createPane("zones");
+      map.getPane("zones").style.zIndex = 200;
+      this.group = L.layerGroup().addTo(map);
+      this.rects = new Map(); // zone name -> rectangle
+      this.renderer = L.svg({ pane: "zones" });
+    }
+
+    update(reply) {
+      const seen = new Set();
+      for (const z of reply.list || []) {
+        if (z.south === undefined) continue;
+        seen.add(z.name);
+        let rect = this.rects.get(z.name);
+        if (!rect) {
+          rect = L.rectangle([[z.south, z.west], [z.north, z.east]], {
+            renderer: this.renderer, pane: "zones", color: "#6f8fa8", weight: 1, opacity: 0.5,
+            fill: false, dashArray: "2 4", interactive: true,
+          });
+          rect.bindTooltip("", { sticky: true, className: "zone-label" });
+          rect.addTo(this.group);
+          rect.getElement().setAttribute("data-zone", z.name);
+          this.rects.set(z.name, rect);
+        }
+        rect.setTooltipContent(z.name + ": " + z.tracks + " tracks, " + z.busy_s.toFixed(1) + " s of work");
+        rect.getElement().setAttribute("data-tracks", String(z.tracks));
+      }
+      for (const [name, rect] of this.rects) {
+        if (seen.has(name)) continue;
+        this.group.removeLayer(rect);
+        this.rects.delete(name);
+      }
+      document.getElementById("map").dataset.zones = String(this.rects.size);
+    }
+  };
+
   // The pair's positions: the tracks' latest when known, else those the alert carries.
   function alertEnds(a, tracks) {
     return [a.a, a.b].map((p) => {

@@ -106,6 +106,15 @@ geo::GeodeticPosition ZoneTiling::centre(ZoneKey key) const {
   return {band_south_deg(band) + 0.5 * kBandHeight_deg, -180.0 + width * (key % kCellsMax + 0.5)};
 }
 
+ZoneTiling::Core ZoneTiling::core(ZoneKey key) const {
+  const std::uint32_t band = key / kCellsMax;
+  if (band == 0) return {-90.0, -kCapLatitude_deg, -180.0, 180.0};
+  if (band == kBands - 1) return {kCapLatitude_deg, 90.0, -180.0, 180.0};
+  const double width = 360.0 / cells_[band];
+  const double west = -180.0 + width * (key % kCellsMax);
+  return {band_south_deg(band), band_south_deg(band) + kBandHeight_deg, west, west + width};
+}
+
 double ZoneTiling::extent_m(ZoneKey key) const {
   const std::uint32_t band = key / kCellsMax;
   const geo::GeodeticPosition c = centre(key);

@@ -15,6 +15,7 @@ struct HttpSource {
   std::function<std::string()> tracks;    ///< GET /api/tracks: the TRACKS object
   std::function<std::string()> alerts;    ///< GET /api/alerts: the ALERTS object
   std::function<std::string()> status;    ///< GET /api/status: ALIVE with data_t, wall_t
+  std::function<std::string()> zones;     ///< GET /api/zones: ZONES (design §4.9)
   std::function<std::string()> metrics;   ///< GET /metrics: the Prometheus exposition
   /// The first WebSocket message: a JSON array of every live track, every active alert
   /// and ALIVE.

@@ -127,6 +127,16 @@ void write_pipeline(Exposition& e, const Pipeline& pipeline) {
   e.sample("kew_alert_events_total", {{"state", "update"}}, num(c.updated));
   e.sample("kew_alert_events_total", {{"state", "end"}}, num(c.ended));
 
+  e.single("kew_zones", "gauge", "Zones that exist now (design §4.9: where traffic is).", num(pipeline.zone_count()));
+  e.family("kew_zone_tracks", "gauge", "Tracks in each zone's core and margin.");
+  pipeline.for_each_zone([&](const zone::Zone& z) { e.sample("kew_zone_tracks", {{"zone", z.name()}}, num(z.members())); });
+  e.family("kew_zone_updates_total", "counter", "Track updates each zone's engine applied since the zone came to exist.");
+  pipeline.for_each_zone(
+      [&](const zone::Zone& z) { e.sample("kew_zone_updates_total", {{"zone", z.name()}}, num(z.statistics().updates)); });
+  e.family("kew_zone_busy_seconds_total", "counter", "Wall seconds each zone's work took since the zone came to exist.");
+  pipeline.for_each_zone(
+      [&](const zone::Zone& z) { e.sample("kew_zone_busy_seconds_total", {{"zone", z.name()}}, z.statistics().busy_s); });
+
   const kinetic::KineticStatistics& k = pipeline.kinetic_statistics();
   for (const KineticCounter& counter : kKineticCounters) e.single(counter.name, "counter", counter.help, num(k.*counter.member));
   e.single("kew_kinetic_event_queue", "gauge", "Certificate failures and approaches scheduled now.", num(k.queue_now));

@@ -62,6 +62,7 @@ Reply Router::handle(const Request& request, std::string_view client, std::uint1
   if (path == "/api/tracks") return {200, "application/json", source_.tracks()};
   if (path == "/api/alerts") return {200, "application/json", source_.alerts()};
   if (path == "/api/status") return {200, "application/json", source_.status()};
+  if (path == "/api/zones") return {200, "application/json", source_.zones()};
   if (path == "/metrics") return {200, "text/plain; version=0.0.4; charset=utf-8", source_.metrics()};
   if (path == "/ws") return refuse(426, "not_websocket", "/ws is a WebSocket: send an upgrade request");
   constexpr std::string_view kLeaflet = "/leaflet";

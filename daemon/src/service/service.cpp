@@ -679,6 +679,11 @@ http::HttpSource Service::http_source() {
                                  data_clock_now(), wall);
     return out;
   };
+  source.zones = [this] {
+    std::string out;
+    protocol::append_zones_json(out, pipeline_);
+    return out;
+  };
   source.metrics = [this] { return metrics_text(); };
   source.snapshot = [this] {
     const double now = pipeline_.now();

@@ -64,6 +64,36 @@ class Members {
   bool first_element_ = true;
 };
 
+// The zones of design §4.9: how many, and each one's core, members and work.
+void zones_members(Members& m, const Pipeline& pipeline) {
+  const PipelineStatistics& p = pipeline.statistics();
+  m.string("mode", kZoneModeNames.name(pipeline.config().zone_mode));
+  m.integer("count", pipeline.zone_count());
+  m.integer("created", p.zones_created);
+  m.integer("retired", p.zones_retired);
+  m.fixed("margin_km", pipeline.zone_margin_m() / 1000.0, 1);
+  m.integer("threads", pipeline.config().threads);
+  m.array("list");
+  pipeline.for_each_zone([&](const zone::Zone& zone) {
+    Members z = m.element();
+    z.string("name", zone.name());
+    if (const auto& tiling = pipeline.tiling()) {
+      const zone::ZoneTiling::Core core = tiling->core(zone.key());
+      z.fixed("south", core.south_deg, 4);
+      z.fixed("north", core.north_deg, 4);
+      z.fixed("west", core.west_deg, 4);
+      z.fixed("east", core.east_deg, 4);
+    }
+    z.integer("tracks", zone.members());
+    z.integer("updates", zone.statistics().updates);
+    z.integer("probes", zone.statistics().probes);
+    z.fixed("busy_s", zone.statistics().busy_s, 3);
+    z.fixed("max_scale", zone.projection().max_scale(), 4);
+    z.close();
+  });
+  m.close_array();
+}
+
 // `decoding`: the decoders' rejections, added to the pipeline's in `rejected`.
 void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& decoding) {
   Rejections rejected;
@@ -111,9 +141,20 @@ void pipeline_members(Members& m, const Pipeline& pipeline, const Rejections& de
   m.integer("alerts_ended", a.ended);
   m.integer("unacknowledged", alerts.unacknowledged_count());
   m.fixed("data_time_last", p.last_data_time, 3);
+  Members zones = m.object("zones");
+  zones_members(zones, pipeline);
+  zones.close();
 }
 
 }  // namespace
+
+void append_zones_json(std::string& out, const Pipeline& pipeline) {
+  Members m(out);
+  m.string("class", "ZONES");
+  zones_members(m, pipeline);
+  m.close();
+  out += '\n';
+}
 
 std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& service) {
   Rejections decoding;

@@ -62,6 +62,13 @@ class ZoneTiling {
   /// √2 widened margins (the box around the margin's cap reaches that far).
   double extent_m(ZoneKey key) const;
 
+  /// A core's bounds (degrees): [south, north) × [west, east); a cap spans every
+  /// longitude.
+  struct Core {
+    double south_deg, north_deg, west_deg, east_deg;
+  };
+  Core core(ZoneKey key) const;
+
   /// A readable name, e.g. "N40.5E004.5", "S04.5W177.5", "N90" for a cap (the map, the
   /// metrics' zone label, statistics).
   std::string name(ZoneKey key) const;

@@ -87,6 +87,14 @@ struct ReplayStatistics {
 /// far: the pipeline's merged with the decoders' of every input (service.inputs).
 std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& service);
 
+/// {"class":"ZONES","mode":"worldwide","count":…,"created":…,"retired":…,"margin_km":…,
+/// "threads":…,"list":[{"name":"N49.5E013.3","south":…,"north":…,"west":…,"east":…,
+/// "tracks":…,"updates":…,"probes":…,"busy_s":…,"max_scale":…},…]} and a newline: the
+/// zones of design §4.9 (bounds in degrees, only in worldwide mode; busy_s the wall
+/// seconds the zone's work took). The same members are ?STATS' and --stats-json's
+/// "zones". GET /api/zones.
+void append_zones_json(std::string& out, const Pipeline& pipeline);
+
 /// kew-replay's statistics object, one line ending in '\n'. Its `rejected` is the
 /// pipeline's rejections merged with `decoding`, the decoders' of every recording.
 std::string run_statistics_json(const Pipeline& pipeline, const Rejections& decoding,
