@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include <unistd.h>
 
@@ -47,7 +48,10 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
   EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
   EXPECT_FALSE(p.reference.has_value());
+  EXPECT_EQ(p.zone_mode, d.zone_mode);
   EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
+  EXPECT_EQ(p.threads, d.threads);  // [pipeline] threads = 0: one per core, as the default
+  EXPECT_EQ(p.batch_records, d.batch_records);
   EXPECT_EQ(p.tracks.track_timeout_s, d.tracks.track_timeout_s);
   EXPECT_EQ(p.tracks.max_ground_speed_kt, d.tracks.max_ground_speed_kt);
   EXPECT_EQ(p.tracks.max_vertical_rate_fpm, d.tracks.max_vertical_rate_fpm);
@@ -128,6 +132,34 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.inputs[0].transport, Transport::Udp);
   EXPECT_EQ(file.inputs[1].transport, Transport::TcpServer);
   EXPECT_EQ(file.inputs[1].address, "127.0.0.1:4748");
+}
+
+TEST(Config, ZonesThreadsAndCoverage) {
+  // Worldwide by default, every core, and no coverage limit.
+  const Config defaults = parse_config("");
+  EXPECT_EQ(defaults.pipeline.zone_mode, ZoneMode::Worldwide);
+  EXPECT_FALSE(defaults.pipeline.coverage_radius_m.has_value());
+  EXPECT_EQ(defaults.pipeline.threads, std::max(1u, std::thread::hardware_concurrency()));
+  EXPECT_EQ(defaults.pipeline.batch_records, config::kDefaultBatchRecords);
+  const Config c = parse_config(R"(
+[pipeline]
+threads = 3
+batch_records = 1
+[projection]
+zones = "single"
+coverage_radius_km = 2500
+)");
+  EXPECT_EQ(c.pipeline.threads, 3u);
+  EXPECT_EQ(c.pipeline.batch_records, 1u);
+  EXPECT_EQ(c.pipeline.zone_mode, ZoneMode::Single);
+  EXPECT_EQ(c.pipeline.coverage_radius_m, 2.5e6);
+  // Worldwide, a limit may reach the antipode; one plane reaches 3,000 km at most.
+  EXPECT_EQ(parse_config("[projection]\ncoverage_radius_km = 12000\n").pipeline.coverage_radius_m, 1.2e7);
+  EXPECT_THROW(parse_config("[projection]\nzones = \"single\"\ncoverage_radius_km = 3500\n"), ConfigError);
+  EXPECT_THROW(parse_config("[projection]\ncoverage_radius_km = 30000\n"), ConfigError);
+  EXPECT_THROW(parse_config("[projection]\nzones = \"tiles\"\n"), ConfigError);
+  EXPECT_THROW(parse_config("[pipeline]\nthreads = 300\n"), ConfigError);
+  EXPECT_THROW(parse_config("[pipeline]\nbatch_records = 0\n"), ConfigError);
 }
 
 TEST(Config, ReadsEverySection) {
