@@ -163,7 +163,7 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
     const std::size_t first = next;
     while (next < records.size() && records[next].t - paced_from <= now) pipeline.process(records[next++]);
     if (next == first) {
-      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
       continue;
     }
     pipeline.flush();

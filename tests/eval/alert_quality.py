@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The README's "Alert quality" tables: kew-eval on every shared recording kew reads.
 
-    python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR]
+    python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR] [--zones]
 
 Prints four markdown tables: each recording with every filter off (filters-off.toml, kew
 before issue 17) and with the default configuration; then, summed over the recordings,
@@ -9,6 +9,9 @@ what switching off each rule alone gives back; the turn hypothesis (off by defau
 switched on, recording by recording; and UPC with the Barcelona terminal-area example
 (deploy/examples/barcelona-tma.toml) beside the defaults. UPC is read with its [[radar]]
 table, switzerland with --sort, as tests/golden/run_golden.py replays them.
+
+--zones prints one table instead: each recording with one plane ([projection] zones =
+"single", kew's only projection before zones) beside the default worldwide zones.
 """
 
 import argparse
@@ -88,11 +91,37 @@ def outcome(run):
             f"{warning(run)}")
 
 
+def present_cases(options):
+    """CASES whose recording is there, with its path; the others are said on stderr."""
+    for label, relative, radar, extra in CASES:
+        path = os.path.join(options.recordings, relative)
+        if os.path.exists(path):
+            yield label, path, radar, extra
+        else:
+            print(f"*** {path} is absent: not evaluated ***", file=sys.stderr)
+
+
+def compare_zones(options):
+    header = ("alerts (hit / close / nuisance / inelig.) | undesirable | detected / missed / unwarnable | "
+              "warning p10 / p50 (s)")
+    print(f"| recording | one plane: {header} | zones: {header} |")
+    print("|---|---|---:|---|---|---|---:|---|---|")
+    with tempfile.TemporaryDirectory(prefix="kew-quality-") as workdir:
+        for label, path, radar, extra in present_cases(options):
+            single, zones = evaluate(options.kew_eval, path, radar, extra,
+                                     ['[projection]\nzones = "single"\n', ""], workdir)["runs"]
+            print(f"| {label} | {outcome(single)} | {outcome(zones)} |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--kew-eval", default=os.path.join(ROOT, "build", "replay", "kew-eval"))
     parser.add_argument("--recordings", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings"))
+    parser.add_argument("--zones", action="store_true", help="one plane beside the worldwide zones")
     options = parser.parse_args()
+    if options.zones:
+        compare_zones(options)
+        return
     with open(os.path.join(HERE, "filters-off.toml")) as f:
         before = f.read()
     totals = {name: [0, 0, 0] for name, _ in RULES_OFF}  # alerts, undesirable, missed
@@ -102,11 +131,7 @@ def main():
           "alerts now | undesirable now | per 100 flight h now | detected / missed / unwarnable now | warning p10 / p50 (s) |")
     print("|---|---:|---:|---|---:|---|---:|---:|---|---|")
     with tempfile.TemporaryDirectory(prefix="kew-quality-") as workdir:
-        for label, relative, radar, extra in CASES:
-            path = os.path.join(options.recordings, relative)
-            if not os.path.exists(path):
-                print(f"*** {path} is absent: not evaluated ***", file=sys.stderr)
-                continue
+        for label, path, radar, extra in present_cases(options):
             result = evaluate(options.kew_eval, path, radar, extra,
                               [before, ""] + [text for _, text in RULES_OFF] + [TURN_ON], workdir,
                               [TERMINAL_AREA] if radar else [])

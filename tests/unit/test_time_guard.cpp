@@ -41,6 +41,14 @@ struct Feed {
   explicit Feed(const PipelineConfig& config = {}) : pipeline(config) {
     pipeline.set_alert_sink([this](const AlertEvent& e) { opened += e.state == AlertState::New; });
   }
+  // A first record at −45°, 170°, then the head-on pair over Europe for 80 s.
+  void fly_after_a_stray_first_position() {
+    TrackReport stray = head_on("C", kT0, 0.0);
+    stray.lat_deg = -45.0;
+    stray.lon_deg = 170.0;
+    pipeline.process(stray);
+    fly(0.0, 80.0, 0.0);
+  }
   // Both aircraft every 4 s over [from, to), the pair first 20 NM apart at `start`.
   void fly(double from, double to, double start) {
     for (double dt = from; dt < to; dt += 4.0) {
@@ -118,11 +126,7 @@ TEST(RunStart, AStrayFirstPositionDoesNotFixTheProjection) {
   for (const PipelineConfig& config : limited_coverage()) {
     SCOPED_TRACE(kZoneModeNames.name(config.zone_mode));
     Feed run(config);
-    TrackReport stray = head_on("C", kT0, 0.0);
-    stray.lat_deg = -45.0;
-    stray.lon_deg = 170.0;
-    run.pipeline.process(stray);
-    run.fly(0.0, 80.0, 0.0);
+    run.fly_after_a_stray_first_position();
     EXPECT_EQ(run.opened, 1u);
     EXPECT_EQ(run.pipeline.statistics().runs_restarted, 1u);
     EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 5u);  // before the restart
@@ -136,11 +140,7 @@ TEST(RunStart, AStrayFirstPositionDoesNotFixTheProjection) {
 TEST(RunStart, WorldwideZonesRefuseNoPositionWithoutALimit) {
   // The same stray first record: with zones and no limit it is a track like any other.
   Feed run;
-  TrackReport stray = head_on("C", kT0, 0.0);
-  stray.lat_deg = -45.0;
-  stray.lon_deg = 170.0;
-  run.pipeline.process(stray);
-  run.fly(0.0, 80.0, 0.0);
+  run.fly_after_a_stray_first_position();
   EXPECT_EQ(run.opened, 1u);
   EXPECT_EQ(run.pipeline.statistics().runs_restarted, 0u);
   EXPECT_EQ(run.pipeline.rejections().count("outside_coverage"), 0u);

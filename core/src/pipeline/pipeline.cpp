@@ -24,6 +24,8 @@ constexpr double kMarginSlack_m = 1000.0;
 // zone's plane to hold both.
 constexpr double kBruteReach_m = 2.5e6;
 constexpr double kEarthRadius_m = 6371008.8;  // mean radius, for the brute force's cut only
+// A batch with fewer zone operations than this runs on the calling thread alone.
+constexpr std::size_t kParallelOps = 48;
 
 geo::GeodeticPosition rounded_reference(const TrackReport& r) {
   return {std::round(r.lat_deg * 10.0) / 10.0, std::round(r.lon_deg * 10.0) / 10.0};
@@ -492,15 +494,20 @@ void Pipeline::apply(track::TrackSlot slot) {
 
 void Pipeline::flush() {
   if (touched_.empty() && steps_.empty()) return;
-  // The zones with the most work first, so that the last ones to finish are small.
-  if (pool_)
+  const auto run_one = [&](std::size_t i) { run_zone(work_[touched_[i]]); };
+  std::size_t ops = 0;
+  for (const zone::ZoneKey key : touched_) ops += work_[key].ops.size();
+  // Waking the workers costs more than a few operations take (a live feed's batch after
+  // one read holds a handful of records): those run here.
+  if (pool_ && ops >= kParallelOps) {
+    // The zones with the most work first, so that the last ones to finish are small.
     std::stable_sort(touched_.begin(), touched_.end(), [&](zone::ZoneKey a, zone::ZoneKey b) {
       return work_[a].ops.size() > work_[b].ops.size();
     });
-  const auto run_one = [&](std::size_t i) { run_zone(work_[touched_[i]]); };
-  if (pool_) pool_->run(touched_.size(), run_one);
-  else
+    pool_->run(touched_.size(), run_one);
+  } else {
     for (std::size_t i = 0; i < touched_.size(); ++i) run_one(i);
+  }
   for (const zone::ZoneKey key : touched_) {
     PhaseTimes& p = work_[key].phases;
     phases_.maintenance_s += p.maintenance_s;
