@@ -116,6 +116,8 @@ struct Result {
   // Paced run.
   std::uint64_t live_records = 0;
   double p50_us = NAN, p99_us = NAN, max_us = NAN;
+  std::uint64_t flushes = 0;  // batches judged in the paced run
+  double flush_p50_us = NAN, flush_p99_us = NAN;  // wall time of one flush()
   double records_per_s() const { return static_cast<double>(records) / wall_s; }
 };
 
@@ -156,7 +158,7 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
   while (next < records.size() && records[next].t < t0 + 10.0) pipeline.process(records[next++]);
   pipeline.flush();
   const double paced_from = next < records.size() ? records[next].t : t0;
-  std::vector<double> latency_s;
+  std::vector<double> latency_s, flush_s;
   const auto wall0 = Clock::now();
   while (next < records.size() && records[next].t < paced_from + seconds) {
     const double now = std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -166,11 +168,16 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
       std::this_thread::sleep_for(std::chrono::microseconds(20));
       continue;
     }
+    const auto flush_start = Clock::now();
     pipeline.flush();
+    flush_s.push_back(std::chrono::duration<double>(Clock::now() - flush_start).count());
     const double done = std::chrono::duration<double>(Clock::now() - wall0).count();
     for (std::size_t i = first; i < next; ++i) latency_s.push_back(done - (records[i].t - paced_from));
   }
   r.live_records = latency_s.size();
+  r.flushes = flush_s.size();
+  r.flush_p50_us = 1e6 * percentile(flush_s, 0.50);
+  r.flush_p99_us = 1e6 * percentile(flush_s, 0.99);
   r.p50_us = 1e6 * percentile(latency_s, 0.50);
   r.p99_us = 1e6 * percentile(latency_s, 0.99);
   r.max_us = latency_s.empty() ? NAN : 1e6 * *std::max_element(latency_s.begin(), latency_s.end());
@@ -226,6 +233,11 @@ int main(int argc, char** argv) {
                 r.records_per_s() / one.records_per_s(), r.p50_us, r.p99_us, r.max_us, r.heap_bytes_per_track,
                 static_cast<unsigned long long>(r.alerts_new));
   }
+  for (const Result& r : results)
+    std::printf("paced, %zu aircraft, %zu thread(s): %llu batches of %.1f records, flush p50 %.0f µs, p99 %.0f µs\n",
+                r.aircraft, r.threads, static_cast<unsigned long long>(r.flushes),
+                static_cast<double>(r.live_records) / static_cast<double>(std::max<std::uint64_t>(1, r.flushes)),
+                r.flush_p50_us, r.flush_p99_us);
   for (std::size_t i = 0; i < prm.fleets.size(); ++i)
     std::printf("NDJSON decoding alone, %zu aircraft: %.0f records/s\n", prm.fleets[i], decode_rates[i]);
   if (!prm.json_path.empty()) {
@@ -250,6 +262,9 @@ int main(int argc, char** argv) {
       j.key("live_p50_us").value(r.p50_us);
       j.key("live_p99_us").value(r.p99_us);
       j.key("live_max_us").value(r.max_us);
+      j.key("live_flushes").value(r.flushes);
+      j.key("live_flush_p50_us").value(r.flush_p50_us);
+      j.key("live_flush_p99_us").value(r.flush_p99_us);
       j.key("heap_bytes_per_track").value(r.heap_bytes_per_track);
       j.key("alerts_new").value(r.alerts_new);
       j.end_object();
