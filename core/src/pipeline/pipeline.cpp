@@ -20,9 +20,8 @@ constexpr double kSearchSlack_m = 1.0;
 constexpr double kScaleBound = 1.05;
 constexpr double kMarginSlack_m = 1000.0;
 // ProbeMode::Brute in worldwide mode evaluates every pair whose last reports are within
-// this distance (m): far beyond any pair that can conflict, near enough for the owner
-// zone's plane to hold both.
-constexpr double kBruteReach_m = 2.5e6;
+// twice the distance at which two aircraft can still come into conflict, plus this (m).
+constexpr double kBruteSlack_m = 50e3;
 constexpr double kEarthRadius_m = 6371008.8;  // mean radius, for the brute force's cut only
 // A batch with fewer zone operations than this runs on the calling thread alone.
 constexpr std::size_t kParallelOps = 48;
@@ -96,6 +95,8 @@ Pipeline::Pipeline(const PipelineConfig& config)
     const double margin = 0.5 * largest_horizontal_m_ * kScaleBound +
                           fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s) + kMarginSlack_m;
     tiling_.emplace(margin);
+    brute_reach_m_ = 2.0 * (largest_horizontal_m_ + 2.0 * fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s)) +
+                     kBruteSlack_m;
     work_.resize(zone::ZoneTiling::key_end());
   } else {
     work_.resize(1);
@@ -719,7 +720,9 @@ void Pipeline::brute_over_sphere(track::TrackSlot slot) {
   };
   double u[3];
   unit(view_[slot].track, u);
-  const double min_cos = std::cos(kBruteReach_m / kEarthRadius_m);
+  const double min_cos = std::cos(brute_reach_m_ / kEarthRadius_m);
+  zone::ZoneKey self_plane = zone::kNoZone;  // the owner `self` was made for
+  zone::ProbeState self;
   for (track::TrackSlot other = 0; other < view_.size(); ++other) {
     if (other == slot || !view_[other].track.in_engine) continue;
     double w[3];
@@ -727,7 +730,10 @@ void Pipeline::brute_over_sphere(track::TrackSlot slot) {
     if (u[0] * w[0] + u[1] * w[1] + u[2] * w[2] < min_cos) continue;
     ++stats_.candidates;
     const zone::ZoneKey owner = owner_of(view_[slot].track, view_[other].track);
-    const zone::ProbeState self = state_in(owner, slot);
+    if (owner != self_plane) {
+      self = state_in(owner, slot);
+      self_plane = owner;
+    }
     const PairKinematics pair = pair_kinematics(self, self.at(judged_at_), state_in(owner, other), judged_at_);
     if (pair_in_conflict(pair.kp, pair.kq, pair.minima)) evaluated_.push_back({other, owner});
   }

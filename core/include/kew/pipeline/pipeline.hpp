@@ -407,6 +407,7 @@ class Pipeline {
   std::vector<Evaluated> evaluated_;  // in slot order once sorted
   std::vector<track::TrackSlot> partners_scratch_;
   std::vector<std::optional<geo::Projection>> brute_planes_;  // planes of zones not there
+  double brute_reach_m_ = 0.0;  // worldwide ProbeMode::Brute: pairs within this (m)
   region::RegionMap regions_;
   std::vector<PairParameters> region_parameters_;  // by region index; the defaults last
   double largest_horizontal_m_ = 0.0;              // S_h and T of the search radius
