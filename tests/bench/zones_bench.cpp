@@ -6,7 +6,9 @@
 //  - live latency: the records paced at their own data times (real time, 1×), each poll
 //    taking what has arrived and flushing it, as kewd does after each read: the wall time
 //    from a record's due time to the end of the batch that judged it, p50/p99/max. A
-//    pipeline that cannot keep up shows as a latency that grows without bound;
+//    pipeline that cannot keep up shows as a latency that grows without bound; each
+//    batch's wall time, and the CPU time all threads spent in it, tell the work from the
+//    waits for a CPU;
 //  - memory per live track: heap in use (mallinfo2) with the fleet loaded, minus before,
 //    over the live tracks;
 //  - decoding alone: the same records as NDJSON, records/s of the decoder (the serial
@@ -118,6 +120,7 @@ struct Result {
   double p50_us = NAN, p99_us = NAN, max_us = NAN;
   std::uint64_t flushes = 0;  // batches judged in the paced run
   double flush_p50_us = NAN, flush_p99_us = NAN;  // wall time of one flush()
+  double flush_cpu_p99_us = NAN;  // CPU time of the process during one flush(), every thread
   double records_per_s() const { return static_cast<double>(records) / wall_s; }
 };
 
@@ -158,7 +161,7 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
   while (next < records.size() && records[next].t < t0 + 10.0) pipeline.process(records[next++]);
   pipeline.flush();
   const double paced_from = next < records.size() ? records[next].t : t0;
-  std::vector<double> latency_s, flush_s;
+  std::vector<double> latency_s, flush_s, flush_cpu_s;
   const auto wall0 = Clock::now();
   while (next < records.size() && records[next].t < paced_from + seconds) {
     const double now = std::chrono::duration<double>(Clock::now() - wall0).count();
@@ -169,7 +172,9 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
       continue;
     }
     const auto flush_start = Clock::now();
+    const double cpu_start = process_cpu_s();
     pipeline.flush();
+    flush_cpu_s.push_back(process_cpu_s() - cpu_start);
     flush_s.push_back(std::chrono::duration<double>(Clock::now() - flush_start).count());
     const double done = std::chrono::duration<double>(Clock::now() - wall0).count();
     for (std::size_t i = first; i < next; ++i) latency_s.push_back(done - (records[i].t - paced_from));
@@ -178,6 +183,7 @@ void live(const std::vector<kew::TrackReport>& records, double seconds, Result& 
   r.flushes = flush_s.size();
   r.flush_p50_us = 1e6 * percentile(flush_s, 0.50);
   r.flush_p99_us = 1e6 * percentile(flush_s, 0.99);
+  r.flush_cpu_p99_us = 1e6 * percentile(flush_cpu_s, 0.99);
   r.p50_us = 1e6 * percentile(latency_s, 0.50);
   r.p99_us = 1e6 * percentile(latency_s, 0.99);
   r.max_us = latency_s.empty() ? NAN : 1e6 * *std::max_element(latency_s.begin(), latency_s.end());
@@ -234,10 +240,11 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(r.alerts_new));
   }
   for (const Result& r : results)
-    std::printf("paced, %zu aircraft, %zu thread(s): %llu batches of %.1f records, flush p50 %.0f µs, p99 %.0f µs\n",
+    std::printf("paced, %zu aircraft, %zu thread(s): %llu batches of %.1f records, flush p50 %.0f µs, p99 %.0f µs "
+                "(CPU of every thread p99 %.0f µs)\n",
                 r.aircraft, r.threads, static_cast<unsigned long long>(r.flushes),
                 static_cast<double>(r.live_records) / static_cast<double>(std::max<std::uint64_t>(1, r.flushes)),
-                r.flush_p50_us, r.flush_p99_us);
+                r.flush_p50_us, r.flush_p99_us, r.flush_cpu_p99_us);
   for (std::size_t i = 0; i < prm.fleets.size(); ++i)
     std::printf("NDJSON decoding alone, %zu aircraft: %.0f records/s\n", prm.fleets[i], decode_rates[i]);
   if (!prm.json_path.empty()) {
@@ -265,6 +272,7 @@ int main(int argc, char** argv) {
       j.key("live_flushes").value(r.flushes);
       j.key("live_flush_p50_us").value(r.flush_p50_us);
       j.key("live_flush_p99_us").value(r.flush_p99_us);
+      j.key("live_flush_cpu_p99_us").value(r.flush_cpu_p99_us);
       j.key("heap_bytes_per_track").value(r.heap_bytes_per_track);
       j.key("alerts_new").value(r.alerts_new);
       j.end_object();
