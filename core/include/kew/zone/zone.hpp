@@ -36,13 +36,13 @@ struct alignas(64) ProbeState {
   double lat_deg = 0.0, lon_deg = 0.0;  ///< the last reported position (owner of a pair)
   std::size_t region = region::RegionMap::kNone;
   TrackSlot slot = kNoSlot;       ///< the track it belongs to
-  std::uint32_t partner_round = 0;  ///< == the probe's round: a pair partner of this probe
   probe::Kinematics at(double at_t) const {
     probe::Kinematics k = kinematics;
     if (at_t > level_off_until_t) k.level_off_m = std::numeric_limits<double>::quiet_NaN();
     return probe::extrapolated(k, at_t - t);
   }
 };
+static_assert(sizeof(ProbeState) == 128, "two cache lines");
 
 /// Work done in one zone, for statistics and /metrics.
 struct ZoneStatistics {
@@ -98,9 +98,6 @@ class Zone {
   const ZoneStatistics& statistics() const { return statistics_; }
   /// Kinetic counters summed over every engine this zone had (renumbering rebuilds it).
   const kinetic::KineticStatistics& kinetic_statistics() const { return engine_->statistics(); }
-
-  /// Data time of the next renumbering (PipelineConfig::renumber_every_s).
-  double next_renumber = 0.0;
 
  private:
   ZoneKey key_;
