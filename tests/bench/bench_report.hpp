@@ -5,6 +5,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -54,6 +55,15 @@ class Stopwatch {
   }
   double start_;
 };
+
+/// The q-quantile (q in [0, 1]) of `values` by nth_element, which reorders them; NaN
+/// when empty.
+inline double percentile(std::vector<double>& values, double q) {
+  if (values.empty()) return std::nan("");
+  const auto k = static_cast<std::size_t>(std::min(1.0, q) * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
 
 /// Writes one JSON document into a string: begin()/end() objects and arrays, key()
 /// before each member of an object. Commas and indentation are the writer's; a

@@ -147,12 +147,7 @@ std::string read_file(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-double percentile(std::vector<double>& values, double q) {
-  if (values.empty()) return std::nan("");
-  const auto k = static_cast<std::size_t>(std::min(1.0, q) * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
+using kew::bench::percentile;
 
 struct Latency {
   double p50_us = 0, p99_us = 0, max_us = 0;

@@ -124,12 +124,7 @@ struct Result {
   double records_per_s() const { return static_cast<double>(records) / wall_s; }
 };
 
-double percentile(std::vector<double>& v, double q) {
-  if (v.empty()) return NAN;
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
+using kew::bench::percentile;
 
 void throughput(const std::vector<kew::TrackReport>& records, Result& r) {
   const std::size_t heap_before = mallinfo2().uordblks;

@@ -548,17 +548,12 @@ void Pipeline::run_zone(ZoneWork& w) {
     switch (op.kind) {
       case ZoneOp::Kind::Place: {
         const Snapshot& s = snapshots_[op.snapshot];
-        double scale = 1.0;
-        const probe::Kinematics k = kinematics_in(zone.projection(), zone.key(), s.track, scale);
+        const zone::ProbeState made = state_of(s, zone.projection(), zone.key());
         kinetic::PointId point = kinetic::kNoPoint;
         timed(w.phases, &PhaseTimes::maintenance_s, [&] {
-          point = zone.place(op.slot, engine_time(op.t), probe::extrapolated(k, op.t - s.track.t));
+          point = zone.place(op.slot, engine_time(op.t), probe::extrapolated(made.kinematics, op.t - s.track.t));
         });
-        zone::ProbeState& state = zone.state(point);
-        state = s.base;
-        state.kinematics = k;
-        state.kinematics.turn_rate_rps = s.base.kinematics.turn_rate_rps;
-        state.scale = scale;
+        zone.state(point) = made;
         break;
       }
       case ZoneOp::Kind::Remove:
@@ -644,7 +639,7 @@ void Pipeline::test_candidates(ZoneWork& w, kinetic::PointId self_point, double 
     if (slot < other ? !pair_in_conflict(k_self, k_other, minima) : !pair_in_conflict(k_other, k_self, minima)) continue;
     // In conflict here: judged here only when this zone owns the pair (design §4.9).
     if (tiling_ &&
-        tiling_->home(zone::ZoneTiling::midpoint({self.lat_deg, self.lon_deg}, {them.lat_deg, them.lon_deg})) !=
+        tiling_->owner({self.lat_deg, self.lon_deg}, {them.lat_deg, them.lon_deg}) !=
             zone.key())
       continue;
     w.found.push_back(other);
@@ -696,7 +691,7 @@ void Pipeline::run_step(const AlertStep& step) {
 
 zone::ZoneKey Pipeline::owner_of(const track::Track& a, const track::Track& b) const {
   if (!tiling_) return 0;
-  return tiling_->home(zone::ZoneTiling::midpoint({a.lat_deg, a.lon_deg}, {b.lat_deg, b.lon_deg}));
+  return tiling_->owner({a.lat_deg, a.lon_deg}, {b.lat_deg, b.lon_deg});
 }
 
 bool Pipeline::holds_both(zone::ZoneKey key, const track::Track& a, const track::Track& b) {
@@ -747,10 +742,13 @@ const geo::Projection& Pipeline::plane_of(zone::ZoneKey key) {
 }
 
 zone::ProbeState Pipeline::state_in(zone::ZoneKey key, track::TrackSlot slot) {
-  const Snapshot& v = view_[slot];
-  zone::ProbeState state = v.base;
-  state.kinematics = kinematics_in(plane_of(key), key, v.track, state.scale);
-  state.kinematics.turn_rate_rps = v.base.kinematics.turn_rate_rps;
+  return state_of(view_[slot], plane_of(key), key);
+}
+
+zone::ProbeState Pipeline::state_of(const Snapshot& s, const geo::Projection& plane, zone::ZoneKey key) {
+  zone::ProbeState state = s.base;
+  state.kinematics = kinematics_in(plane, key, s.track, state.scale);
+  state.kinematics.turn_rate_rps = s.base.kinematics.turn_rate_rps;
   return state;
 }
 

@@ -340,6 +340,9 @@ class Pipeline {
   /// The track's probe state in zone `key`, made from the alert stage's view of it as
   /// a zone makes a member's.
   zone::ProbeState state_in(zone::ZoneKey key, track::TrackSlot slot);
+  /// The probe state of a track as of snapshot `s` in the plane of zone `key`: what a
+  /// zone stores for a member and the alert stage judges with, made in one place.
+  static zone::ProbeState state_of(const Snapshot& s, const geo::Projection& plane, zone::ZoneKey key);
   /// The plane of zone `key`, which need not exist (brute force).
   const geo::Projection& plane_of(zone::ZoneKey key);
   /// Runs f, adding its duration to `phase` of `into` when phases are timed.

@@ -80,6 +80,10 @@ class ZoneTiling {
 
   double margin_m() const { return margin_m_; }
 
+  /// The zone that judges a pair whose last reports are `a` and `b` (design §4.9): the
+  /// home of their midpoint.
+  ZoneKey owner(geo::GeodeticPosition a, geo::GeodeticPosition b) const { return home(midpoint(a, b)); }
+
   /// A deterministic midpoint of two positions: the normalised sum of their unit vectors
   /// on the sphere (latitudes taken as spherical), equidistant from both; `a` when they
   /// are antipodal.
