@@ -5,6 +5,8 @@
 // The rules are in replay/README.md ("kew-eval").
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,7 @@
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
 #include "kew/replay/evaluation.hpp"
+#include "kew/replay/explanation.hpp"
 #include "kew/replay/recording_reader.hpp"
 #include "kew/replay/truth.hpp"
 #include "tool_config.hpp"
@@ -45,6 +48,7 @@ struct Options {
   bool sort = false;
   bool json = false;
   bool list = false;
+  bool explain = false;
   double h_nm = 5.0;
   double v_ft = 1000.0;
   std::vector<std::string> files;
@@ -60,6 +64,7 @@ struct Column {
   std::optional<std::uint64_t> pipeline_rejected;  // of those, refused by the pipeline
   std::vector<AlertSpan> alerts;
   Evaluation evaluation;
+  std::vector<kew::replay::LossExplanation> explanations;  // --explain, configuration runs
 };
 
 /// The records of every file, merged in time order as kew-replay merges them, then with
@@ -311,6 +316,51 @@ void print_list(const Truth& truth, const std::vector<Column>& columns) {
   std::fwrite(out.data(), 1, out.size(), stdout);
 }
 
+// --- explanations -------------------------------------------------------------------
+
+std::string loss_heading(const Truth& truth, const Column& c, const kew::replay::LossExplanation& e) {
+  const kew::replay::LossEvent& l = truth.loss_events()[e.loss];
+  const kew::replay::ScoredLoss& s = c.evaluation.losses[e.loss];
+  std::string out = fmt::format("loss {} {} x {} {}", utc(static_cast<double>(l.start_s), false),
+                                track_party(truth, l.track_a), track_party(truth, l.track_b),
+                                kew::replay::kExplainedOutcomeNames.name(e.outcome));
+  if (s.warning_s) out += fmt::format(" (warning {} s)", fixed(*s.warning_s, 0));
+  return out;
+}
+
+/// Stage → (missed, late, unwarnable) counts.
+using Census = std::map<kew::PairStage, std::array<std::size_t, 3>>;
+
+Census census_of(const Column& c) {
+  Census census;
+  for (const kew::replay::LossExplanation& e : c.explanations) ++census[e.stage][static_cast<std::size_t>(e.outcome)];
+  return census;
+}
+
+void print_explanations(const Truth& truth, const std::vector<Column>& columns) {
+  std::string out;
+  for (const Column& c : columns) {
+    if (c.from_log) continue;
+    for (const kew::replay::LossExplanation& e : c.explanations) {
+      out += fmt::format("[{}] {}: {}: {}\n", c.name, loss_heading(truth, c, e), kew::kPairStageNames.name(e.stage),
+                         e.reason);
+      const double start = static_cast<double>(truth.loss_events()[e.loss].start_s);
+      for (const kew::replay::StageSpan& span : e.spans) {
+        out += fmt::format("    {:+6.0f} .. {:+6.0f} s  {} x{}: {}\n", span.first_t - start, span.last_t - start,
+                           kew::kPairStageNames.name(span.stage), span.notes, span.first.detail);
+        if (span.notes > 1) out += fmt::format("{:>27}last: {}\n", "", span.last.detail);
+      }
+    }
+    out += fmt::format("[{}] census of {} missed, late (< {} s) and unwarnable losses by stage\n", c.name,
+                       c.explanations.size(), fixed(kew::replay::explanation_rules::kLateWarning_s, 0));
+    out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", "stage", "missed", "late", "unwarnable");
+    for (const auto& [stage, counts] : census_of(c))
+      out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", kew::kPairStageNames.name(stage), counts[0], counts[1],
+                         counts[2]);
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+}
+
 // --- JSON ---------------------------------------------------------------------------
 
 /// Appends one JSON object member by member, in call order (so the bytes are fixed).
@@ -388,7 +438,7 @@ std::string json_loss(const Truth& truth, const Column& c, const kew::replay::Lo
   return out;
 }
 
-std::string json_column(const Truth& truth, const Column& c, bool list) {
+std::string json_column(const Truth& truth, const Column& c, bool list, bool explain) {
   const EvaluationFigures& f = c.evaluation.figures;
   std::string out;
   JsonObject o(out);
@@ -427,6 +477,50 @@ std::string json_column(const Truth& truth, const Column& c, bool list) {
   } else {
     o.raw("warning_s", "\"n/a\"");
   }
+  if (!c.explanations.empty() || (explain && !c.from_log)) {
+    std::string list_json = "[";
+    for (std::size_t i = 0; i < c.explanations.size(); ++i) {
+      const kew::replay::LossExplanation& e = c.explanations[i];
+      const kew::replay::LossEvent& l = truth.loss_events()[e.loss];
+      std::string spans = "[";
+      for (std::size_t k = 0; k < e.spans.size(); ++k) {
+        const kew::replay::StageSpan& span = e.spans[k];
+        std::string one;
+        JsonObject(one)
+            .text("stage", kew::kPairStageNames.name(span.stage))
+            .number("from_t", span.first_t, 3)
+            .number("to_t", span.last_t, 3)
+            .count("notes", span.notes)
+            .text("first", span.first.detail)
+            .text("last", span.last.detail)
+            .close();
+        spans += (k ? "," : "") + one;
+      }
+      std::string one;
+      JsonObject(one)
+          .raw("start_t", std::to_string(l.start_s))
+          .text("start", utc(static_cast<double>(l.start_s), false))
+          .raw("a", json_party(truth.track(l.track_a).source, truth.track(l.track_a).id, truth.track(l.track_a).callsign))
+          .raw("b", json_party(truth.track(l.track_b).source, truth.track(l.track_b).id, truth.track(l.track_b).callsign))
+          .text("outcome", kew::replay::kExplainedOutcomeNames.name(e.outcome))
+          .raw("warning_s", c.evaluation.losses[e.loss].warning_s ? fixed(*c.evaluation.losses[e.loss].warning_s, 3) : "null")
+          .text("stage", kew::kPairStageNames.name(e.stage))
+          .text("reason", e.reason)
+          .raw("spans", spans + "]")
+          .close();
+      list_json += (i ? "," : "") + one;
+    }
+    o.raw("explain", list_json + "]");
+    std::string census = "{";
+    bool first = true;
+    for (const auto& [stage, counts] : census_of(c)) {
+      std::string one;
+      JsonObject(one).count("missed", counts[0]).count("late", counts[1]).count("unwarnable", counts[2]).close();
+      census += (first ? "\"" : ",\"") + std::string(kew::kPairStageNames.name(stage)) + "\":" + one;
+      first = false;
+    }
+    o.raw("census", census + "}");
+  }
   if (list) {
     std::string alerts = "[";
     for (std::size_t i = 0; i < c.alerts.size(); ++i)
@@ -462,7 +556,7 @@ void print_json(const Options& options, const Truth& truth, const std::vector<Co
       .close();
   std::string runs = "[";
   for (std::size_t c = 0; c < columns.size(); ++c)
-    runs += (c ? "," : "") + json_column(truth, columns[c], options.list);
+    runs += (c ? "," : "") + json_column(truth, columns[c], options.list, options.explain);
   std::string out;
   JsonObject(out).raw("truth", truth_json).raw("runs", runs + "]").close();
   out += '\n';
@@ -512,6 +606,9 @@ int main(int argc, char** argv) {
   app.add_flag("--sort", options.sort, "replay in time order (stable), as kew-replay --sort");
   app.add_flag("--json", options.json, "print one JSON object instead of the table");
   app.add_flag("--list", options.list, "list every alert and every loss with its class (in the JSON with --json)");
+  app.add_flag("--explain", options.explain,
+               "explain every missed, late (warned < 20 s ahead) and unwarnable loss: the stage that kept kew from "
+               "alerting earlier, with its evidence, and a census by stage (in the JSON with --json)");
   app.add_option("--h-nm", options.h_nm, "horizontal separation minimum of the truth, NM")
       ->default_val(5.0)
       ->check(CLI::Range(0.001, 100.0));
@@ -571,11 +668,17 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "kew-eval: %s\n", error.c_str());
         return kInputError;
       }
-    } else if (i == 0) {
-      run_pipeline(configs[i], records, c);
     } else {
       std::uint64_t ignored = 0;
-      run_pipeline(configs[i], read_records(options, configs[i].decoding, false, ignored), c);
+      const std::vector<kew::TrackReport> own =
+          i == 0 ? std::vector<kew::TrackReport>{} : read_records(options, configs[i].decoding, false, ignored);
+      const std::vector<kew::TrackReport>& run = i == 0 ? records : own;
+      run_pipeline(configs[i], run, c);
+      c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
+      if (options.explain)
+        c.explanations = kew::replay::explain_losses(truth, c.evaluation, c.alerts, configs[i].pipeline, run,
+                                                     kew::replay::losses_to_explain(c.evaluation));
+      continue;
     }
     c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
   }
@@ -589,6 +692,7 @@ int main(int argc, char** argv) {
     print_json(options, truth, columns);
   } else {
     if (options.list) print_list(truth, columns);
+    if (options.explain) print_explanations(truth, columns);
     print_table(options, truth, columns);
   }
   std::fflush(stdout);

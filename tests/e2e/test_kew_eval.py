@@ -16,6 +16,7 @@ Run by ctest (tests/CMakeLists.txt) with KEW_EVAL and KEW_REPLAY set; by hand:
 import json
 import math
 import os
+import re
 import subprocess
 import tempfile
 import unittest
@@ -304,6 +305,33 @@ class KewEval(unittest.TestCase):
         self.assertEqual(side["runs"][0]["lookahead_s"], 180.0)
         self.assertGreater(side["runs"][0]["warning_s"]["min"], run["warning_s"]["min"] + 25)
         self.assertGreater(side["runs"][0]["warning_s"]["max"], run["warning_s"]["max"] + 55)
+
+    def test_explain_names_the_stage_of_every_missed_and_unwarnable_loss(self):
+        run = json.loads(self.run_eval("--json", "--explain", self.recording))["runs"][0]
+        explained = {self.pair_of(e["a"]["id"], e["b"]["id"]): e for e in run["explain"]}
+        # The detected losses were warned 30 s ahead and more: only M and U are explained.
+        self.assertEqual(set(explained), {"M", "U"})
+        # M flew parallel 5.2 NM apart until B's turn: the probe saw no loss ahead.
+        m = explained["M"]
+        self.assertEqual((m["outcome"], m["stage"]), ("missed", "probe_clear"))
+        self.assertIn("no horizontal loss within the look-ahead", m["reason"])
+        self.assertRegex(m["reason"], r"5\.[12]\d NM and 0 ft apart")
+        # Then, in the loss, the conflict awaits its confirmation; the late alert ends the notes.
+        self.assertEqual([s["stage"] for s in m["spans"][-2:]], ["probe_clear", "confirm_pending"])
+        self.assertGreaterEqual(m["spans"][-1]["from_t"], m["start_t"] - 2)  # from B's turn on
+        # UB's first record came 4.5 NM from UA, already in conflict.
+        u = explained["U"]
+        self.assertEqual((u["outcome"], u["stage"]), ("unwarnable", "no_track"))
+        self.assertIn("eval:UB has no track: no record of it yet", u["reason"])
+        self.assertEqual(run["census"], {"no_track": {"missed": 0, "late": 0, "unwarnable": 1},
+                                         "probe_clear": {"missed": 1, "late": 0, "unwarnable": 0}})
+        # The text form says the same, and explaining changes no figure.
+        text = self.run_eval("--explain", self.recording).decode()
+        self.assertIn("missed: probe_clear:", text)
+        self.assertIn("census of 2 missed", text)
+        plain = json.loads(self.run_eval("--json", self.recording))["runs"][0]
+        for key in ("alerts", "hit", "nuisance", "detected", "missed", "unwarnable", "warning_s"):
+            self.assertEqual(run[key], plain[key], key)
 
     def test_usage_errors_exit_64(self):
         for args in (["--no-such-flag", self.recording], [], ["--h-nm", "0", self.recording],

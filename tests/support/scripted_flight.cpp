@@ -65,4 +65,15 @@ Outcome fly(const std::vector<Flight>& flights, double seconds, const PipelineCo
   return run;
 }
 
+std::vector<Flight> head_on(double alt_a_ft, double alt_b_ft) {
+  Flight a{"A"};
+  a.east_m = -10.0 * 1852.0;
+  a.alt_ft = alt_a_ft;
+  Flight b{"B"};
+  b.east_m = 10.0 * 1852.0;
+  b.trk_deg = 270.0;
+  b.alt_ft = alt_b_ft;
+  return {a, b};
+}
+
 }  // namespace kew::test_support

@@ -41,6 +41,10 @@ struct Outcome {
   double first_opened_t() const;
 };
 
+/// Two aircraft "A" and "B" head-on 20 NM apart at 450 kt each (A eastbound), at the
+/// given altitudes (ft): at one level they lose separation 60 s after kT0.
+std::vector<Flight> head_on(double alt_a_ft = 35000.0, double alt_b_ft = 35000.0);
+
 /// Every flight reports every 4 s from kT0 for `seconds`.
 Outcome fly(const std::vector<Flight>& flights, double seconds = 40.0, const PipelineConfig& config = {});
 

@@ -20,21 +20,10 @@ namespace kew {
 namespace {
 
 using test_support::Flight;
+using test_support::head_on;
 using test_support::fly;
 using test_support::kT0;
 using test_support::Outcome;
-
-// Two aircraft head-on 20 NM apart, closing at 900 kt: separation is lost in 60 s.
-std::vector<Flight> head_on(double alt_a = 35000.0, double alt_b = 35000.0) {
-  Flight a{"A"};
-  a.east_m = -10.0 * 1852.0;
-  a.alt_ft = alt_a;
-  Flight b{"B"};
-  b.east_m = 10.0 * 1852.0;
-  b.trk_deg = 270.0;
-  b.alt_ft = alt_b;
-  return {a, b};
-}
 
 TEST(Eligibility, AHeadOnPairAtOneLevelAlerts) {
   EXPECT_EQ(fly(head_on()).opened(), 1u);

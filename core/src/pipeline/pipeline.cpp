@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <stdexcept>
 #include <cmath>
+
+#include <fmt/format.h>
 
 #include "kew/geometry/hilbert.hpp"
 #include "kew/util/gentle_growth.hpp"
@@ -687,6 +690,7 @@ void Pipeline::run_step(const AlertStep& step) {
     evaluated_.push_back({other, held ? owner : zone::kNoZone});
   }
   evaluate_pairs(slot);
+  if (watch_) note_watched_pairs(slot);
 }
 
 zone::ZoneKey Pipeline::owner_of(const track::Track& a, const track::Track& b) const {
@@ -839,34 +843,185 @@ void Pipeline::evaluate_pairs(track::TrackSlot slot) {
   deliver();
 }
 
-bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
+Pipeline::RuleVerdict Pipeline::rule_verdict(const PairKinematics& pair) const {
   const track::Track& tp = view_[pair.p].track;
   const track::Track& tq = view_[pair.q].track;
+  RuleVerdict v;
   if (rules_.same_address(tp, tq)) {
-    suppressed_.reject("same_aircraft");
-    return true;
+    v.rule = PairStage::SameAddress;
+    return v;
   }
   if (rules_.level_pair(tp, tq)) {
-    suppressed_.reject("level_pair");
-    return true;
+    v.rule = PairStage::LevelPair;
+    return v;
   }
-  if (alerts_.is_active(pair.p, pair.q)) return false;
+  if (alerts_.is_active(pair.p, pair.q)) return v;
   if (pair.parameters.inhibited) {
-    suppressed_.reject("inhibited");
-    return true;
+    v.rule = PairStage::Inhibited;
+    return v;
   }
   // Codes are duplicated: two aircraft with one code that close in on each other must not
   // lose an open alert, so the code rule only keeps one from opening.
   const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
   if (rules_.same_code_colocated(tp, tq, distance_m)) {
-    suppressed_.reject("same_aircraft");
-    return true;
+    v.rule = PairStage::SameCode;
+    return v;
   }
-  eligibility::Exclusion why = rules_.exclusion(tp, judged_at_);
-  if (why == eligibility::Exclusion::None) why = rules_.exclusion(tq, judged_at_);
-  if (why == eligibility::Exclusion::None) return false;
-  suppressed_.reject(eligibility::kExclusionNames.name(why));
+  v.excluded = pair.p;
+  v.exclusion = rules_.exclusion(tp, judged_at_);
+  if (v.exclusion == eligibility::Exclusion::None) {
+    v.excluded = pair.q;
+    v.exclusion = rules_.exclusion(tq, judged_at_);
+  }
+  if (v.exclusion != eligibility::Exclusion::None) v.rule = PairStage::Excluded;
+  return v;
+}
+
+bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
+  const RuleVerdict v = rule_verdict(pair);
+  if (!v.rule) return false;
+  switch (*v.rule) {
+    case PairStage::SameAddress:
+    case PairStage::SameCode:
+      suppressed_.reject("same_aircraft");
+      break;
+    case PairStage::Excluded:
+      suppressed_.reject(eligibility::kExclusionNames.name(v.exclusion));
+      break;
+    default:
+      suppressed_.reject(kPairStageNames.name(*v.rule));  // level_pair, inhibited
+      break;
+  }
   return true;
+}
+
+// ---------------------------------------------------------------------------------------
+// The pair watch (design §4.10): only for watched pairs, from the alert stage's view.
+
+void Pipeline::set_pair_watch(PairWatch* watch) {
+  if (watch && config_.batch_records != 1)
+    throw std::invalid_argument("a pair watch needs batch_records = 1");
+  watch_ = watch;
+}
+
+void Pipeline::note_watched_pairs(track::TrackSlot slot) {
+  const track::Track& self = view_[slot].track;
+  if (!watch_->watches(self.source, self.id)) return;
+  watch_->seen(self.source, self.id, judged_at_);
+  watch_->for_each_partner(self.source, self.id, judged_at_,
+                           [&](WatchedPair& pair, std::string_view source, std::string_view id) {
+                             pair.notes.push_back(watched_pair_note(slot, source, id));
+                           });
+}
+
+namespace {
+std::string exclusion_detail(eligibility::Exclusion why, const track::Track& t, double now,
+                             const eligibility::EligibilityConfig& c) {
+  const std::string who = party_label(t.source, t.id);
+  switch (why) {
+    case eligibility::Exclusion::Slow:
+      return fmt::format("{} at {:.0f} kt, below {:.0f} kt", who, t.gs_kt, c.min_ground_speed_kt);
+    case eligibility::Exclusion::AltitudeBand:
+      return fmt::format("{} at {:.0f} ft, outside {:.0f}..{:.0f} ft", who, t.alt_ft, c.min_altitude_ft,
+                         c.max_altitude_ft);
+    case eligibility::Exclusion::BelowLowerLimit:
+      return fmt::format("{} at {:.0f} ft, below the lower limit {:.0f} ft", who, t.alt_ft, c.lower_limit_ft);
+    case eligibility::Exclusion::ExcludedCode:
+      return fmt::format("{} squawks {:04o}", who, t.mode3a.value_or(0));
+    case eligibility::Exclusion::Coasting:
+      return fmt::format("{} coasting (its source extrapolates it)", who);
+    case eligibility::Exclusion::PositionStale:
+      return fmt::format("{} last record {:.0f} s old, over {:.0f} s", who, now - t.t, c.max_position_age_s);
+    case eligibility::Exclusion::None:
+      break;
+  }
+  return who;
+}
+}  // namespace
+
+PairNote Pipeline::watched_pair_note(track::TrackSlot slot, std::string_view partner_source,
+                                     std::string_view partner_id) {
+  const track::Track& self = view_[slot].track;
+  PairNote note;
+  note.t = judged_at_;
+  note.updated = party_label(self.source, self.id);
+  const track::TrackSlot other = tracks_.find(partner_source, partner_id);
+  if (other == track::kNoTrack || other >= view_.size() || !view_[other].track.in_use ||
+      view_[other].track.source != partner_source || view_[other].track.id != partner_id) {
+    note.stage = other == track::kNoTrack ? PairStage::NoTrack : PairStage::AwaitingVelocity;
+    const std::string partner = party_label(partner_source, partner_id);
+    note.subject = partner;
+    const std::optional<double> last = watch_->last_seen(partner_source, partner_id);
+    note.detail = other != track::kNoTrack ? fmt::format("{} has no velocity yet", partner)
+                  : last ? fmt::format("{} has no track: its last record, {:.0f} s ago, was applied before it was dropped "
+                                       "(timeout {:.0f} s, or ended by its source)",
+                                       partner, judged_at_ - *last, config_.tracks.track_timeout_s)
+                         : fmt::format("{} has no track: no record of it yet", partner);
+    return note;
+  }
+  if (!view_[other].track.in_engine) {
+    note.stage = PairStage::AwaitingVelocity;
+    note.subject = party_label(partner_source, partner_id);
+    note.detail = fmt::format("{} has no velocity yet", party_label(partner_source, partner_id));
+    return note;
+  }
+  const track::Track& them = view_[other].track;
+  const zone::ZoneKey owner = owner_of(self, them);
+  const double apart_m = geo::Projection::geodesic_distance_m({self.lat_deg, self.lon_deg}, {them.lat_deg, them.lon_deg});
+  if (!holds_both(owner, self, them)) {
+    note.stage = PairStage::NotCandidate;
+    note.detail = fmt::format("no zone holds both: {:.1f} NM apart", apart_m / 1852.0);
+    return note;
+  }
+  const zone::ProbeState state = state_in(owner, slot);
+  const PairKinematics pair = pair_kinematics(state, state.at(judged_at_), state_in(owner, other), judged_at_);
+  const probe::ConflictGeometry g = probe::evaluate_pair(pair.kp, pair.kq, pair.minima);
+  const track::Track& tp = view_[pair.p].track;
+  const track::Track& tq = view_[pair.q].track;
+  const std::string figures = fmt::format(
+      "{:.2f} NM and {:.0f} ft apart; CPA {:.2f} NM in {:.0f} s, {:.0f} ft there; {} {:.0f} ft {:+.0f} fpm, "
+      "{} {:.0f} ft {:+.0f} fpm",
+      apart_m / 1852.0, g.sep_v_m / kFootToMetre, g.cpa_h_m / pair.scale / 1852.0, g.t_cpa_s, g.cpa_v_m / kFootToMetre,
+      party_label(tp.source, tp.id), tp.alt_ft, tp.vr_fpm, party_label(tq.source, tq.id), tq.alt_ft, tq.vr_fpm);
+  if (!pair_in_conflict(pair.kp, pair.kq, pair.minima)) {
+    note.stage = PairStage::ProbeClear;
+    const bool horizontal = g.cpa_h_m >= pair.minima.horizontal_m;
+    note.detail = fmt::format("{} ({})", figures,
+                              horizontal ? "no horizontal loss within the look-ahead"
+                                         : "vertically apart where horizontally close");
+    return note;
+  }
+  const bool searched = std::any_of(evaluated_.begin(), evaluated_.end(),
+                                    [&](const Evaluated& e) { return e.other == other; });
+  if (!searched) {
+    note.stage = PairStage::NotCandidate;
+    note.detail = fmt::format("{} (the candidate search did not give the pair)", figures);
+    return note;
+  }
+  const RuleVerdict v = rule_verdict(pair);
+  if (v.rule) {
+    note.stage = *v.rule;
+    switch (*v.rule) {
+      case PairStage::SameAddress:
+        note.detail = fmt::format("both address {:06X}; {}", tp.address.value_or(0), figures);
+        break;
+      case PairStage::SameCode:
+        note.detail = fmt::format("both squawk {:04o}, no two addresses; {}", tp.mode3a.value_or(0), figures);
+        break;
+      case PairStage::Excluded:
+        note.subject = party_label(view_[v.excluded].track.source, view_[v.excluded].track.id);
+        note.detail = fmt::format("{}: {}", eligibility::kExclusionNames.name(v.exclusion),
+                                  exclusion_detail(v.exclusion, view_[v.excluded].track, judged_at_, config_.eligibility));
+        break;
+      default:
+        note.detail = figures;
+        break;
+    }
+    return note;
+  }
+  note.stage = alerts_.is_active(pair.p, pair.q) ? PairStage::Alerting : PairStage::ConfirmPending;
+  note.detail = fmt::format("t_los {:.0f} s; {}", g.t_los_s, figures);
+  return note;
 }
 
 void Pipeline::fill_event(AlertEvent& event, const geo::Projection& projection, track::TrackSlot p, track::TrackSlot q,

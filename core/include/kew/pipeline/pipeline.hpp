@@ -21,6 +21,7 @@
 #include "kew/eligibility/eligibility.hpp"
 #include "kew/geo/projection.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/pipeline/pair_watch.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/probe/proximity_search.hpp"
 #include "kew/region/region_map.hpp"
@@ -147,6 +148,12 @@ class Pipeline {
   /// Empty by default (no cost beyond a test per conflict).
   using ConflictTap = std::function<void(track::TrackSlot p, track::TrackSlot q)>;
   void set_conflict_tap(ConflictTap tap) { conflict_tap_ = std::move(tap); }
+
+  /// Notes where each pair of `watch` stands at every update of either of its tracks
+  /// (design §4.10); null stops. The watch must outlive its use. Requires batch_records
+  /// = 1 (the alert stage then judges each record as the track stage takes it): throws
+  /// std::invalid_argument otherwise. Changes no alert.
+  void set_pair_watch(PairWatch* watch);
 
   /// Processes one record (any data time; see TrackTableConfig for what is refused). A
   /// record too far ahead of the clock is held, not applied (track::TimeGuard): it is
@@ -358,9 +365,20 @@ class Pipeline {
   };
   PairKinematics pair_kinematics(const zone::ProbeState& self, const probe::Kinematics& k_self,
                                  const zone::ProbeState& other, double now) const;
-  /// The rules of design §4.5 for a pair the conflict test found in conflict: true when
-  /// the pair is to be treated as clear (counted in suppressed_).
+  /// The rule of design §4.5 that turns a pair the conflict test found in conflict
+  /// clear, if any: rule empty when none does.
+  struct RuleVerdict {
+    std::optional<PairStage> rule;  // SameAddress, LevelPair, Inhibited, SameCode, Excluded
+    eligibility::Exclusion exclusion = eligibility::Exclusion::None;  // Excluded: why
+    track::TrackSlot excluded = track::kNoTrack;                      // Excluded: who
+  };
+  RuleVerdict rule_verdict(const PairKinematics& pair) const;
+  /// rule_verdict() counted in suppressed_: true when the pair is to be treated as clear.
   bool suppressed_by_rules(const PairKinematics& pair);
+  /// Notes where every watched pair of the updated track stands (PairWatch).
+  void note_watched_pairs(track::TrackSlot slot);
+  /// The note of one watched pair after the update of `slot` (design §4.10).
+  PairNote watched_pair_note(track::TrackSlot slot, std::string_view partner_source, std::string_view partner_id);
   void fill_event(AlertEvent& event, const geo::Projection& plane, track::TrackSlot p, track::TrackSlot q,
                   const probe::ConflictGeometry& g,
                   const probe::Kinematics& kp, const probe::Kinematics& kq, bool along_turn) const;
@@ -418,6 +436,7 @@ class Pipeline {
   eligibility::Rules rules_;
   Rejections suppressed_;
   ConflictTap conflict_tap_;
+  PairWatch* watch_ = nullptr;
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
   double epoch_ = 0.0;  // engine time = data time − epoch (design §4.1: local time frames)
