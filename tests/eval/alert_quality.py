@@ -10,6 +10,9 @@ switched on, recording by recording; and UPC with the Barcelona terminal-area ex
 (deploy/examples/barcelona-tma.toml) beside the defaults. UPC is read with its [[radar]]
 table, switzerland with --sort, as tests/golden/run_golden.py replays them.
 
+--census prints the missed, late and unwarnable losses of each recording by the stage
+that kept kew from alerting earlier (kew-eval --explain), then each missed and late one.
+
 --zones prints one table instead: each recording with one plane ([projection] zones =
 "single", kew's only projection before zones) beside the default worldwide zones.
 """
@@ -113,12 +116,52 @@ def compare_zones(options):
             print(f"| {label} | {outcome(single)} | {outcome(zones)} |", flush=True)
 
 
+STAGES = ["record_refused", "no_track", "awaiting_velocity", "not_candidate", "probe_clear",
+          "one_aircraft_address", "one_aircraft_code", "level_pair", "inhibited", "excluded",
+          "confirm_pending", "alerting"]
+
+
+def census(options):
+    """kew-eval --explain on every recording: its missed, late and unwarnable losses by
+    the stage that kept kew from alerting earlier (missed / late / unwarnable per cell),
+    then every missed and late loss with its reason."""
+    runs = []
+    with tempfile.TemporaryDirectory(prefix="kew-quality-") as workdir:
+        for label, path, radar, extra in present_cases(options):
+            runs.append((label, evaluate(options.kew_eval, path, radar, extra + ["--explain"], [""], workdir)["runs"][0]))
+    used = [s for s in STAGES if any(s in run["census"] for _, run in runs)]
+    print("| recording | missed / late / unwarnable | " + " | ".join(used) + " |")
+    print("|---|---|" + "---|" * len(used))
+    for label, run in runs:
+        counts = [0, 0, 0]
+        for c in run["census"].values():
+            counts = [counts[0] + c["missed"], counts[1] + c["late"], counts[2] + c["unwarnable"]]
+        cells = []
+        for stage in used:
+            c = run["census"].get(stage)
+            cells.append(f"{c['missed']} / {c['late']} / {c['unwarnable']}" if c else "")
+        print(f"| {label} | {counts[0]} / {counts[1]} / {counts[2]} | " + " | ".join(cells) + " |")
+    print()
+    for label, run in runs:
+        for e in run["explain"]:
+            if e["outcome"] == "unwarnable":
+                continue
+            warning = "" if e["warning_s"] is None else f", warning {e['warning_s']:.0f} s"
+            print(f"- {label}, {e['start']} {e['a']['id']} x {e['b']['id']} ({e['outcome']}{warning}): "
+                  f"**{e['stage']}**: {e['reason']}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--kew-eval", default=os.path.join(ROOT, "build", "replay", "kew-eval"))
     parser.add_argument("--recordings", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings"))
     parser.add_argument("--zones", action="store_true", help="one plane beside the worldwide zones")
+    parser.add_argument("--census", action="store_true",
+                        help="missed, late and unwarnable losses by stage (kew-eval --explain)")
     options = parser.parse_args()
+    if options.census:
+        census(options)
+        return
     if options.zones:
         compare_zones(options)
         return

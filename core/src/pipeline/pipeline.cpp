@@ -986,9 +986,15 @@ PairNote Pipeline::watched_pair_note(track::TrackSlot slot, std::string_view par
   if (!pair_in_conflict(pair.kp, pair.kq, pair.minima)) {
     note.stage = PairStage::ProbeClear;
     const bool horizontal = g.cpa_h_m >= pair.minima.horizontal_m;
-    note.detail = fmt::format("{} ({})", figures,
-                              horizontal ? "no horizontal loss within the look-ahead"
-                                         : "vertically apart where horizontally close");
+    probe::SeparationMinima whole = pair.minima;  // the vertical prediction for all of T
+    whole.vertical_lookahead_s = whole.lookahead_s;
+    const bool vertical_lookahead = !horizontal && pair_in_conflict(pair.kp, pair.kq, whole);
+    note.detail = fmt::format(
+        "{} ({})", figures,
+        horizontal           ? "no horizontal loss within the look-ahead"
+        : vertical_lookahead ? fmt::format("vertically apart; the rates close below S_v less the tolerance only after "
+                                           "the vertical look-ahead, {:.0f} s", pair.minima.vertical_lookahead_s)
+                             : "vertically apart where horizontally close");
     return note;
   }
   const bool searched = std::any_of(evaluated_.begin(), evaluated_.end(),
