@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <map>
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,7 @@
 #include "kew/replay/evaluation.hpp"
 #include "kew/replay/explanation.hpp"
 #include "kew/replay/recording_reader.hpp"
+#include "kew/replay/state_based.hpp"
 #include "kew/replay/truth.hpp"
 #include "tool_config.hpp"
 
@@ -45,6 +47,7 @@ struct Options {
   std::string format = "auto";
   std::vector<std::string> config_paths;
   std::vector<std::string> alert_paths;
+  std::vector<std::string> baselines;
   bool sort = false;
   bool json = false;
   bool list = false;
@@ -58,6 +61,7 @@ struct Options {
 struct Column {
   std::string name;
   bool from_log = false;
+  std::string baseline;  // "statebased" or "raw"; empty: a configuration or a log
   std::string path;  // the configuration or log; empty for the default configuration
   kew::replay::ScoringParameters parameters;
   std::optional<std::uint64_t> records;            // records given to the pipeline
@@ -104,6 +108,23 @@ void run_pipeline(const kew::config::SharedConfig& config, const std::vector<kew
   column.records = pipeline.statistics().records;
   column.pipeline_rejected = pipeline.rejections().total();
   column.alerts = collector.alerts();
+}
+
+/// kew with every eligibility rule of design §4.5 off (--baseline raw): the one-address
+/// rule stays, for it is identity, not a filter.
+kew::config::SharedConfig without_eligibility(kew::config::SharedConfig config) {
+  kew::eligibility::EligibilityConfig& e = config.pipeline.eligibility;
+  const double infinity = std::numeric_limits<double>::infinity();
+  e.min_ground_speed_kt = 0.0;
+  e.min_altitude_ft = -infinity;
+  e.max_altitude_ft = infinity;
+  e.lower_limit_ft = 0.0;
+  e.excluded_mode3a.clear();
+  e.exclude_coasting = false;
+  e.max_position_age_s = infinity;
+  e.level_rate_fpm = 0.0;
+  e.same_code_distance_nm = 0.0;
+  return config;
 }
 
 /// Reads the ALERT lines of an alert log (kew-replay's output, kewd's alert log); other
@@ -442,7 +463,7 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
   const EvaluationFigures& f = c.evaluation.figures;
   std::string out;
   JsonObject o(out);
-  o.text("name", c.name).text("kind", c.from_log ? "alerts" : "config");
+  o.text("name", c.name).text("kind", !c.baseline.empty() ? "baseline" : c.from_log ? "alerts" : "config");
   if (c.path.empty())
     o.raw("path", "null");
   else
@@ -567,7 +588,9 @@ void print_json(const Options& options, const Truth& truth, const std::vector<Co
 /// the built-in configuration); a name taken twice becomes the path as given.
 void name_columns(std::vector<Column>& columns) {
   for (Column& c : columns) {
-    if (c.path.empty())
+    if (!c.baseline.empty())
+      c.name = c.baseline;
+    else if (c.path.empty())
       c.name = "default";
     else
       c.name = c.from_log ? std::filesystem::path(c.path).filename().string()
@@ -603,6 +626,11 @@ int main(int argc, char** argv) {
                  "scored with the first configuration's look-ahead and confirm")
       ->allow_extra_args(false)
       ->check(CLI::ExistingFile);
+  app.add_option("--baseline", options.baselines,
+                 "add a peer column scored by the same truth (repeatable): statebased (all pairs, linear, 5 NM, "
+                 "1000 ft, 300 s, no filters, as BlueSky's StateBasedCD), raw (kew with every eligibility rule off)")
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember({"statebased", "raw"}));
   app.add_flag("--sort", options.sort, "replay in time order (stable), as kew-replay --sort");
   app.add_flag("--json", options.json, "print one JSON object instead of the table");
   app.add_flag("--list", options.list, "list every alert and every loss with its class (in the JSON with --json)");
@@ -647,6 +675,17 @@ int main(int argc, char** argv) {
     c.parameters = {configs.front().pipeline.minima.lookahead_s, configs.front().pipeline.alerts.confirm};
     columns.push_back(std::move(c));
   }
+  for (const std::string& baseline : options.baselines) {
+    Column c;
+    c.baseline = baseline;
+    if (baseline == "statebased") {
+      const kew::replay::StateBasedConfig peer;
+      c.parameters = {peer.lookahead_s, 1};
+    } else {
+      c.parameters = {configs.front().pipeline.minima.lookahead_s, configs.front().pipeline.alerts.confirm};
+    }
+    columns.push_back(std::move(c));
+  }
   name_columns(columns);
 
   // The truth comes from the first configuration's decoding; each run decodes with its
@@ -662,22 +701,32 @@ int main(int argc, char** argv) {
 
   for (std::size_t i = 0; i < columns.size(); ++i) {
     Column& c = columns[i];
-    if (c.from_log) {
+    // A pipeline run, scored, and explained when asked.
+    const auto run_scored = [&](const kew::config::SharedConfig& config, const std::vector<kew::TrackReport>& run) {
+      run_pipeline(config, run, c);
+      c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
+      if (options.explain)
+        c.explanations = kew::replay::explain_losses(truth, c.evaluation, c.alerts, config.pipeline, run,
+                                                     kew::replay::losses_to_explain(c.evaluation));
+    };
+    if (c.baseline == "statebased") {
+      c.alerts = kew::replay::state_based_alerts(records);
+      c.records = records.size();
+    } else if (c.baseline == "raw") {
+      run_scored(without_eligibility(configs.front()), records);
+      continue;
+    } else if (c.from_log) {
       std::string error;
       if (!read_alert_log(c.path, c, error)) {
         std::fprintf(stderr, "kew-eval: %s\n", error.c_str());
         return kInputError;
       }
+    } else if (i == 0) {
+      run_scored(configs[i], records);
+      continue;
     } else {
       std::uint64_t ignored = 0;
-      const std::vector<kew::TrackReport> own =
-          i == 0 ? std::vector<kew::TrackReport>{} : read_records(options, configs[i].decoding, false, ignored);
-      const std::vector<kew::TrackReport>& run = i == 0 ? records : own;
-      run_pipeline(configs[i], run, c);
-      c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
-      if (options.explain)
-        c.explanations = kew::replay::explain_losses(truth, c.evaluation, c.alerts, configs[i].pipeline, run,
-                                                     kew::replay::losses_to_explain(c.evaluation));
+      run_scored(configs[i], read_records(options, configs[i].decoding, false, ignored));
       continue;
     }
     c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);

@@ -333,9 +333,26 @@ class KewEval(unittest.TestCase):
         for key in ("alerts", "hit", "nuisance", "detected", "missed", "unwarnable", "warning_s"):
             self.assertEqual(run[key], plain[key], key)
 
+    def test_baselines_are_scored_beside_kew_by_the_same_truth(self):
+        out = json.loads(self.run_eval("--json", "--baseline", "statebased", "--baseline", "raw", self.recording))
+        default, statebased, raw = out["runs"]
+        self.assertEqual([r["name"] for r in out["runs"]], ["default", "statebased", "raw"])
+        self.assertEqual([r["kind"] for r in out["runs"]], ["config", "baseline", "baseline"])
+        self.assertEqual((statebased["lookahead_s"], statebased["confirm"]), (300.0, 1))
+        self.assertEqual((raw["lookahead_s"], raw["confirm"]), (default["lookahead_s"], default["confirm"]))
+        for run in (statebased, raw):
+            self.assertEqual(run["loss_events"], default["loss_events"])
+        # The head-on pair at 1,000 ft opens no alert in kew (the lower limit) and one in
+        # both baselines, which the truth finds not airborne.
+        self.assertEqual(default["ineligible_reasons"]["not_airborne"], 0)
+        self.assertGreaterEqual(raw["ineligible_reasons"]["not_airborne"], 1)
+        self.assertGreaterEqual(statebased["ineligible_reasons"]["not_airborne"], 1)
+        # 300 s of look-ahead warns of the planted head-on losses earlier than kew's 120 s.
+        self.assertGreater(statebased["warning_s"]["p50"], default["warning_s"]["p50"] + 40)
+
     def test_usage_errors_exit_64(self):
         for args in (["--no-such-flag", self.recording], [], ["--h-nm", "0", self.recording],
-                     ["--v-ft", "150", self.recording]):
+                     ["--v-ft", "150", self.recording], ["--baseline", "bluesky", self.recording]):
             result = subprocess.run([KEW_EVAL, *args], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             self.assertEqual(result.returncode, 64, args)
 
