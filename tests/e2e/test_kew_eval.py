@@ -59,8 +59,8 @@ def local_distance(p, q):
 class Aircraft:
     """Straight legs: each (t_from, north_m, east_m, v_north, v_east) holds from t_from on."""
 
-    def __init__(self, ident, lon0, alt_ft, phase, legs, t_start=T0, t_end=T0 + DURATION, src="eval"):
-        self.ident, self.src, self.lon0, self.alt_ft = ident, src, lon0, alt_ft
+    def __init__(self, ident, lon0, alt_ft, phase, legs, t_start=T0, t_end=T0 + DURATION, src="eval", squawk=None):
+        self.ident, self.src, self.lon0, self.alt_ft, self.squawk = ident, src, lon0, alt_ft, squawk
         self.legs, self.t_start, self.t_end = legs, t_start, t_end
         self.times = []
         t = T0 + phase
@@ -82,10 +82,13 @@ class Aircraft:
         for t in self.times:
             lat, lon = self.position(t)
             _, _, _, vn, ve = self.leg(t)
-            yield {"t": t, "id": self.ident, "src": self.src, "lat": lat, "lon": lon, "alt_ft": self.alt_ft,
-                   "gs_kt": round(math.hypot(vn, ve) / KT, 3),
-                   "trk_deg": round(math.degrees(math.atan2(ve, vn)) % 360, 3),
-                   "vr_fpm": 0, "cs": "C" + self.ident}
+            record = {"t": t, "id": self.ident, "src": self.src, "lat": lat, "lon": lon, "alt_ft": self.alt_ft,
+                      "gs_kt": round(math.hypot(vn, ve) / KT, 3),
+                      "trk_deg": round(math.degrees(math.atan2(ve, vn)) % 360, 3),
+                      "vr_fpm": 0, "cs": "C" + self.ident}
+            if self.squawk:
+                record["sq"] = self.squawk
+            yield record
 
     def sample(self, s):
         """The truth's sample at whole second s: linear between records ≤ 20 s apart."""
@@ -165,9 +168,10 @@ def planted():
     b = Aircraft("UB", 16.0, 33000, 2.3, [(T0, d0 / 2, 0.0, -v, 0.0)], t_start=t_first)
     aircraft += [a, b]
     expect["U"] = (None, "unwarnable", a, b)
-    # One aircraft seen as two tracks (another source), 0.2 NM and 100 ft apart.
-    a = Aircraft("SAME", 17.0, 34000, 0.3, [(T0, 0.0, 0.0, 240.0, 0.0)])
-    b = Aircraft("SAME", 17.0, 34100, 1.1, [(T0, 0.0, 0.2 * NM, 240.0, 0.0)], src="eval2")
+    # One aircraft seen as two tracks (another source) with one code, 0.2 NM and 100 ft
+    # apart: kew opens no alert, and any would be scored ineligible.
+    a = Aircraft("SAME", 17.0, 34000, 0.3, [(T0, 0.0, 0.0, 240.0, 0.0)], squawk="4711")
+    b = Aircraft("SAME", 17.0, 34100, 1.1, [(T0, 0.0, 0.2 * NM, 240.0, 0.0)], src="eval2", squawk="4711")
     aircraft += [a, b]
     expect["S"] = ("ineligible", None, a, b)
     return aircraft, expect

@@ -13,6 +13,10 @@ table, switzerland with --sort, as tests/golden/run_golden.py replays them.
 --census prints the missed, late and unwarnable losses of each recording by the stage
 that kept kew from alerting earlier (kew-eval --explain), then each missed and late one.
 
+--peers prints kew beside the baselines of kew-eval --baseline (statebased: all pairs,
+linear, 5 NM / 1,000 ft / 300 s, no filters; raw: kew with every eligibility rule off),
+then kew's warning time on the losses the statebased baseline warned of 60 s ahead.
+
 --zones prints one table instead: each recording with one plane ([projection] zones =
 "single", kew's only projection before zones) beside the default worldwide zones.
 """
@@ -116,6 +120,49 @@ def compare_zones(options):
             print(f"| {label} | {outcome(single)} | {outcome(zones)} |", flush=True)
 
 
+def peer_cells(run):
+    per_100 = run["alerts_per_100_flight_hours"]
+    return (f"{run['alerts']} | {'n/a' if per_100 == 'n/a' else f'{per_100:.0f}'} | {share(run)} | "
+            f"{run['detected']} / {run['missed']} / {run['unwarnable']} | {warning(run)}")
+
+
+def median(values):
+    values = sorted(values)
+    return values[(len(values) - 1) // 2] if values else None
+
+
+def peers(options):
+    """kew beside the two baselines of kew-eval --baseline, recording by recording; then
+    the losses the state-based baseline warned of 60 s ahead or more (predictable from
+    straight flight) and kew's warning on them."""
+    header = "alerts | per 100 flight h | undesirable | detected / missed / unwarnable | warning p10 / p50 (s)"
+    rows, predictable = [], []
+    with tempfile.TemporaryDirectory(prefix="kew-quality-") as workdir:
+        for label, path, radar, extra in present_cases(options):
+            result = evaluate(options.kew_eval, path, radar,
+                              extra + ["--list", "--baseline", "statebased", "--baseline", "raw"], [""], workdir)
+            kew, statebased, raw = result["runs"]
+            rows.append((label, kew, statebased, raw))
+            early = [k for k, loss in enumerate(statebased["loss_list"])
+                     if loss["warning_s"] is not None and loss["warning_s"] >= 60]
+            kew_warnings = [kew["loss_list"][k]["warning_s"] for k in early]
+            missed = sum(1 for k in early if kew["loss_list"][k]["outcome"] == "missed")
+            warned = [w for w in kew_warnings if w is not None]
+            predictable.append((label, len(early), missed, len(warned), median(warned),
+                                median([statebased["loss_list"][k]["warning_s"] for k in early])))
+    print(f"| recording | kew: {header} | statebased: {header} | raw: {header} |")
+    print("|---|" + "---:|---:|---:|---|---|" * 3)
+    for label, kew, statebased, raw in rows:
+        print(f"| {label} | {peer_cells(kew)} | {peer_cells(statebased)} | {peer_cells(raw)} |")
+    print()
+    print("| recording | losses statebased warned ≥ 60 s ahead | kew missed of them | kew warned of them | "
+          "kew's median warning (s) | statebased's median warning (s) |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for label, count, missed, warned, kew_median, peer_median in predictable:
+        fmt = lambda v: "n/a" if v is None else f"{v:.0f}"
+        print(f"| {label} | {count} | {missed} | {warned} | {fmt(kew_median)} | {fmt(peer_median)} |")
+
+
 STAGES = ["record_refused", "no_track", "awaiting_velocity", "not_candidate", "probe_clear",
           "one_aircraft_address", "one_aircraft_code", "level_pair", "inhibited", "excluded",
           "confirm_pending", "alerting"]
@@ -156,11 +203,16 @@ def main():
     parser.add_argument("--kew-eval", default=os.path.join(ROOT, "build", "replay", "kew-eval"))
     parser.add_argument("--recordings", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "recordings"))
     parser.add_argument("--zones", action="store_true", help="one plane beside the worldwide zones")
+    parser.add_argument("--peers", action="store_true",
+                        help="kew beside the statebased and raw baselines (kew-eval --baseline)")
     parser.add_argument("--census", action="store_true",
                         help="missed, late and unwarnable losses by stage (kew-eval --explain)")
     options = parser.parse_args()
     if options.census:
         census(options)
+        return
+    if options.peers:
+        peers(options)
         return
     if options.zones:
         compare_zones(options)

@@ -153,7 +153,7 @@ TEST(Eligibility, OneAircraftSeenByTwoSourcesNeverAlertsAgainstItself) {
   EXPECT_EQ(fly({radar, adsb}).opened(), 1u);
 }
 
-TEST(Eligibility, TheSameDiscreteCodeOnColocatedTracksIsOneAircraft) {
+TEST(Eligibility, TheSameDiscreteCodeOnCoincidingTracksIsOneAircraft) {
   Flight radar{"1234", "cat062/25.100"};
   Flight other{"0077", "cat062/25.101"};
   other.north_m = 500.0;
@@ -170,10 +170,50 @@ TEST(Eligibility, TheSameDiscreteCodeOnColocatedTracksIsOneAircraft) {
   off.eligibility.same_code_distance_nm = 0.0;
   radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
   EXPECT_EQ(fly({radar, other}, 40.0, off).opened(), 1u);
+  // One code, 500 m apart, but crossing: the velocities say two aircraft (a duplicated
+  // code), and so does a speed 40 kt apart.
+  Flight crossing = other;
+  crossing.trk_deg = 120.0;
+  EXPECT_EQ(fly({radar, crossing}).opened(), 1u);
+  Flight faster = other;
+  faster.gs_kt = radar.gs_kt + 40.0;
+  EXPECT_EQ(fly({radar, faster}).opened(), 1u);
   // The same discrete code 3 NM apart: two aircraft.
-  radar.edit = other.edit = [](TrackReport& r) { r.mode3a = 04711; };
   other.north_m = 3.0 * 1852.0;
   EXPECT_EQ(fly({radar, other}).opened(), 1u);
+}
+
+TEST(Eligibility, AFormationAlertsHoweverCloseAndAlikeItFlies) {
+  // Two aircraft 0.2 NM apart at one level, one speed and heading, for two minutes: the
+  // most dangerous pair there is. Closeness is no evidence of one aircraft.
+  Flight lead{"4CA123", "adsb"};
+  Flight wing{"4CA124", "adsb"};
+  wing.east_m = 0.2 * 1852.0;
+  lead.edit = [](TrackReport& r) { r.address = 0x4CA123; };
+  wing.edit = [](TrackReport& r) { r.address = 0x4CA124; };
+  EXPECT_EQ(fly({lead, wing}, 120.0).opened(), 1u);
+  // Two radar tracks without addresses or codes, as close and alike: two aircraft too.
+  lead.edit = wing.edit = [](TrackReport&) {};
+  EXPECT_EQ(fly({lead, wing}, 120.0).opened(), 1u);
+  // The same, both squawking one code but one address between them: the code and the
+  // coincidence make them one aircraft; with two addresses they are two whatever the code.
+  lead.edit = [](TrackReport& r) { r.mode3a = 04711; r.address = 0x4CA123; };
+  wing.edit = [](TrackReport& r) { r.mode3a = 04711; };
+  EXPECT_EQ(fly({lead, wing}, 120.0).opened(), 0u);
+  wing.edit = [](TrackReport& r) { r.mode3a = 04711; r.address = 0x4CA124; };
+  EXPECT_EQ(fly({lead, wing}, 120.0).opened(), 1u);
+}
+
+TEST(Eligibility, OneAircraftSeenAsTwoTracksForAMinuteDoesNotAlert) {
+  // Radar and ADS-B tracks of one aircraft (one address) 0.1 NM and 50 ft apart for 60 s.
+  Flight radar{"1234", "cat062/25.100"};
+  Flight adsb{"4CA123", "adsb"};
+  adsb.east_m = 0.1 * 1852.0;
+  adsb.alt_ft = radar.alt_ft + 50.0;
+  radar.edit = adsb.edit = [](TrackReport& r) { r.address = 0x4CA123; };
+  const Outcome run = fly({radar, adsb}, 60.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GE(run.pipeline->suppressed().count("same_aircraft"), 15u);  // every evaluation of 60 s
 }
 
 TEST(Eligibility, ADuplicatedCodeNeverEndsAnOpenAlert) {

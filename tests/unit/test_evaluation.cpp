@@ -50,6 +50,7 @@ struct Flight {
   std::optional<double> gs_kt;  // default: |north_mps| in knots
   bool on_ground = false;
   std::optional<std::uint32_t> address;
+  std::optional<std::uint16_t> mode3a;
 };
 
 std::vector<TrackReport> fly(const Flight& f) {
@@ -66,6 +67,7 @@ std::vector<TrackReport> fly(const Flight& f) {
     r.trk_deg = f.north_mps >= 0 ? 0.0 : 180.0;
     r.on_ground = f.on_ground;
     r.address = f.address;
+    r.mode3a = f.mode3a;
     r.callsign = "CS" + f.id;
     out.push_back(r);
   }
@@ -239,8 +241,10 @@ std::vector<Flight> twins(double seconds, std::optional<std::uint32_t> a = {}, s
   return {x, y};
 }
 
-TEST(Truth, TwoTracksTogetherForAMinuteAreOneAircraft) {
-  const Truth together(records_of(twins(90)));
+TEST(Truth, TwoTracksWithOneCodeTogetherForAMinuteAreOneAircraft) {
+  std::vector<Flight> squawking = twins(90);
+  for (Flight& f : squawking) f.mode3a = 04711;
+  const Truth together(records_of(squawking));
   EXPECT_EQ(together.figures().tracks, 2u);
   EXPECT_EQ(together.figures().aircraft, 1u);
   EXPECT_EQ(together.figures().merged_by_proximity, 1u);
@@ -249,19 +253,31 @@ TEST(Truth, TwoTracksTogetherForAMinuteAreOneAircraft) {
   EXPECT_EQ(together.figures().airborne_seconds, 89);  // flown once (samples kT0 … kT0+88)
 
   // 40 s side by side is not long enough: two aircraft losing separation.
-  const Truth brief(records_of(twins(40)));
+  std::vector<Flight> brief_pair = twins(40);
+  for (Flight& f : brief_pair) f.mode3a = 04711;
+  const Truth brief(records_of(brief_pair));
   EXPECT_EQ(brief.figures().aircraft, 2u);
   ASSERT_EQ(brief.loss_events().size(), 1u);
   EXPECT_EQ(brief.loss_events()[0].start_s, static_cast<std::int64_t>(kT0));
+
+  // Closeness alone is no identity: without a code in common, or with a conspicuity code
+  // (7000) in common, two tracks together for minutes are two aircraft (a formation).
+  const Truth formation_no_codes(records_of(twins(180)));
+  EXPECT_EQ(formation_no_codes.figures().aircraft, 2u);
+  EXPECT_EQ(formation_no_codes.loss_events().size(), 1u);
+  std::vector<Flight> vfr = twins(180);
+  for (Flight& f : vfr) f.mode3a = 07000;
+  EXPECT_EQ(Truth(records_of(vfr)).figures().aircraft, 2u);
 
   // The same address is one aircraft wherever the tracks are; two addresses are two.
   auto apart = twins(40, 0x4CA123, 0x4CA123);
   apart[1].east_m = 50 * kNm;
   EXPECT_EQ(Truth(records_of(apart)).figures().aircraft, 1u);
   EXPECT_EQ(Truth(records_of(apart)).figures().merged_by_address, 1u);
-  const Truth formation(records_of(twins(90, 0x4CA123, 0x4CA124)));
-  EXPECT_EQ(formation.figures().aircraft, 2u);
-  EXPECT_EQ(formation.loss_events().size(), 1u);
+  std::vector<Flight> formation = twins(90, 0x4CA123, 0x4CA124);
+  for (Flight& f : formation) f.mode3a = 04711;
+  EXPECT_EQ(Truth(records_of(formation)).figures().aircraft, 2u);
+  EXPECT_EQ(Truth(records_of(formation)).loss_events().size(), 1u);
 }
 
 TEST(Truth, RefusesUnusableRecordsAndSplitsAtTrackEnd) {
@@ -340,7 +356,10 @@ std::vector<TrackReport> five_pairs() {
   auto low = head_on("G", "H", 11.0);
   low[0].alt_ft = low[1].alt_ft = 1000.0;
   auto same = twins(240);
-  for (Flight& f : same) f.lon0 = 12.0;
+  for (Flight& f : same) {
+    f.lon0 = 12.0;
+    f.mode3a = 04711;  // one code in common: the evidence of one aircraft
+  }
   for (auto* group : {&close, &level, &low, &same}) flights.insert(flights.end(), group->begin(), group->end());
   return records_of(flights);
 }

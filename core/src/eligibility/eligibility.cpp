@@ -55,11 +55,22 @@ bool Rules::same_address(const track::Track& a, const track::Track& b) const {
   return a.address && b.address && *a.address == *b.address;
 }
 
-bool Rules::same_code_colocated(const track::Track& a, const track::Track& b, double distance_m) const {
+namespace {
+/// Positions within the configured distance and altitude, velocities alike.
+bool coincide(const track::Track& a, const track::Track& b, double distance_m, const EligibilityConfig& c) {
+  if (distance_m > c.same_code_distance_nm * kNauticalMile_m || std::abs(a.alt_ft - b.alt_ft) > c.same_code_altitude_ft)
+    return false;
+  if (!a.has_velocity || !b.has_velocity) return false;
+  if (std::abs(a.gs_kt - b.gs_kt) > Rules::kCoincidentSpeed_kt) return false;
+  const double turn = std::abs(std::remainder(a.trk_deg - b.trk_deg, 360.0));
+  return turn <= Rules::kCoincidentTrack_deg;
+}
+}  // namespace
+
+bool Rules::one_aircraft_by_code(const track::Track& a, const track::Track& b, double distance_m) const {
   if (config_.same_code_distance_nm <= 0.0 || (a.address && b.address)) return false;
   if (!a.mode3a || !b.mode3a || *a.mode3a != *b.mode3a || !is_discrete_mode3a(*a.mode3a)) return false;
-  return distance_m <= config_.same_code_distance_nm * kNauticalMile_m &&
-         std::abs(a.alt_ft - b.alt_ft) <= config_.same_code_altitude_ft;
+  return coincide(a, b, distance_m, config_);
 }
 
 bool Rules::level_pair(const track::Track& a, const track::Track& b) const {

@@ -863,7 +863,7 @@ Pipeline::RuleVerdict Pipeline::rule_verdict(const PairKinematics& pair) const {
   // Codes are duplicated: two aircraft with one code that close in on each other must not
   // lose an open alert, so the code rule only keeps one from opening.
   const double distance_m = geometry::norm(pair.kp.position - pair.kq.position) / pair.scale;
-  if (rules_.same_code_colocated(tp, tq, distance_m)) {
+  if (rules_.one_aircraft_by_code(tp, tq, distance_m)) {
     v.rule = PairStage::SameCode;
     return v;
   }
@@ -1012,7 +1012,8 @@ PairNote Pipeline::watched_pair_note(track::TrackSlot slot, std::string_view par
         note.detail = fmt::format("both address {:06X}; {}", tp.address.value_or(0), figures);
         break;
       case PairStage::SameCode:
-        note.detail = fmt::format("both squawk {:04o}, no two addresses; {}", tp.mode3a.value_or(0), figures);
+        note.detail = fmt::format("both squawk {:04o}, no two addresses, positions and velocities alike; {}",
+                                  tp.mode3a.value_or(0), figures);
         break;
       case PairStage::Excluded:
         note.subject = party_label(view_[v.excluded].track.source, view_[v.excluded].track.id);

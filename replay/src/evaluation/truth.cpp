@@ -9,6 +9,8 @@
 
 #include <GeographicLib/Constants.hpp>
 
+#include "kew/eligibility/eligibility.hpp"
+
 namespace kew::replay {
 
 namespace {
@@ -148,6 +150,9 @@ void Truth::add_records(std::span<const TrackReport> records) {
     Track& track = tracks_[it->second];
     if (!r.callsign.empty()) track.info.callsign = r.callsign;
     if (!track.info.address && r.address) track.info.address = r.address;
+    if (r.mode3a && eligibility::is_discrete_mode3a(*r.mode3a) &&
+        std::find(track.codes.begin(), track.codes.end(), *r.mode3a) == track.codes.end())
+      track.codes.push_back(*r.mode3a);
     const double speed = r.gs_kt && std::isfinite(*r.gs_kt) && *r.gs_kt >= 0.0 ? *r.gs_kt : kNaN;
     track.points.push_back({r.t, r.lat_deg, r.lon_deg, r.alt_ft, speed, r.on_ground, r.track_end});
     ++figures_.records;
@@ -318,10 +323,15 @@ void Truth::merge_aircraft(const std::vector<std::pair<std::uint64_t, const Pair
     const bool a_minute = std::any_of(trace->near.begin(), trace->near.end(),
                                       [](const SecondRange& r) { return r.length() >= kOneAircraft_s; });
     if (!a_minute) continue;
-    // Two different addresses are two aircraft, however close (a formation).
-    const auto& x = tracks_[key_first(key)].info.address;
-    const auto& y = tracks_[key_second(key)].info.address;
-    if (x && y && *x != *y) continue;
+    // Two different addresses are two aircraft, however close (a formation), and so are
+    // two tracks without a discrete code in common: closeness is no identity.
+    const Track& tx = tracks_[key_first(key)];
+    const Track& ty = tracks_[key_second(key)];
+    if (tx.info.address && ty.info.address && *tx.info.address != *ty.info.address) continue;
+    const bool shared_code = std::any_of(tx.codes.begin(), tx.codes.end(), [&](std::uint16_t c) {
+      return std::find(ty.codes.begin(), ty.codes.end(), c) != ty.codes.end();
+    });
+    if (!shared_code) continue;
     if (components.join(key_first(key), key_second(key))) ++figures_.merged_by_proximity;
   }
   std::vector<AircraftId> of_root(tracks_.size(), std::numeric_limits<AircraftId>::max());

@@ -5,7 +5,8 @@
 //
 // Three kinds of rule, applied to a pair the conflict test found in conflict:
 //  - one aircraft: two tracks with one address are never in conflict, and the same
-//    discrete code on co-located tracks opens no alert;
+//    discrete code on coinciding tracks opens no alert; closeness alone never makes
+//    two tracks one aircraft;
 //  - level pairs: two level aircraft reported at adjacent levels are separated;
 //  - exclusions: a track that is not an airborne aircraft worth alerting on opens no
 //    alert (an alert already open stays open and ends by its own rules).
@@ -87,12 +88,16 @@ class Rules {
   /// Whether two tracks carry the same 24-bit address: one aircraft, whatever else.
   bool same_address(const track::Track& a, const track::Track& b) const;
   /// Whether two tracks without two addresses (two different addresses are never one
-  /// aircraft) squawk the same discrete Mode 3/A code within same_code_distance_nm and
-  /// same_code_altitude_ft. `distance_m` is their current horizontal distance (m, on the
-  /// ellipsoid). Weaker evidence than an address (codes are duplicated): the pipeline
-  /// uses it only for pairs without an open alert.
-  bool same_code_colocated(const track::Track& a, const track::Track& b, double distance_m) const;
-
+  /// aircraft) squawk the same discrete Mode 3/A code and coincide: within
+  /// same_code_distance_nm and same_code_altitude_ft, ground speeds within
+  /// kCoincidentSpeed_kt and track angles within kCoincidentTrack_deg. `distance_m` is
+  /// their current horizontal distance (m, on the ellipsoid). Weaker evidence than an
+  /// address (codes are duplicated): the pipeline uses it only for pairs without an open
+  /// alert. Closeness alone is never evidence: a formation flies close and alike.
+  bool one_aircraft_by_code(const track::Track& a, const track::Track& b, double distance_m) const;
+  /// Velocities within these are alike (the one-aircraft rules).
+  static constexpr double kCoincidentSpeed_kt = 30.0;
+  static constexpr double kCoincidentTrack_deg = 15.0;
   /// Whether two tracks are level (|vertical rate| < level_rate_fpm, or a rate derived
   /// from altitudes one 25 ft step apart; the rate known: reported or derived,
   /// Track::vertical_rate_known) and reported at adjacent levels (|Δaltitude| ≥ S_v −

@@ -31,7 +31,7 @@ enum class PairStage : std::uint8_t {
                      ///< or no zone holds both aircraft
   ProbeClear,        ///< the conflict test finds no conflict within the look-ahead
   SameAddress,       ///< one aircraft: both tracks carry one 24-bit address
-  SameCode,          ///< one aircraft by the code rule (design §4.5)
+  SameCode,          ///< one aircraft: one discrete code on coinciding tracks (design §4.5)
   LevelPair,         ///< two level aircraft at adjacent levels
   Inhibited,         ///< a party in an inhibition volume
   Excluded,          ///< a party may not open an alert (the rule and its value)

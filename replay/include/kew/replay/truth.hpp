@@ -13,8 +13,9 @@
 // ground and is at or above 1,500 ft. Two airborne samples of one second lose
 // separation when they are closer than S_h horizontally and than S_v − 200 ft
 // vertically (the altimetry tolerance: 975 ft apart at adjacent levels is separated).
-// Tracks that are one aircraft (the same 24-bit address, or within 1 NM and 300 ft for
-// a minute) never lose separation against each other. A loss event is a run of loss
+// Tracks that are one aircraft (the same 24-bit address, or a discrete Mode 3/A code in
+// common and within 1 NM and 300 ft for a minute, without two addresses) never lose
+// separation against each other; closeness alone is no identity (a formation). A loss event is a run of loss
 // seconds of one pair of aircraft.
 
 #include <cstddef>
@@ -48,7 +49,8 @@ inline constexpr double kMaxPlausibleAltitude_ft = 60000.0;
 inline constexpr double kLowerLimit_ft = 1500.0;
 /// Vertical separation is lost below S_v minus this (ft).
 inline constexpr double kAltimetryTolerance_ft = 200.0;
-/// Two tracks closer than these for kOneAircraft_s consecutive seconds are one aircraft.
+/// Two tracks with a discrete code in common (and not two addresses) closer than these
+/// for kOneAircraft_s consecutive seconds are one aircraft.
 inline constexpr double kOneAircraftHorizontal_m = kNauticalMile_m;
 inline constexpr double kOneAircraftVertical_ft = 300.0;
 inline constexpr std::int64_t kOneAircraft_s = 60;
@@ -129,7 +131,7 @@ struct TruthFigures {
   std::size_t tracks = 0;
   std::size_t aircraft = 0;           ///< tracks after the one-aircraft merges
   std::size_t merged_by_address = 0;  ///< merges (track pairs joined) by a shared address
-  std::size_t merged_by_proximity = 0;///< merges by the 1 NM / 300 ft / 60 s rule
+  std::size_t merged_by_proximity = 0;///< merges by the code and 1 NM / 300 ft / 60 s rule
   std::int64_t airborne_seconds = 0;  ///< Σ over aircraft (tracks of one aircraft once)
   double flight_hours() const { return static_cast<double>(airborne_seconds) / 3600.0; }
 };
@@ -191,6 +193,7 @@ class Truth {
     std::vector<Point> points;
     std::vector<Run> runs;
     std::vector<SecondRange> airborne;
+    std::vector<std::uint16_t> codes;  // the discrete Mode 3/A codes reported, distinct
     AircraftId aircraft = 0;
   };
   struct PairTrace {  // of a pair of tracks, then of a pair of aircraft
