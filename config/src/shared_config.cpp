@@ -104,6 +104,8 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
   r.number("max_altitude_ft", e.max_altitude_ft, -5000.0, 200000.0);
   if (e.min_altitude_ft >= e.max_altitude_ft) r.fail(nullptr, "min_altitude_ft must be below max_altitude_ft");
   r.number("lower_limit_ft", e.lower_limit_ft, 0.0, 100000.0);
+  r.number("aerodrome_height_ft", e.aerodrome_height_ft, 0.0, 10000.0);
+  r.number("aerodrome_radius_nm", e.aerodrome_radius_nm, 0.1, 50.0);
   r.mode3a_list("excluded_mode3a", e.excluded_mode3a);
   for (const std::uint16_t code : e.excluded_mode3a)
     if (!eligibility::may_exclude_mode3a(code))

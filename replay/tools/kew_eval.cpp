@@ -119,6 +119,7 @@ kew::config::SharedConfig without_eligibility(kew::config::SharedConfig config) 
   e.min_altitude_ft = -infinity;
   e.max_altitude_ft = infinity;
   e.lower_limit_ft = 0.0;
+  e.aerodrome_height_ft = 0.0;
   e.excluded_mode3a.clear();
   e.exclude_coasting = false;
   e.max_position_age_s = infinity;

@@ -49,6 +49,7 @@ TEST(Eligibility, NoAlertOpensBelowTheLowerLimit) {
   EXPECT_EQ(fly(head_on(2000.0, 2200.0)).opened(), 1u);
   PipelineConfig disabled;
   disabled.eligibility.lower_limit_ft = 0.0;
+  disabled.eligibility.aerodrome_height_ft = 0.0;
   EXPECT_EQ(fly(head_on(1000.0, 1200.0), 40.0, disabled).opened(), 1u);
 }
 

@@ -39,9 +39,22 @@ Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& min
   std::erase_if(config_.excluded_mode3a, [](std::uint16_t c) { return !may_exclude_mode3a(c); });
 }
 
+double Rules::lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** aerodrome) const {
+  if (aerodrome) *aerodrome = nullptr;
+  double limit = config_.lower_limit_ft;
+  if (config_.aerodrome_height_ft <= 0.0) return limit;
+  const Aerodrome* near =
+      AerodromeIndex::bundled().nearest(lat_deg, lon_deg, config_.aerodrome_radius_nm * kNauticalMile_m);
+  if (near && near->elevation_ft + config_.aerodrome_height_ft > limit) {
+    limit = near->elevation_ft + config_.aerodrome_height_ft;
+    if (aerodrome) *aerodrome = near;
+  }
+  return limit;
+}
+
 Exclusion Rules::exclusion(const track::Track& t, double now) const {
   if (t.alt_ft < config_.min_altitude_ft || t.alt_ft > config_.max_altitude_ft) return Exclusion::AltitudeBand;
-  if (config_.lower_limit_ft > 0.0 && t.alt_ft < config_.lower_limit_ft) return Exclusion::BelowLowerLimit;
+  if (t.alt_ft < lower_limit_at(t.lat_deg, t.lon_deg)) return Exclusion::BelowLowerLimit;
   if (t.gs_kt < config_.min_ground_speed_kt) return Exclusion::Slow;
   if (t.mode3a && std::find(config_.excluded_mode3a.begin(), config_.excluded_mode3a.end(), *t.mode3a) !=
                       config_.excluded_mode3a.end())

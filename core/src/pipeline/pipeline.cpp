@@ -916,7 +916,7 @@ void Pipeline::note_watched_pairs(track::TrackSlot slot) {
 
 namespace {
 std::string exclusion_detail(eligibility::Exclusion why, const track::Track& t, double now,
-                             const eligibility::EligibilityConfig& c) {
+                             const eligibility::EligibilityConfig& c, const eligibility::Rules& rules) {
   const std::string who = party_label(t.source, t.id);
   switch (why) {
     case eligibility::Exclusion::Slow:
@@ -924,8 +924,14 @@ std::string exclusion_detail(eligibility::Exclusion why, const track::Track& t, 
     case eligibility::Exclusion::AltitudeBand:
       return fmt::format("{} at {:.0f} ft, outside {:.0f}..{:.0f} ft", who, t.alt_ft, c.min_altitude_ft,
                          c.max_altitude_ft);
-    case eligibility::Exclusion::BelowLowerLimit:
-      return fmt::format("{} at {:.0f} ft, below the lower limit {:.0f} ft", who, t.alt_ft, c.lower_limit_ft);
+    case eligibility::Exclusion::BelowLowerLimit: {
+      const eligibility::Aerodrome* aerodrome = nullptr;
+      const double limit = rules.lower_limit_at(t.lat_deg, t.lon_deg, &aerodrome);
+      return aerodrome ? fmt::format("{} at {:.0f} ft, below the lower limit {:.0f} ft ({:.0f} ft above {}, {:.0f} ft)",
+                                     who, t.alt_ft, limit, c.aerodrome_height_ft, aerodrome->ident,
+                                     aerodrome->elevation_ft)
+                       : fmt::format("{} at {:.0f} ft, below the lower limit {:.0f} ft", who, t.alt_ft, limit);
+    }
     case eligibility::Exclusion::ExcludedCode:
       return fmt::format("{} squawks {:04o}", who, t.mode3a.value_or(0));
     case eligibility::Exclusion::Coasting:
@@ -1018,7 +1024,7 @@ PairNote Pipeline::watched_pair_note(track::TrackSlot slot, std::string_view par
       case PairStage::Excluded:
         note.subject = party_label(view_[v.excluded].track.source, view_[v.excluded].track.id);
         note.detail = fmt::format("{}: {}", eligibility::kExclusionNames.name(v.exclusion),
-                                  exclusion_detail(v.exclusion, view_[v.excluded].track, judged_at_, config_.eligibility));
+                                  exclusion_detail(v.exclusion, view_[v.excluded].track, judged_at_, config_.eligibility, rules_));
         break;
       default:
         note.detail = figures;

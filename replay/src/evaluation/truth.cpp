@@ -129,6 +129,13 @@ Truth::Truth(std::span<const TrackReport> records, SeparationStandard standard) 
   build_losses(traces);
 }
 
+// The truth's lower limit at a position (TruthSample::lower_limit_ft).
+static double lower_limit_at(double lat_deg, double lon_deg) {
+  const eligibility::Aerodrome* aerodrome =
+      eligibility::AerodromeIndex::bundled().nearest(lat_deg, lon_deg, kAerodromeRadius_m);
+  return aerodrome ? std::max(kLowerLimit_ft, aerodrome->elevation_ft + kAerodromeHeight_ft) : kLowerLimit_ft;
+}
+
 void Truth::add_records(std::span<const TrackReport> records) {
   std::string key;
   for (const TrackReport& r : records) {
@@ -154,7 +161,8 @@ void Truth::add_records(std::span<const TrackReport> records) {
         std::find(track.codes.begin(), track.codes.end(), *r.mode3a) == track.codes.end())
       track.codes.push_back(*r.mode3a);
     const double speed = r.gs_kt && std::isfinite(*r.gs_kt) && *r.gs_kt >= 0.0 ? *r.gs_kt : kNaN;
-    track.points.push_back({r.t, r.lat_deg, r.lon_deg, r.alt_ft, speed, r.on_ground, r.track_end});
+    track.points.push_back({r.t, r.lat_deg, r.lon_deg, r.alt_ft, speed, lower_limit_at(r.lat_deg, r.lon_deg),
+                            r.on_ground, r.track_end});
     ++figures_.records;
   }
   figures_.tracks = tracks_.size();
@@ -205,7 +213,7 @@ TruthSample Truth::interpolate(const Track& track, const Run& run, std::uint32_t
   const auto s = static_cast<double>(second);
   TruthSample out;
   if (segment + 1 >= run.end || s <= p.t) {
-    out = {p.lat, p.lon, p.alt, p.speed_kt, p.on_ground, false};
+    out = {p.lat, p.lon, p.alt, p.speed_kt, p.on_ground, false, p.lower_limit_ft};
   } else {
     const Point& q = track.points[segment + 1];
     const double f = (s - p.t) / (q.t - p.t);
@@ -221,10 +229,11 @@ TruthSample Truth::interpolate(const Track& track, const Run& run, std::uint32_t
     else
       out.speed_kt = p.speed_kt + f * (q.speed_kt - p.speed_kt);
     out.on_ground = f <= 0.5 ? p.on_ground : q.on_ground;
+    out.lower_limit_ft = f <= 0.5 ? p.lower_limit_ft : q.lower_limit_ft;
   }
   // NaN speed compares false: a target whose speed is unknown is not shown to fly.
   out.airborne = out.speed_kt >= kMinAirborneSpeed_kt && out.alt_ft >= kMinPlausibleAltitude_ft &&
-                 out.alt_ft <= kMaxPlausibleAltitude_ft && !out.on_ground && out.alt_ft >= kLowerLimit_ft;
+                 out.alt_ft <= kMaxPlausibleAltitude_ft && !out.on_ground && out.alt_ft >= out.lower_limit_ft;
   return out;
 }
 

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "kew/eligibility/aerodromes.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/name_table.hpp"
@@ -30,9 +31,17 @@ struct EligibilityConfig {
   /// bad altitude, not an aircraft.
   double min_altitude_ft = -1000.0;
   double max_altitude_ft = 60000.0;
-  /// Below this altitude no alert opens (ft, ≥ 0; 0 disables): aerodrome traffic,
-  /// which STCA leaves to the aerodrome controller.
+  /// Below this altitude no alert opens (ft above mean sea level, ≥ 0; 0 disables):
+  /// aerodrome traffic, which STCA leaves to the aerodrome controller.
   double lower_limit_ft = 1500.0;
+  /// ... nor below this height above the nearest aerodrome within aerodrome_radius_nm
+  /// (ft, ≥ 0; 0 disables), where that is higher: the lower limit at an aerodrome 2,300 ft
+  /// above the sea is 3,300 ft. 1,000 ft is the usual circuit height, the ceiling of
+  /// aerodrome traffic; 1,500 ft above the sea keeps a sea-level aerodrome's.
+  double aerodrome_height_ft = 1000.0;
+  /// The aerodromes (bundled, AerodromeIndex::bundled()) whose elevation counts: within
+  /// this distance (NM, (0, 50]) of the track.
+  double aerodrome_radius_nm = 5.0;
   /// Mode 3/A codes whose tracks open no alert (12-bit values; 7777 = a test
   /// transponder). 7500, 7600 and 7700 are never excluded (see may_exclude_mode3a).
   std::vector<std::uint16_t> excluded_mode3a = {07777};
@@ -54,7 +63,7 @@ enum class Exclusion : std::uint8_t {
   None,
   Slow,             ///< below min_ground_speed_kt
   AltitudeBand,     ///< outside [min_altitude_ft, max_altitude_ft]
-  BelowLowerLimit,  ///< below lower_limit_ft
+  BelowLowerLimit,  ///< below Rules::lower_limit_at()
   ExcludedCode,     ///< Mode 3/A in excluded_mode3a
   Coasting,         ///< the source extrapolates the track
   PositionStale,    ///< no record for max_position_age_s
@@ -81,6 +90,11 @@ class Rules {
   /// `minima`: those of the conflict test; level pairs are judged against S_v and its
   /// altimetry tolerance.
   Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima);
+
+  /// The lower limit at (lat, lon) (ft above mean sea level): lower_limit_ft, or the
+  /// nearest aerodrome's elevation plus aerodrome_height_ft where that is higher; the
+  /// aerodrome, if it sets the limit, in `aerodrome`.
+  double lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** aerodrome = nullptr) const;
 
   /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
   Exclusion exclusion(const track::Track& t, double now) const;

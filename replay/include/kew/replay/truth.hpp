@@ -10,7 +10,8 @@
 // Per track (source + id) the positions are interpolated linearly between consecutive
 // records at most 20 s apart, never extrapolated, and sampled at every whole UTC second.
 // A sample is airborne when it flies (≥ 50 kt), has a plausible altitude, is not on the
-// ground and is at or above 1,500 ft. Two airborne samples of one second lose
+// ground and is at or above 1,500 ft and 1,000 ft above the nearest aerodrome within
+// 5 NM (kew's bundled table of aerodrome elevations). Two airborne samples of one second lose
 // separation when they are closer than S_h horizontally and than S_v − 200 ft
 // vertically (the altimetry tolerance: 975 ft apart at adjacent levels is separated).
 // Tracks that are one aircraft (the same 24-bit address, or a discrete Mode 3/A code in
@@ -45,8 +46,13 @@ inline constexpr double kMinAirborneSpeed_kt = 50.0;
 /// ... a plausible altitude (ft) ...
 inline constexpr double kMinPlausibleAltitude_ft = -1000.0;
 inline constexpr double kMaxPlausibleAltitude_ft = 60000.0;
-/// ... and at or above this altitude (ft): aerodrome traffic is separated visually.
+/// ... and at or above this altitude (ft): aerodrome traffic is separated visually ...
 inline constexpr double kLowerLimit_ft = 1500.0;
+/// ... and at or above this height (ft) above the nearest aerodrome within
+/// kAerodromeRadius_m (kew's bundled table, eligibility::AerodromeIndex), the usual
+/// circuit height: the traffic of an aerodrome 2,300 ft above the sea flies below 3,300 ft.
+inline constexpr double kAerodromeHeight_ft = 1000.0;
+inline constexpr double kAerodromeRadius_m = 5.0 * kNauticalMile_m;
 /// Vertical separation is lost below S_v minus this (ft).
 inline constexpr double kAltimetryTolerance_ft = 200.0;
 /// Two tracks with a discrete code in common (and not two addresses) closer than these
@@ -103,6 +109,9 @@ struct TruthSample {
   double speed_kt = 0.0;  ///< reported ground speed, else derived; NaN when unknown
   bool on_ground = false; ///< the nearer record's flag
   bool airborne = false;  ///< by the rules above
+  /// The lower limit there (ft): kLowerLimit_ft, or the nearest aerodrome's elevation
+  /// plus kAerodromeHeight_ft where higher (the nearer record's position).
+  double lower_limit_ft = truth_rules::kLowerLimit_ft;
 };
 
 /// Inclusive range of whole UTC seconds.
@@ -182,6 +191,7 @@ class Truth {
  private:
   struct Point {  // one usable record, in the units of TrackReport
     double t, lat, lon, alt, speed_kt;  // speed_kt: reported, else derived, else NaN
+    double lower_limit_ft;              // at its position: TruthSample::lower_limit_ft
     bool on_ground, track_end;
   };
   struct Run {  // records [begin, end) with gaps ≤ kMaxGap_s; samples [first_s, last_s]

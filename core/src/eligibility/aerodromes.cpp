@@ -1,0 +1,55 @@
+#include "kew/eligibility/aerodromes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kew/geo/projection.hpp"
+
+namespace kew::eligibility {
+
+namespace {
+constexpr double kMetresPerDegree = 111000.0;  // below the meridian's 111,694 m at the poles
+int lat_cell_of(double lat) { return std::clamp(static_cast<int>(std::floor(lat)), -90, 89); }
+int lon_cell_of(double lon) { return std::clamp(static_cast<int>(std::floor(lon)), -180, 179); }
+}  // namespace
+
+AerodromeIndex::AerodromeIndex(std::span<const Aerodrome> aerodromes) : aerodromes_(aerodromes) {
+  for (std::uint32_t i = 0; i < aerodromes_.size(); ++i)
+    cells_[cell(lat_cell_of(aerodromes_[i].lat_deg), lon_cell_of(aerodromes_[i].lon_deg))].push_back(i);
+}
+
+const AerodromeIndex& AerodromeIndex::bundled() {
+  static const AerodromeIndex index(bundled_aerodromes());
+  return index;
+}
+
+const Aerodrome* AerodromeIndex::nearest(double lat_deg, double lon_deg, double radius_m) const {
+  const double dlat = radius_m / kMetresPerDegree;
+  const double cos_lat = std::cos(std::min(89.0, std::abs(lat_deg) + dlat) * M_PI / 180.0);
+  const double dlon = std::min(180.0, dlat / std::max(cos_lat, 1e-3));
+  const Aerodrome* best = nullptr;
+  double best_m = radius_m;
+  std::uint32_t best_index = 0;
+  for (int la = lat_cell_of(lat_deg - dlat); la <= lat_cell_of(lat_deg + dlat); ++la) {
+    const int lon_cells = dlon >= 180.0 ? 360 : 2 * static_cast<int>(std::ceil(dlon)) + 1;
+    const int first = lon_cell_of(lon_deg) - lon_cells / 2;
+    for (int k = 0; k < std::min(lon_cells, 360); ++k) {
+      int lo = first + k;
+      lo = (lo + 180 + 360) % 360 - 180;  // across the antimeridian
+      const auto it = cells_.find(cell(la, lo));
+      if (it == cells_.end()) continue;
+      for (const std::uint32_t i : it->second) {
+        const Aerodrome& a = aerodromes_[i];
+        const double d = geo::Projection::geodesic_distance_m({lat_deg, lon_deg}, {a.lat_deg, a.lon_deg});
+        if (d < best_m || (d == best_m && best && i < best_index)) {
+          best = &a;
+          best_m = d;
+          best_index = i;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace kew::eligibility
