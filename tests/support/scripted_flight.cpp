@@ -26,7 +26,7 @@ TrackReport Flight::at(double t) const {
 
   const auto& wgs84 = GeographicLib::Geodesic::WGS84();
   double lat0, lon0, lat, lon;
-  wgs84.Direct(50.0, 8.0, 90.0, east_m + east, lat0, lon0);
+  wgs84.Direct(lat0_deg, lon0_deg, 90.0, east_m + east, lat0, lon0);
   wgs84.Direct(lat0, lon0, 0.0, north_m + north, lat, lon);
   TrackReport r;
   r.t = t;

@@ -15,11 +15,13 @@ inline constexpr double kT0 = 1714400000.0;
 inline constexpr double kKnot = 1852.0 / 3600.0;  // m/s
 
 /// One aircraft's records: at t = kT0 it is `east_m` east and `north_m` north of
-/// (50° N, 8° E), flying `trk_deg` at `gs_kt`; for the first `turn_s` seconds it turns at
+/// (lat0_deg, lon0_deg), by default (50° N, 8° E), flying `trk_deg` at `gs_kt`; for the first `turn_s` seconds it turns at
 /// `turn_dps` (deg/s, positive right), then flies straight on.
 struct Flight {
   std::string id;
   std::string source = "test";
+  double lat0_deg = 50.0;  ///< the origin that east_m and north_m are counted from
+  double lon0_deg = 8.0;
   double east_m = 0.0;
   double north_m = 0.0;
   double alt_ft = 35000.0;

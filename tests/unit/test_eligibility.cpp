@@ -53,6 +53,45 @@ TEST(Eligibility, NoAlertOpensBelowTheLowerLimit) {
   EXPECT_EQ(fly(head_on(1000.0, 1200.0), 40.0, disabled).opened(), 1u);
 }
 
+// Granada (LEGA), 2,297 ft above the sea: terminal traffic 8 NM apart head-on at 200 kt,
+// centred on the aerodrome, loses separation 27 s after the first records.
+std::vector<Flight> over_granada(double alt_ft) {
+  std::vector<Flight> pair = head_on(alt_ft, alt_ft);
+  for (Flight& f : pair) {
+    f.lat0_deg = 37.1332;
+    f.lon0_deg = -3.6357;
+    f.gs_kt = 200.0;
+    f.east_m = f.east_m / 10.0 * 4.0;  // ±4 NM
+  }
+  return pair;
+}
+
+TEST(Eligibility, TheLowerLimitStandsAboveTheNearestAerodrome) {
+  // 3,500 ft is 1,200 ft above Granada: above its aerodrome traffic, alerted as early as
+  // the same geometry at FL200 far from any aerodrome.
+  const Outcome terminal = fly(over_granada(3500.0), 60.0);
+  std::vector<Flight> en_route = over_granada(20000.0);
+  for (Flight& f : en_route) {
+    f.lat0_deg = 50.0;
+    f.lon0_deg = 8.0;
+  }
+  const Outcome high = fly(en_route, 60.0);
+  ASSERT_EQ(terminal.opened(), 1u);
+  ASSERT_EQ(high.opened(), 1u);
+  EXPECT_EQ(terminal.first_opened_t(), high.first_opened_t());
+  EXPECT_EQ(terminal.first_opened_t(), kT0 + 4.0);  // the second evaluation with both seen
+  // 3,000 ft there is 700 ft above the runway, in the circuit: no alert, though it is
+  // 1,500 ft above the sea.
+  const Outcome circuit = fly(over_granada(3000.0), 60.0);
+  EXPECT_EQ(circuit.opened(), 0u);
+  EXPECT_GT(circuit.pipeline->suppressed().count("below_lower_limit"), 0u);
+  EXPECT_DOUBLE_EQ(circuit.pipeline->config().eligibility.aerodrome_height_ft, 1000.0);
+  // The height switched off: 1,500 ft above the sea is the only limit.
+  PipelineConfig sea_level;
+  sea_level.eligibility.aerodrome_height_ft = 0.0;
+  EXPECT_EQ(fly(over_granada(3000.0), 60.0, sea_level).opened(), 1u);
+}
+
 TEST(Eligibility, AltitudesOutsideTheBandAreNotAircraft) {
   const Outcome run = fly(head_on(71900.0, 71900.0), 40.0);
   EXPECT_EQ(run.opened(), 0u);
