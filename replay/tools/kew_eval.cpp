@@ -52,6 +52,7 @@ struct Options {
   bool json = false;
   bool list = false;
   bool explain = false;
+  double late_s = kew::replay::explanation_rules::kLateWarning_s;
   double h_nm = 5.0;
   double v_ft = 1000.0;
   std::vector<std::string> files;
@@ -359,7 +360,7 @@ Census census_of(const Column& c) {
   return census;
 }
 
-void print_explanations(const Truth& truth, const std::vector<Column>& columns) {
+void print_explanations(const Truth& truth, const std::vector<Column>& columns, double late_s) {
   std::string out;
   for (const Column& c : columns) {
     if (c.from_log) continue;
@@ -374,7 +375,7 @@ void print_explanations(const Truth& truth, const std::vector<Column>& columns) 
       }
     }
     out += fmt::format("[{}] census of {} missed, late (< {} s) and unwarnable losses by stage\n", c.name,
-                       c.explanations.size(), fixed(kew::replay::explanation_rules::kLateWarning_s, 0));
+                       c.explanations.size(), fixed(late_s, 0));
     out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", "stage", "missed", "late", "unwarnable");
     for (const auto& [stage, counts] : census_of(c))
       out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", kew::kPairStageNames.name(stage), counts[0], counts[1],
@@ -636,8 +637,11 @@ int main(int argc, char** argv) {
   app.add_flag("--json", options.json, "print one JSON object instead of the table");
   app.add_flag("--list", options.list, "list every alert and every loss with its class (in the JSON with --json)");
   app.add_flag("--explain", options.explain,
-               "explain every missed, late (warned < 20 s ahead) and unwarnable loss: the stage that kept kew from "
-               "alerting earlier, with its evidence, and a census by stage (in the JSON with --json)");
+               "explain every missed, late (warned < --late-s ahead) and unwarnable loss: the stage that kept kew "
+               "from alerting earlier, with its evidence, and a census by stage (in the JSON with --json)");
+  app.add_option("--late-s", options.late_s, "with --explain: a loss warned less than this ahead is late, s")
+      ->default_val(kew::replay::explanation_rules::kLateWarning_s)
+      ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--h-nm", options.h_nm, "horizontal separation minimum of the truth, NM")
       ->default_val(5.0)
       ->check(CLI::Range(0.001, 100.0));
@@ -708,7 +712,8 @@ int main(int argc, char** argv) {
       c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
       if (options.explain)
         c.explanations = kew::replay::explain_losses(truth, c.evaluation, c.alerts, config.pipeline, run,
-                                                     kew::replay::losses_to_explain(c.evaluation));
+                                                     kew::replay::losses_to_explain(c.evaluation, options.late_s),
+                                                     options.late_s);
     };
     if (c.baseline == "statebased") {
       c.alerts = kew::replay::state_based_alerts(records);
@@ -742,7 +747,7 @@ int main(int argc, char** argv) {
     print_json(options, truth, columns);
   } else {
     if (options.list) print_list(truth, columns);
-    if (options.explain) print_explanations(truth, columns);
+    if (options.explain) print_explanations(truth, columns, options.late_s);
     print_table(options, truth, columns);
   }
   std::fflush(stdout);

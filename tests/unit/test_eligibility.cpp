@@ -384,6 +384,32 @@ TEST(Eligibility, OneAltitudeStepBetweenRadarRecordsIsLevel) {
   EXPECT_FALSE(rules.level_pair(a, b));
 }
 
+TEST(Eligibility, OneStepEveryScanTheSameWayIsADescentNotLevel) {
+  // upc-bcn-cat048 08:07–08:11Z: VLG4LY descending in trail 825–900 ft below KLM97C, one
+  // 25 ft step a scan, read as level: its alert ended and reopened five times, and its
+  // loss was warned 36 s ahead instead of 2 minutes.
+  std::vector<Flight> trail = head_on(4150.0, 3300.0);
+  trail[0].vr_fpm = -375.0;  // 25 ft every 4 s, towards B
+  for (Flight& f : trail) f.edit = [](TrackReport& r) { r.vr_fpm.reset(); };
+  const Outcome run = fly(trail, 60.0);
+  EXPECT_EQ(run.opened(), 1u);
+  // Only at its first step, which one record cannot tell from quantisation.
+  EXPECT_LE(run.pipeline->suppressed().count("level_pair"), 1u);
+  // The rule on its own: the step before went the same way.
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  track::Track a, b;
+  a.alt_ft = 4125.0;
+  b.alt_ft = 3300.0;
+  a.vertical_rate_known = b.vertical_rate_known = true;
+  a.vertical_rate_derived = true;
+  a.altitude_step_ft = 25.0;
+  a.altitude_change_ft = -25.0;
+  a.vr_fpm = -375.0;
+  EXPECT_TRUE(rules.level_pair(a, b));
+  a.altitude_moving_one_way = true;
+  EXPECT_FALSE(rules.level_pair(a, b));
+}
+
 TEST(Eligibility, ARefusedLastRecordStillEndsTheTrack) {
   Flight a{"1234", "cat062/25.100"};
   Pipeline pipeline;

@@ -94,7 +94,8 @@ bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   // quantum step, none (not level) otherwise.
   const auto level_rate = [&](const track::Track& t) -> std::optional<double> {
     if (std::abs(t.vr_fpm) < config_.level_rate_fpm) return t.vr_fpm;
-    if (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft && std::abs(t.vr_fpm) <= kQuantumRate_fpm)
+    if (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft && std::abs(t.vr_fpm) <= kQuantumRate_fpm &&
+        !t.altitude_moving_one_way)
       return 0.0;
     return std::nullopt;
   };

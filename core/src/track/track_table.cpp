@@ -150,6 +150,10 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   bool vertical_rate_known = false;
   bool vertical_rate_derived = false;
   double altitude_step_ft = 0.0;
+  // Successive altitude changes one way are a climb or descent, however small each step.
+  const double altitude_change_ft = can_derive ? r.alt_ft - previous->alt_ft : 0.0;
+  const bool altitude_moving_one_way =
+      can_derive && altitude_change_ft != 0.0 && previous->altitude_change_ft * altitude_change_ft > 0.0;
   if (r.vr_fpm) {
     vertical_rate_mps = *r.vr_fpm * kFpmToMps;
     vertical_rate_known = true;
@@ -201,6 +205,8 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.vertical_rate_known = vertical_rate_known;
   track.vertical_rate_derived = vertical_rate_derived;
   track.altitude_step_ft = altitude_step_ft;
+  track.altitude_change_ft = altitude_change_ft;
+  track.altitude_moving_one_way = altitude_moving_one_way;
   track.vr_fpm = vertical_rate_mps / kFpmToMps;
   if (r.gs_kt && r.trk_deg) {
     track.gs_kt = *r.gs_kt;

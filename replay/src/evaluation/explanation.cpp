@@ -8,15 +8,14 @@
 
 namespace kew::replay {
 
-using explanation_rules::kLateWarning_s;
 using explanation_rules::kLeadIn_s;
 
-std::vector<std::size_t> losses_to_explain(const Evaluation& evaluation) {
+std::vector<std::size_t> losses_to_explain(const Evaluation& evaluation, double late_s) {
   std::vector<std::size_t> out;
   for (std::size_t k = 0; k < evaluation.losses.size(); ++k) {
     const ScoredLoss& s = evaluation.losses[k];
     // An unwarnable loss kew warned of in time anyway needs no explanation.
-    if (!s.warning_s || *s.warning_s < kLateWarning_s) out.push_back(k);
+    if (!s.warning_s || *s.warning_s < late_s) out.push_back(k);
   }
   return out;
 }
@@ -61,11 +60,12 @@ std::vector<StageSpan> spans_of(const std::vector<PairNote>& notes) {
 
 /// The decisive stage of the notes before the cutoff (design §4.10): the stage before
 /// the run of conflicting evaluations that ended in the alert (or held at the end),
-/// unless that run began early enough to warn kLateWarning_s ahead: then confirmation
+/// unless that run began early enough to warn `late_s` ahead: then confirmation
 /// delayed the alert. Without such a run, the stage held at most updates from
-/// kLateWarning_s before the loss on. Refused records decide where the pair had no
+/// `late_s` before the loss on. Refused records decide where the pair had no
 /// track to judge.
-void decide(LossExplanation& out, const std::vector<PairNote>& notes, const LossEvent& loss, double end) {
+void decide(LossExplanation& out, const std::vector<PairNote>& notes, const LossEvent& loss, double end,
+            double late_s) {
   const double start = static_cast<double>(loss.start_s);
   std::vector<const PairNote*> judged;  // the alert stage's notes, refusals aside
   std::vector<const PairNote*> refusals;
@@ -83,7 +83,7 @@ void decide(LossExplanation& out, const std::vector<PairNote>& notes, const Loss
   const PairNote* decisive = nullptr;
   if (streak < judged.size()) {
     const PairNote& first_conflict = *judged[streak];
-    if (first_conflict.t <= start - kLateWarning_s) {
+    if (first_conflict.t <= start - late_s) {
       out.stage = PairStage::ConfirmPending;
       out.reason = fmt::format("in conflict {:.0f} s before the loss, {:.0f} s and {} evaluations before it opened: {}",
                                start - first_conflict.t, std::min(end, static_cast<double>(loss.end_s)) - first_conflict.t,
@@ -100,7 +100,7 @@ void decide(LossExplanation& out, const std::vector<PairNote>& notes, const Loss
   } else {
     std::map<PairStage, std::size_t> held;
     for (const PairNote* n : judged)
-      if (n->t >= start - kLateWarning_s) ++held[n->stage];
+      if (n->t >= start - late_s) ++held[n->stage];
     if (held.empty()) {
       decisive = judged.back();
     } else {
@@ -131,7 +131,8 @@ void decide(LossExplanation& out, const std::vector<PairNote>& notes, const Loss
 
 std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation& evaluation,
                                             std::span<const AlertSpan> alerts, const PipelineConfig& config,
-                                            std::span<const TrackReport> records, std::span<const std::size_t> losses) {
+                                            std::span<const TrackReport> records, std::span<const std::size_t> losses,
+                                            double late_s) {
   PairWatch watch;
   const double lookahead = config.minima.lookahead_s;
   for (const std::size_t k : losses) {
@@ -187,7 +188,7 @@ std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation
     for (const PairNote& n : watch.pair(i).notes)
       if (n.t < end) notes.push_back(n);
     e.spans = spans_of(notes);
-    decide(e, notes, loss, end);
+    decide(e, notes, loss, end, late_s);
     out.push_back(std::move(e));
   }
   return out;

@@ -113,7 +113,8 @@ class Rules {
   static constexpr double kCoincidentSpeed_kt = 30.0;
   static constexpr double kCoincidentTrack_deg = 15.0;
   /// Whether two tracks are level (|vertical rate| < level_rate_fpm, or a rate derived
-  /// from altitudes one 25 ft step apart; the rate known: reported or derived,
+  /// from altitudes one 25 ft step apart unless the step before went the same way: a
+  /// steady descent of one step a scan is no quantisation; the rate known: reported or derived,
   /// Track::vertical_rate_known) and reported at adjacent levels (|Δaltitude| ≥ S_v −
   /// the altimetry tolerance), still so at the end of T_v with their rates.
   bool level_pair(const track::Track& a, const track::Track& b) const;

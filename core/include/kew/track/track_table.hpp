@@ -80,6 +80,11 @@ struct Track {
   /// quantum, not a climb (the level-pair rule, design §4.5).
   bool vertical_rate_derived = false;
   double altitude_step_ft = 0.0;
+  /// Altitude of the last record less the one before (ft, signed; 0 without one within
+  /// the derivation gap), and whether it and the change before it were both non-zero and
+  /// one way: a steady climb or descent, which one 25 ft step per record can also be.
+  double altitude_change_ft = 0.0;
+  bool altitude_moving_one_way = false;
   bool in_use = false;
 
   double t = 0.0;            ///< data time of the last accepted record (UTC s)

@@ -17,7 +17,8 @@
 namespace kew::replay {
 
 namespace explanation_rules {
-/// A loss detected less than this ahead is late and explained (s).
+/// A loss detected less than this ahead is late and explained (s): the default of the
+/// `late_s` arguments below.
 inline constexpr double kLateWarning_s = 20.0;
 /// The watch starts this long before the look-ahead could first have seen the loss (s).
 inline constexpr double kLeadIn_s = 30.0;
@@ -51,16 +52,18 @@ struct LossExplanation {
   std::vector<StageSpan> spans;
 };
 
-/// The losses kew-eval --explain explains: every loss without an alert kLateWarning_s
+/// The losses kew-eval --explain explains: every loss without an alert `late_s` (s, ≥ 0)
 /// ahead (missed, detected late, or unwarnable and not warned of in time), in the order
 /// of the truth.
-std::vector<std::size_t> losses_to_explain(const Evaluation& evaluation);
+std::vector<std::size_t> losses_to_explain(const Evaluation& evaluation,
+                                           double late_s = explanation_rules::kLateWarning_s);
 
 /// Runs a pipeline with `config` (batch_records forced to 1: PairWatch) over `records`
 /// in their order, watching the pairs of `losses`, and explains each. `alerts` and
 /// `evaluation` are the scored run of the same configuration over the same records.
 std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation& evaluation,
                                             std::span<const AlertSpan> alerts, const PipelineConfig& config,
-                                            std::span<const TrackReport> records, std::span<const std::size_t> losses);
+                                            std::span<const TrackReport> records, std::span<const std::size_t> losses,
+                                            double late_s = explanation_rules::kLateWarning_s);
 
 }  // namespace kew::replay
