@@ -959,8 +959,8 @@ PairNote Pipeline::watched_pair_note(track::TrackSlot slot, std::string_view par
     note.subject = partner;
     const std::optional<double> last = watch_->last_seen(partner_source, partner_id);
     note.detail = other != track::kNoTrack ? fmt::format("{} has no velocity yet", partner)
-                  : last ? fmt::format("{} has no track: its last record, {:.0f} s ago, was applied before it was dropped "
-                                       "(timeout {:.0f} s, or ended by its source)",
+                  : last ? fmt::format("{} has no track since its last record {:.0f} s ago (dropped after the "
+                                       "{:.0f} s timeout, or ended by its source)",
                                        partner, judged_at_ - *last, config_.tracks.track_timeout_s)
                          : fmt::format("{} has no track: no record of it yet", partner);
     return note;
