@@ -358,17 +358,23 @@ TEST(Eligibility, SlowDriftsTowardsEachOtherAreNotALevelPair) {
   EXPECT_TRUE(rules.level_pair(a, b));
 }
 
+// Track a at alt_a_ft with a rate derived from one 25 ft step (vr_fpm), b level at alt_b_ft.
+std::pair<track::Track, track::Track> one_step_apart(double alt_a_ft, double alt_b_ft, double vr_fpm) {
+  track::Track a, b;
+  a.alt_ft = alt_a_ft;
+  b.alt_ft = alt_b_ft;
+  a.vertical_rate_known = b.vertical_rate_known = true;
+  a.vertical_rate_derived = true;
+  a.altitude_step_ft = 25.0;
+  a.vr_fpm = vr_fpm;
+  return {a, b};
+}
+
 TEST(Eligibility, OneAltitudeStepBetweenRadarRecordsIsLevel) {
   // upc-bcn-cat048: CAT048 carries no vertical rate; one 25 ft step in a 4 s scan derives
   // 375 ft/min, and level aircraft at FL360 and FL370 (975 ft apart) alerted.
   eligibility::Rules rules({}, probe::SeparationMinima{});
-  track::Track a, b;
-  a.alt_ft = 36025.0;
-  b.alt_ft = 37000.0;
-  a.vertical_rate_known = b.vertical_rate_known = true;
-  a.vertical_rate_derived = true;
-  a.altitude_step_ft = 25.0;
-  a.vr_fpm = 375.0;
+  auto [a, b] = one_step_apart(36025.0, 37000.0, 375.0);
   EXPECT_TRUE(rules.level_pair(a, b));
   // The same step in one second is a 1,500 ft/min climb.
   a.vr_fpm = 1500.0;
@@ -397,14 +403,8 @@ TEST(Eligibility, OneStepEveryScanTheSameWayIsADescentNotLevel) {
   EXPECT_LE(run.pipeline->suppressed().count("level_pair"), 1u);
   // The rule on its own: the step before went the same way.
   eligibility::Rules rules({}, probe::SeparationMinima{});
-  track::Track a, b;
-  a.alt_ft = 4125.0;
-  b.alt_ft = 3300.0;
-  a.vertical_rate_known = b.vertical_rate_known = true;
-  a.vertical_rate_derived = true;
-  a.altitude_step_ft = 25.0;
+  auto [a, b] = one_step_apart(4125.0, 3300.0, -375.0);
   a.altitude_change_ft = -25.0;
-  a.vr_fpm = -375.0;
   EXPECT_TRUE(rules.level_pair(a, b));
   a.altitude_moving_one_way = true;
   EXPECT_FALSE(rules.level_pair(a, b));

@@ -291,6 +291,7 @@ void Pipeline::apply_record(const TrackReport& report) {
   young_refused_.clear();
   late_since_accepted_ = false;
   stats_.last_data_time = clock_;
+  if (watch_) watch_record(report, admitted.admission);
   if (admitted.admission == track::Admission::AwaitingVelocity) {
     ++stats_.awaiting_velocity;
     if (tracks_[admitted.slot].in_engine) {
@@ -907,11 +908,22 @@ void Pipeline::set_pair_watch(PairWatch* watch) {
 void Pipeline::note_watched_pairs(track::TrackSlot slot) {
   const track::Track& self = view_[slot].track;
   if (!watch_->watches(self.source, self.id)) return;
-  watch_->seen(self.source, self.id, judged_at_);
   watch_->for_each_partner(self.source, self.id, judged_at_,
                            [&](WatchedPair& pair, std::string_view source, std::string_view id) {
                              pair.notes.push_back(watched_pair_note(slot, source, id));
                            });
+}
+
+void Pipeline::watch_record(const TrackReport& report, track::Admission admission) {
+  if (!watch_->watches(report.source, report.id)) return;
+  watch_->seen(report.source, report.id, report.t);
+  if (admission != track::Admission::AwaitingVelocity) return;  // the alert stage notes the rest
+  PairNote note;
+  note.t = report.t;
+  note.updated = note.subject = party_label(report.source, report.id);
+  note.stage = PairStage::AwaitingVelocity;
+  note.detail = fmt::format("{} has no velocity yet", note.updated);
+  watch_->note_track(report.source, report.id, note);
 }
 
 namespace {

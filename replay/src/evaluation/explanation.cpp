@@ -152,23 +152,14 @@ std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation
     const std::uint64_t refused_before = pipeline.rejections().total();
     pipeline.process(r);
     if (!of_interest) continue;
+    // Refusals happen before the track stage notes anything: they are seen from here.
+    if (pipeline.rejections().total() == refused_before) continue;
     PairNote note;
     note.t = r.t;
-    note.updated = party_label(r.source, r.id);
-    note.subject = note.updated;
-    if (pipeline.rejections().total() != refused_before) {
-      note.stage = PairStage::RecordRefused;
-      note.detail = fmt::format("{} record refused: {}", note.updated, pipeline.rejections().last_reason());
-      watch.note_track(r.source, r.id, note);
-      continue;
-    }
-    const track::TrackSlot slot = pipeline.tracks().find(r.source, r.id);
-    if (slot != track::kNoTrack && pipeline.tracks()[slot].t == r.t) watch.seen(r.source, r.id, r.t);
-    if (slot != track::kNoTrack && !pipeline.tracks()[slot].in_engine && pipeline.tracks()[slot].t == r.t) {
-      note.stage = PairStage::AwaitingVelocity;
-      note.detail = fmt::format("{} has no velocity yet", note.updated);
-      watch.note_track(r.source, r.id, note);
-    }
+    note.updated = note.subject = party_label(r.source, r.id);
+    note.stage = PairStage::RecordRefused;
+    note.detail = fmt::format("{} record refused: {}", note.updated, pipeline.rejections().last_reason());
+    watch.note_track(r.source, r.id, note);
   }
   pipeline.end_of_input();
 

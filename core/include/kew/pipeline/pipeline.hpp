@@ -375,6 +375,9 @@ class Pipeline {
   RuleVerdict rule_verdict(const PairKinematics& pair) const;
   /// rule_verdict() counted in suppressed_: true when the pair is to be treated as clear.
   bool suppressed_by_rules(const PairKinematics& pair);
+  /// The track stage's part of the pair watch: an accepted record of a watched track is
+  /// seen, and one still without a velocity noted (it never reaches the alert stage).
+  void watch_record(const TrackReport& report, track::Admission admission);
   /// Notes where every watched pair of the updated track stands (PairWatch).
   void note_watched_pairs(track::TrackSlot slot);
   /// The note of one watched pair after the update of `slot` (design §4.10).
