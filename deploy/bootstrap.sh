@@ -14,8 +14,8 @@ packages=(build-essential cmake ccache
           libcgal-dev libgmp-dev libmpfr-dev libgeographiclib-dev
           libboost-dev libsimdjson-dev libfmt-dev zlib1g-dev
           libgtest-dev libgmock-dev libbenchmark-dev
-          libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev
-          mbpoll python3-pymodbus systemd prometheus
+          libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev libnats-dev
+          mbpoll python3-pymodbus systemd prometheus nats-server mosquitto-clients
           tshark clang-14 libclang-rt-14-dev
           libjs-leaflet chromium chromium-driver python3-selenium
           debhelper dpkg-dev fakeroot lintian scdoc man-db git)

@@ -1,10 +1,15 @@
-// kew-watch (design §5.6): a subscriber of kewd's alert stream. Prints one readable line per
-// alert event (or the raw JSON lines with --json), like gpsd's cgps/gpspipe.
+// kew-watch (design §5.6): a subscriber of kewd's alert stream, or (--nats, design §5.9)
+// of the alerts kewd publishes on NATS, from JetStream from a given seq on. Prints one
+// readable line per alert event (or the raw JSON lines with --json), like gpsd's
+// cgps/gpspipe.
 
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <cstdlib>
+#include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include <boost/asio/connect.hpp>
@@ -16,6 +21,7 @@
 #include <fmt/format.h>
 
 #include "kew/config/address.hpp"
+#include "nats_connection.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
 
@@ -36,6 +42,9 @@ struct Flags {
   bool json = false;
   bool alive = false;
   bool tracks = false;
+  std::string nats_url;             // --nats: read the JetStream stream instead
+  std::string stream = "KEW_ALERTS";
+  std::optional<std::uint64_t> since;
 };
 
 std::string utc(double t) {
@@ -73,6 +82,132 @@ void print_alert(const kew::AlertEvent& e, const char* state) {
   std::printf("%s  [%s]\n", line.c_str(), e.id.c_str());
 }
 
+enum class Shown { Alert, ServerError, Other };
+
+/// Prints the object `reader` has just read from `line` as `flags` ask.
+Shown show(const Flags& flags, const kew::protocol::AlertStreamReader& reader, const std::string& line,
+           const std::string& origin) {
+  const StreamObjectClass kind = reader.object_class();
+  if (flags.json) {
+    std::fputs(line.c_str(), stdout);
+  } else if (kind == StreamObjectClass::Version) {
+    std::printf("connected to kewd %s (%s, protocol %d) at %s\n", reader.text().c_str(),
+                reader.revision().empty() ? "revision unknown" : reader.revision().c_str(), reader.proto(),
+                origin.c_str());
+  } else if (kind == StreamObjectClass::Start) {
+    // kewd (re)started: a new run id; alerts open before it ended with reason "restart".
+    std::printf("START  kewd %s run %s started %s\n", reader.text().c_str(), reader.run().c_str(),
+                utc(reader.start_t()).c_str());
+  } else if (kind == StreamObjectClass::Alerts) {
+    std::printf("%zu active alerts\n", reader.alerts().size());
+    for (const kew::AlertEvent& e : reader.alerts()) print_alert(e, "ACTIVE");
+  } else if (kind == StreamObjectClass::Alert) {
+    print_alert(reader.alert(), state_name(reader.alert()).c_str());
+  } else if (kind == StreamObjectClass::Ack) {
+    std::printf("ACK    %zu alerts acknowledged through %s by %s\n", reader.acknowledged().size(),
+                reader.text().c_str(),
+                reader.acknowledging_client().empty() ? "?" : reader.acknowledging_client().c_str());
+  } else if (kind == StreamObjectClass::Alive && flags.alive) {
+    const auto& a = reader.alive();
+    const std::string health =
+        a.degraded() ? ", degraded: " + std::string(kew::protocol::kHealthReasonNames.name(a.health)) : "";
+    std::printf("%s ALIVE  %llu tracks, %llu alerts, %.0f records/s%s\n",
+                a.last_data_t ? utc(*a.last_data_t).c_str() : "--:--:--", static_cast<unsigned long long>(a.tracks),
+                static_cast<unsigned long long>(a.alerts), a.records_per_s, health.c_str());
+  }
+  if (kind == StreamObjectClass::Error) {
+    std::fprintf(stderr, "kew-watch: server error: %s\n", reader.text().c_str());
+    return Shown::ServerError;
+  }
+  return kind == StreamObjectClass::Alert ? Shown::Alert : Shown::Other;
+}
+
+/// The first sequence number of `stream` whose message has a Kew-Seq above `since`:
+/// kewd's seq never decreases along the stream (it continues across restarts through its
+/// state directory), so a binary search finds it. Past the last message: last + 1.
+std::uint64_t first_after(jsCtx* js, const std::string& stream, std::uint64_t since) {
+  jsStreamInfo* info = nullptr;
+  kew::nats::check(js_GetStreamInfo(&info, js, stream.c_str(), nullptr, nullptr), "JetStream stream " + stream);
+  std::uint64_t low = info->State.FirstSeq, high = info->State.LastSeq + 1;
+  jsStreamInfo_Destroy(info);
+  if (low == 0) return 1;  // an empty stream
+  while (low < high) {
+    const std::uint64_t middle = low + (high - low) / 2;
+    natsMsg* message = nullptr;
+    std::uint64_t seq = 0;
+    if (js_GetMsg(&message, js, stream.c_str(), middle, nullptr, nullptr) == NATS_OK) {
+      const char* value = nullptr;
+      if (natsMsgHeader_Get(message, kew::nats::kSeqHeader, &value) == NATS_OK)
+        seq = std::strtoull(value, nullptr, 10);
+      natsMsg_Destroy(message);
+    }
+    if (seq > since) high = middle;
+    else low = middle + 1;
+  }
+  return low;
+}
+
+/// kew-watch --nats: the alert events and acknowledgements of `flags.stream`, from the
+/// first after --since (or those published from now on), until -n is reached.
+int watch_nats(const Flags& flags) {
+  try {
+    kew::nats::NatsConnection connection(flags.nats_url, "kew-watch", [](std::string_view event) {
+      std::fprintf(stderr, "kew-watch: %.*s\n", static_cast<int>(event.size()), event.data());
+    });
+    jsSubOptions options;
+    jsSubOptions_Init(&options);
+    options.Stream = flags.stream.c_str();
+    options.Ordered = true;  // in stream order, gaps refilled by the client
+    if (flags.since) {
+      options.Config.DeliverPolicy = js_DeliverByStartSequence;
+      options.Config.OptStartSeq = first_after(connection.jetstream(), flags.stream, *flags.since);
+    } else {
+      options.Config.DeliverPolicy = js_DeliverNew;
+    }
+    natsSubscription* raw = nullptr;
+    kew::nats::check(js_SubscribeSync(&raw, connection.jetstream(), ">", nullptr, &options, nullptr),
+                     "JetStream stream " + flags.stream);
+    const std::unique_ptr<natsSubscription, decltype(&natsSubscription_Destroy)> subscription(raw,
+                                                                                           natsSubscription_Destroy);
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    const kew::Severity min_severity = *kew::kSeverityNames.parse(flags.min_severity);
+    kew::protocol::AlertStreamReader reader;
+    std::set<std::string> shown;  // alerts printed: their End is printed whatever its severity
+    long alerts = 0;
+    for (;;) {
+      natsMsg* message = nullptr;
+      const natsStatus s = natsSubscription_NextMsg(&message, subscription.get(), 1000);
+      if (s == NATS_TIMEOUT) continue;
+      kew::nats::check(s, "reading " + flags.stream);
+      std::string line(natsMsg_GetData(message), static_cast<std::size_t>(natsMsg_GetDataLength(message)));
+      natsMsg_Destroy(message);
+      line += '\n';
+      if (!reader.read(line)) {
+        std::fprintf(stderr, "kew-watch: unreadable message in %s: %s\n", flags.stream.c_str(), reader.error().c_str());
+        continue;
+      }
+      if (reader.object_class() == StreamObjectClass::Alert) {
+        // As kewd's stream filters a ?WATCH: an alert is shown from its first event at
+        // or above the severity asked, and then to its end.
+        const kew::AlertEvent& e = reader.alert();
+        const bool seen = shown.contains(e.id);
+        if (e.state == kew::AlertState::End) {
+          if (!seen) continue;
+          shown.erase(e.id);
+        } else if (!seen) {
+          if (e.severity < min_severity) continue;
+          shown.insert(e.id);
+        }
+      }
+      if (show(flags, reader, line, flags.nats_url) == Shown::Alert && flags.count > 0 && ++alerts >= flags.count)
+        return 0;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kew-watch: %s\n", e.what());
+    return kConnectionFailed;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,12 +222,22 @@ int main(int argc, char** argv) {
   app.add_flag("-j,--json", flags.json, "print the stream's JSON lines as received");
   app.add_flag("-a,--alive", flags.alive, "print ALIVE status lines too");
   app.add_flag("-t,--tracks", flags.tracks, "ask for TRACK objects too (printed with --json)");
+  auto* nats = app.add_option("--nats", flags.nats_url,
+                              "read the alerts kewd publishes on NATS (JetStream) at this URL, nats://HOST:PORT, "
+                              "instead of its stream");
+  app.add_option("--stream", flags.stream, "with --nats: the JetStream stream of [nats] stream")
+      ->default_val(flags.stream)
+      ->needs(nats);
+  app.add_option("--since", flags.since,
+                 "with --nats: every event kept after this seq (the last one seen), then the new ones")
+      ->needs(nats);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kUsageError;
   }
+  if (!flags.nats_url.empty()) return watch_nats(flags);
   std::string error;
   const std::optional<kew::config::HostPort> address = kew::config::parse_host_port(flags.address, &error);
   if (!address) {
@@ -130,38 +275,12 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "kew-watch: unreadable line from the server: %s\n", reader.error().c_str());
       continue;
     }
-    const StreamObjectClass kind = reader.object_class();
-    if (flags.json) {
-      std::fputs(line.c_str(), stdout);
-    } else if (kind == StreamObjectClass::Version) {
-      std::printf("connected to kewd %s (%s, protocol %d) at %s\n", reader.text().c_str(),
-                  reader.revision().empty() ? "revision unknown" : reader.revision().c_str(), reader.proto(),
-                  flags.address.c_str());
-    } else if (kind == StreamObjectClass::Start) {
-      // kewd (re)started: a new run id; alerts open before it ended with reason "restart".
-      std::printf("START  kewd %s run %s started %s\n", reader.text().c_str(), reader.run().c_str(),
-                  utc(reader.start_t()).c_str());
-    } else if (kind == StreamObjectClass::Alerts) {
-      std::printf("%zu active alerts\n", reader.alerts().size());
-      for (const kew::AlertEvent& e : reader.alerts()) print_alert(e, "ACTIVE");
-    } else if (kind == StreamObjectClass::Alert) {
-      print_alert(reader.alert(), state_name(reader.alert()).c_str());
-    } else if (kind == StreamObjectClass::Ack) {
-      std::printf("ACK    %zu alerts acknowledged through %s by %s\n", reader.acknowledged().size(),
-                  reader.text().c_str(),
-                  reader.acknowledging_client().empty() ? "?" : reader.acknowledging_client().c_str());
-    } else if (kind == StreamObjectClass::Alive && flags.alive) {
-      const auto& a = reader.alive();
-      const std::string health =
-          a.degraded() ? ", degraded: " + std::string(kew::protocol::kHealthReasonNames.name(a.health)) : "";
-      std::printf("%s ALIVE  %llu tracks, %llu alerts, %.0f records/s%s\n",
-                  a.last_data_t ? utc(*a.last_data_t).c_str() : "--:--:--", static_cast<unsigned long long>(a.tracks),
-                  static_cast<unsigned long long>(a.alerts), a.records_per_s, health.c_str());
+    switch (show(flags, reader, line, flags.address)) {
+      case Shown::ServerError: return kConnectionFailed;
+      case Shown::Alert:
+        if (flags.count > 0 && ++alerts >= flags.count) return 0;
+        break;
+      case Shown::Other: break;
     }
-    if (kind == StreamObjectClass::Error) {
-      std::fprintf(stderr, "kew-watch: server error: %s\n", reader.text().c_str());
-      return kConnectionFailed;
-    }
-    if (kind == StreamObjectClass::Alert && flags.count > 0 && ++alerts >= flags.count) return 0;
   }
 }

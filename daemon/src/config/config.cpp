@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "kew/config/document.hpp"
+#include "kew/config/nats_subject.hpp"
 
 namespace kew::daemon {
 
@@ -69,12 +70,47 @@ void read_http(TableReader& r, HttpConfig& h) {
   r.integer("client_queue_bytes", h.client_queue_bytes, 65536, std::int64_t{1} << 36);
 }
 
+/// A subject key: dot-separated tokens, none empty, no white space; wildcards ('*', a
+/// final '>') where kewd subscribes.
+void subject(TableReader& r, std::string_view key, std::string& out, bool wildcards) {
+  r.string(key, out);
+  if (r.node(key) && !config::valid_nats_subject(out, wildcards))
+    r.fail(r.node(key), fmt::format("{} = \"{}\" is not a NATS subject{}", key, out,
+                                    wildcards ? "" : " to publish to (no wildcard)"));
+}
+
+/// A JetStream stream or consumer name: no '.', '*', '>' or white space.
+void stream_name(TableReader& r, std::string_view key, std::string& out) {
+  r.string(key, out);
+  if (out.find_first_of(".*>/\\ \t") != std::string::npos)
+    r.fail(r.node(key), fmt::format("{} = \"{}\": a JetStream name has no '.', '*', '>', '/', '\\' or space", key, out));
+}
+
+void read_nats(TableReader& r, NatsConfig& n) {
+  r.string("url", n.url);
+  r.string("name", n.name);
+  subject(r, "alerts_subject", n.alerts_subject, false);
+  subject(r, "acks_subject", n.acks_subject, false);
+  subject(r, "status_subject", n.status_subject, false);
+  subject(r, "tracks_subject", n.tracks_subject, false);
+  r.number("tracks_interval_s", n.tracks_interval_s, 0.0, 3600.0);
+  stream_name(r, "stream", n.stream);
+  r.number("stream_max_age_s", n.stream_max_age_s, 1.0, 10.0 * 365 * 86400);
+  r.integer("stream_max_bytes", n.stream_max_bytes, 1 << 20, std::int64_t{1} << 50);
+  r.integer("outbox", n.outbox, 16, 100'000'000);
+}
+
 void read_input(TableReader& r, InputConfig& in) {
   r.string("name", in.name);
   r.choice("format", in.format, protocol::kFormatNames);
   r.choice("transport", in.transport, kTransportNames);
   if (in.transport == Transport::File) r.path("address", in.address);
+  else if (in.transport == Transport::Nats) subject(r, "address", in.address, true);
   else r.address("address", in.address);
+  r.string("nats_url", in.nats_url);
+  stream_name(r, "durable", in.durable);
+  stream_name(r, "stream", in.stream);
+  r.number("stream_max_age_s", in.stream_max_age_s, 1.0, 10.0 * 365 * 86400);
   r.string("interface", in.interface);
   r.number("reconnect_min_s", in.reconnect_min_s, 0.01, 3600.0);
   r.number("reconnect_max_s", in.reconnect_max_s, 0.01, 86400.0);
@@ -99,7 +135,13 @@ void read_input(TableReader& r, InputConfig& in) {
   only_for("idle_timeout_s", Transport::TcpServer);
   only_for("pace", Transport::File);
   only_for("speed", Transport::File);
-  if (in.address.empty()) r.fail(nullptr, "an input needs an address (HOST:PORT or a file path)");
+  only_for("nats_url", Transport::Nats);
+  only_for("durable", Transport::Nats);
+  only_for("stream", Transport::Nats);
+  only_for("stream_max_age_s", Transport::Nats);
+  if (!in.stream.empty() && in.durable.empty())
+    r.fail(r.node("stream"), "stream names where a durable consumer reads: give durable too");
+  if (in.address.empty()) r.fail(nullptr, "an input needs an address (HOST:PORT, a file path or a NATS subject)");
   if (in.format == protocol::Format::AsterixDatagram && in.transport != Transport::Udp)
     r.fail(nullptr, "format asterix-datagram needs transport udp");
 }
@@ -112,6 +154,7 @@ Config read_config(const config::Document& document) {
   document.section("cat004", [&](TableReader& r) { read_cat004(r, c.cat004); });
   document.section("modbus", [&](TableReader& r) { read_modbus(r, c.modbus); });
   document.section("http", [&](TableReader& r) { read_http(r, c.http); });
+  document.section("nats", [&](TableReader& r) { read_nats(r, c.nats); });
   document.each_table("input", [&](TableReader& r, std::size_t i) {
     InputConfig input;
     input.name = "input" + std::to_string(i + 1);
@@ -122,6 +165,9 @@ Config read_config(const config::Document& document) {
         r.fail(nullptr, "name \"" + input.name + "\" is the name of input " + std::to_string(k + 1) + " already");
     c.inputs.push_back(std::move(input));
   });
+  for (InputConfig& input : c.inputs)
+    if (input.transport == Transport::Nats && input.nats_url.empty())
+      input.nats_url = c.nats.url.empty() ? std::string(kDefaultNatsUrl) : c.nats.url;
   return c;
 }
 

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "../nats/nats_input.hpp"
 #include "accept_guard.hpp"
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"
@@ -426,6 +427,7 @@ std::unique_ptr<Input> make_input(asio::io_context& io, const InputConfig& confi
     case Transport::Udp: return std::make_unique<UdpInput>(io, config, options, std::move(handler));
     case Transport::TcpServer: return std::make_unique<TcpServerInput>(io, config, options, std::move(handler));
     case Transport::TcpClient: return std::make_unique<TcpClientInput>(io, config, options, std::move(handler));
+    case Transport::Nats: return make_nats_input(io, config, options, std::move(handler));
     case Transport::File: break;
   }
   return std::make_unique<FileInput>(io, config, options, std::move(handler));

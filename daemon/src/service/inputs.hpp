@@ -1,6 +1,6 @@
 #pragma once
 // kewd's inputs, one class per transport (design §5.7 [[input]]): UDP (unicast or
-// multicast), TCP client with reconnect and backoff, TCP server, file (through replay's
+// multicast), TCP client with reconnect and backoff, TCP server, NATS (src/nats), file (through replay's
 // RecordingReader and Pacer, as kew-replay reads recordings). Every byte
 // stream gets its own decoder (one per TCP connection), so streams never mix; decoded
 // reports go to the service's handler on the I/O thread.
@@ -37,6 +37,7 @@ class Input {
     protocol::InputStatistics s = figures_;
     s.name = config_.name;
     add_open_stream_rejections(s.rejected);
+    add_live_figures(s);
     return s;
   }
 
@@ -58,6 +59,8 @@ class Input {
   /// Ends a stream: flushes the decoder and keeps its rejection counts.
   void retire(protocol::Decoder& decoder);
   virtual void add_open_stream_rejections(Rejections&) const {}
+  /// Figures kept outside figures_ (by another thread's client library).
+  virtual void add_live_figures(protocol::InputStatistics&) const {}
   /// Counts a decoded report and hands it to the service.
   void deliver(const TrackReport& report);
 

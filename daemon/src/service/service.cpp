@@ -15,9 +15,11 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "../nats/nats_publisher.hpp"
 #include "logging.hpp"
 #include "kew/config/address.hpp"
 #include "kew/daemon/modbus_server.hpp"
+#include "kew/config/nats_subject.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
@@ -84,6 +86,7 @@ Service::Service(Config config, ServiceOptions options)
       shutdown_timer_(io_),
       modbus_timer_(io_),
       housekeeping_timer_(io_),
+      nats_tracks_timer_(io_),
       config_(std::move(config)),
       options_(std::move(options)),
       pipeline_(config_.pipeline),
@@ -106,6 +109,8 @@ Service::Service(Config config, ServiceOptions options)
   if (!config_.service.record_file.empty())
     record_file_ = std::make_unique<LineFile>(config_.service.record_file, 0, 0);
   if (config_.cat004.enabled) cat004_ = std::make_unique<Cat004Sender>(io_, config_.cat004);
+  run_id_ = make_run_id();
+  if (!config_.nats.url.empty()) nats_ = std::make_unique<NatsPublisher>(config_.nats, run_id_);
 
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
@@ -171,6 +176,10 @@ int Service::run() {
   // Paths as resolved (design §5.7: relative to the working directory kewd started in).
   if (alert_log_) spdlog::info("alert log: {}", alert_log_->path());
   if (record_file_) spdlog::info("record file: {}", record_file_->path());
+  if (nats_)
+    spdlog::info("NATS: alerts to {}.<zone>{}, status to {}", config_.nats.alerts_subject,
+                 config_.nats.stream.empty() ? "" : fmt::format(" (kept in the JetStream stream {})", config_.nats.stream),
+                 config_.nats.status_subject);
   if (state_file_) spdlog::info("state file: {}", state_file_->path());
   for (const auto& input : inputs_) {
     const std::uint16_t port = input->bound_port();
@@ -188,6 +197,7 @@ int Service::run() {
   schedule_tick();
   schedule_alive();
   schedule_housekeeping();
+  if (nats_ && config_.nats.tracks_interval_s > 0) schedule_nats_tracks();
   std::uint64_t watchdog_us = 0;
   if (sd_watchdog_enabled(0, &watchdog_us) > 0 && watchdog_us > 0)
     schedule_watchdog(std::chrono::microseconds(watchdog_us / 2));
@@ -262,7 +272,6 @@ void Service::flush_pipeline() {
 }
 
 void Service::begin_run() {
-  run_id_ = make_run_id();
   const std::optional<Numbering> saved = state_file_ ? state_file_->load() : std::nullopt;
   AlertLogTail tail;
   if (alert_log_) tail = read_alert_log_tail(alert_log_->path());
@@ -286,6 +295,7 @@ void Service::begin_run() {
     line_.clear();
     protocol::append_alert_json(line_, event, event.seq);
     alert_log_->append(line_);
+    if (nats_) nats_->publish_alert(nats_zone(event), line_, event.seq);
     if (cat004_) cat004_->send_alert(event);
   }
   if (alert_log_) alert_log_->flush();
@@ -357,7 +367,19 @@ void Service::on_alert(const AlertEvent& event) {
     http_->push(line_);
   }
   if (cat004_) cat004_->send_alert(event);
+  if (nats_) {
+    line_.clear();
+    protocol::append_alert_json(line_, event, event.seq);
+    nats_->publish_alert(nats_zone(event), line_, event.seq);
+  }
   modbus_dirty_ = true;
+}
+
+std::string Service::nats_zone(const AlertEvent& event) const {
+  const std::optional<zone::ZoneTiling>& tiling = pipeline_.tiling();
+  if (!tiling) return "single";
+  const zone::ZoneKey owner = tiling->owner({event.a.lat_deg, event.a.lon_deg}, {event.b.lat_deg, event.b.lon_deg});
+  return config::nats_subject_token(tiling->name(owner));
 }
 
 void Service::schedule_modbus_publish() {
@@ -401,6 +423,11 @@ std::vector<std::string> Service::acknowledge(std::string_view by, std::string_v
     alert_log_->flush();
   }
   subscribers_->broadcast_ack(ack);
+  if (nats_) {
+    line_.clear();
+    protocol::append_ack_json(line_, ack, last_alert_seq_);
+    nats_->publish_ack(line_, last_alert_seq_);
+  }
   if (http_ && http_->has_websockets()) {
     line_.clear();
     protocol::append_ack_json(line_, ack, last_alert_seq_);
@@ -475,6 +502,11 @@ void Service::alive() {
     protocol::append_alive_json(line_, status, last_alert_seq_);
     http_->push(line_);
   }
+  if (nats_) {
+    line_.clear();
+    protocol::append_alive_json(line_, status, last_alert_seq_);
+    nats_->publish_status(line_, last_alert_seq_);
+  }
   if (cat004_) {
     protocol::Cat004Alive a;
     a.t = any_accepted ? data_clock_now() : static_cast<double>(std::time(nullptr));
@@ -548,6 +580,7 @@ void Service::shutdown() {
   alive_timer_.cancel();
   modbus_timer_.cancel();
   housekeeping_timer_.cancel();
+  nats_tracks_timer_.cancel();
   if (modbus_) modbus_->stop();
   watchdog_timer_.cancel();
   // Subscribers get what is queued for them, then the connection closes; io_.run()
@@ -582,6 +615,7 @@ protocol::ServiceStatistics Service::service_statistics() const {
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   if (cat004_) service.cat004 = protocol::Cat004Statistics{cat004_->datagrams_sent(), cat004_->send_errors()};
   if (modbus_) service.modbus = modbus_->stats();
+  if (nats_) service.nats = nats_->statistics();
   if (alert_log_) {
     service.alert_log_errors = alert_log_->write_errors();
     service.alert_log_queued_bytes = alert_log_->pending_bytes();
@@ -650,20 +684,31 @@ void Service::flush_websockets() {
   http_->flush();
 }
 
+std::string Service::tracks_json() const {
+  const double now = pipeline_.now();
+  std::string out = fmt::format("{{\"class\":\"TRACKS\",\"seq\":{},\"t\":{:.3f},\"tracks\":[", last_alert_seq_, now);
+  bool first = true;
+  for_each_live_track(pipeline_, [&](const track::Track& track) {
+    if (!first) out.push_back(',');
+    first = false;
+    protocol::append_live_track_json(out, track, now, last_alert_seq_);
+  });
+  out += "]}\n";
+  return out;
+}
+
+void Service::schedule_nats_tracks() {
+  nats_tracks_timer_.expires_after(seconds(config_.nats.tracks_interval_s));
+  nats_tracks_timer_.async_wait([this](const boost::system::error_code& ec) {
+    if (ec || stopping_) return;
+    nats_->publish_tracks(tracks_json(), last_alert_seq_);
+    schedule_nats_tracks();
+  });
+}
+
 http::HttpSource Service::http_source() {
   http::HttpSource source;
-  source.tracks = [this] {
-    const double now = pipeline_.now();
-    std::string out = fmt::format("{{\"class\":\"TRACKS\",\"seq\":{},\"t\":{:.3f},\"tracks\":[", last_alert_seq_, now);
-    bool first = true;
-    for_each_live_track(pipeline_, [&](const track::Track& track) {
-      if (!first) out.push_back(',');
-      first = false;
-      protocol::append_live_track_json(out, track, now, last_alert_seq_);
-    });
-    out += "]}\n";
-    return out;
-  };
+  source.tracks = [this] { return tracks_json(); };
   source.alerts = [this] {
     std::vector<AlertEvent> active = pipeline_.alerts().snapshot();
     std::stable_sort(active.begin(), active.end(),

@@ -27,6 +27,7 @@
 namespace kew::daemon {
 
 class ModbusServer;
+class NatsPublisher;
 
 
 struct ServiceOptions {
@@ -94,6 +95,11 @@ class Service {
   /// its end, and keeps serving (or shuts down with exit_at_end).
   void end_replay();
   std::string stats_json() const;
+  /// The TRACKS object of every live track (GET /api/tracks, [nats] tracks_subject).
+  std::string tracks_json() const;
+  void schedule_nats_tracks();
+  /// The subject token of the zone that judges the event's pair ("single" in single mode).
+  std::string nats_zone(const AlertEvent& event) const;
   double data_clock_now() const;
 
   boost::asio::io_context io_;
@@ -104,6 +110,7 @@ class Service {
   boost::asio::steady_timer shutdown_timer_;
   boost::asio::steady_timer modbus_timer_;
   boost::asio::steady_timer housekeeping_timer_;
+  boost::asio::steady_timer nats_tracks_timer_;
   Config config_;
   ServiceOptions options_;
   Pipeline pipeline_;
@@ -119,6 +126,7 @@ class Service {
   std::unique_ptr<Cat004Sender> cat004_;
   std::unique_ptr<ModbusServer> modbus_;
   std::unique_ptr<http::HttpServer> http_;
+  std::unique_ptr<NatsPublisher> nats_;
   /// Per input: what /metrics says of it beyond its own statistics.
   struct InputFigures {
     Rejections pipeline_refused;  ///< the pipeline's refusals of its records

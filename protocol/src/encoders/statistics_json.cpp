@@ -27,6 +27,10 @@ class Members {
     this->key(key);
     append_json_string(out_, value);
   }
+  void boolean(std::string_view key, bool value) {
+    this->key(key);
+    out_ += value ? "true" : "false";
+  }
   void rejections(std::string_view key, const Rejections& rejected) {
     this->key(key);
     Members reasons(out_);
@@ -187,6 +191,7 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     i.integer("connections_idle", input.connections_idle);
     i.integer("accept_failures", input.accept_failures);
     i.integer("oversized_datagrams", input.oversized_datagrams);
+    i.integer("messages_dropped", input.messages_dropped);
     i.rejections("rejected", input.rejected);
     i.close();
   }
@@ -195,6 +200,18 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     Members c = m.object("cat004");
     c.integer("datagrams", service.cat004->datagrams);
     c.integer("errors", service.cat004->errors);
+    c.close();
+  }
+  if (service.nats) {
+    const NatsStatistics& s = *service.nats;
+    Members c = m.object("nats");
+    c.boolean("connected", s.connected);
+    c.integer("disconnects", s.disconnects);
+    c.integer("published", s.published);
+    c.integer("retries", s.retries);
+    c.integer("queued", s.queued);
+    c.integer("dropped", s.dropped);
+    c.integer("status_published", s.status_published);
     c.close();
   }
   if (service.modbus) {

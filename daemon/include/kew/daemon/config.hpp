@@ -15,13 +15,14 @@
 
 namespace kew::daemon {
 
-enum class Transport { Udp, TcpClient, TcpServer, File };
+enum class Transport { Udp, TcpClient, TcpServer, File, Nats };
 /// The names of `transport = ...`.
-inline constexpr util::NameTable<Transport, 4> kTransportNames({{
+inline constexpr util::NameTable<Transport, 5> kTransportNames({{
     {Transport::Udp, "udp"},
     {Transport::TcpClient, "tcp-client"},
     {Transport::TcpServer, "tcp-server"},
     {Transport::File, "file"},
+    {Transport::Nats, "nats"},
 }});
 constexpr std::string_view to_string(Transport t) { return kTransportNames.name(t); }
 
@@ -53,7 +54,8 @@ struct InputConfig {
   Transport transport = Transport::Udp;
   /// udp: "HOST:PORT" to bind (HOST may be a multicast group, joined on `interface`);
   /// tcp-client: "HOST:PORT" to connect to; tcp-server: "HOST:PORT" to listen on;
-  /// file: a path (read once, as fast as the pipeline takes it, unless `pace`).
+  /// file: a path (read once, as fast as the pipeline takes it, unless `pace`);
+  /// nats: the subject to subscribe to (wildcards allowed), one message = one datagram.
   std::string address;
   std::string interface = "0.0.0.0";  ///< multicast: local interface address
   double reconnect_min_s = 1.0;       ///< tcp-client backoff, doubling up to max
@@ -69,6 +71,37 @@ struct InputConfig {
   /// udp, tcp-server: `address` may be a wildcard, an interface or a multicast group
   /// (a real radar's feed); otherwise it must be loopback unless kewd runs --listen-any.
   bool allow_remote = false;
+  /// nats: the server(s), "nats://HOST:PORT" (comma-separated for a cluster); default:
+  /// [nats] url, else nats://127.0.0.1:4222.
+  std::string nats_url;
+  /// nats: a JetStream durable consumer of this name reads the subject, so that a
+  /// restarted kewd resumes after the last message it took; "" = a plain subscription
+  /// (messages sent while kewd is away are not seen).
+  std::string durable;
+  /// nats with durable: the JetStream stream holding the subject; created for the
+  /// subject when missing (kept `stream_max_age_s`); "" = the stream that holds it.
+  std::string stream;
+  double stream_max_age_s = 86400.0;
+};
+
+/// Where a NATS input connects when neither it nor [nats] names a server.
+inline constexpr std::string_view kDefaultNatsUrl = "nats://127.0.0.1:4222";
+
+/// [nats]: alert events, acknowledgements and status published on a NATS server (design
+/// §5.9), the events kept in a JetStream stream for subscribers that were away.
+struct NatsConfig {
+  std::string url;  ///< "nats://HOST:PORT" (comma-separated for a cluster); "" = publish nothing
+  std::string name = "kewd";                 ///< the connection's name on the server
+  std::string alerts_subject = "kew.alerts"; ///< ALERT objects go to <alerts_subject>.<zone>
+  std::string acks_subject = "kew.acks";     ///< ACK objects
+  std::string status_subject = "kew.status"; ///< ALIVE objects (not kept)
+  std::string tracks_subject = "kew.tracks"; ///< TRACKS snapshots (not kept)
+  double tracks_interval_s = 0.0;            ///< 0: no track snapshots
+  std::string stream = "KEW_ALERTS";         ///< JetStream stream of alerts and acks; "" = none
+  double stream_max_age_s = 7 * 86400.0;     ///< events older than this leave the stream
+  std::uint64_t stream_max_bytes = 1ull << 30;
+  /// Events waiting for the server (while it is away) before the oldest are dropped (counted).
+  std::size_t outbox = 100000;
 };
 
 struct ServiceConfig {
@@ -145,6 +178,7 @@ struct Config : config::SharedConfig {
   Cat004Config cat004;
   ModbusConfig modbus;
   HttpConfig http;
+  NatsConfig nats;
   std::vector<InputConfig> inputs;
   std::string origin;  ///< the file's name in messages ("" for the built-in defaults)
 };

@@ -1,7 +1,8 @@
 #pragma once
 // `kew-replay --to`: streams records as canonical NDJSON to a daemon input over TCP
-// (one connection, lines back to back) or UDP (datagrams of whole lines, at most
-// `max_datagram_bytes`), paced like the recording.
+// (one connection, lines back to back), UDP (datagrams of whole lines, at most
+// `max_datagram_bytes`) or NATS (messages of whole lines, as UDP's datagrams, published
+// to a subject through the NATS C client), paced like the recording.
 
 #include <cstdint>
 #include <memory>
@@ -14,20 +15,22 @@
 namespace kew::replay {
 
 struct StreamTarget {
-  enum class Protocol { Tcp, Udp } protocol = Protocol::Tcp;
+  enum class Protocol { Tcp, Udp, Nats } protocol = Protocol::Tcp;
   std::string host;
   std::uint16_t port = 0;
+  std::string subject;  ///< NATS only
 };
 
-/// "tcp://HOST:PORT", "udp://HOST:PORT" or "HOST:PORT" (TCP), HOST:PORT as
-/// config::parse_host_port reads it (IPv6 in brackets, port 1–65535). Returns nullopt
-/// when malformed, with `*error` (when given) saying why.
+/// "tcp://HOST:PORT", "udp://HOST:PORT", "nats://HOST:PORT/SUBJECT" or "HOST:PORT" (TCP),
+/// HOST:PORT as config::parse_host_port reads it (IPv6 in brackets, port 1–65535), the
+/// subject one to publish to (config::valid_nats_subject). Returns nullopt when
+/// malformed, with `*error` (when given) saying why.
 std::optional<StreamTarget> parse_stream_target(std::string_view text, std::string* error = nullptr);
 
 struct StreamFigures {
   std::uint64_t records = 0;
   std::uint64_t bytes = 0;
-  std::uint64_t datagrams = 0;  ///< UDP only
+  std::uint64_t datagrams = 0;  ///< UDP datagrams or NATS messages
 };
 
 /// Sends every record of `recordings` to `target`, each no earlier than its due time at

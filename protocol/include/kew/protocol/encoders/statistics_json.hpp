@@ -26,6 +26,7 @@ struct InputStatistics {
   std::uint64_t connections_idle = 0;     ///< closed: no byte for idle_timeout_s
   std::uint64_t accept_failures = 0;      ///< accept() failed (out of descriptors, ...)
   std::uint64_t oversized_datagrams = 0;
+  std::uint64_t messages_dropped = 0;     ///< NATS: dropped by the client while kewd fell behind
   Rejections rejected;                    ///< its decoders' rejections
 };
 
@@ -43,6 +44,17 @@ struct SubscriberStatistics {
 struct Cat004Statistics {
   std::uint64_t datagrams = 0;
   std::uint64_t errors = 0;  ///< sends that failed
+};
+
+/// kewd's publisher on NATS ([nats]).
+struct NatsStatistics {
+  bool connected = false;
+  std::uint64_t disconnects = 0;  ///< connections to the server lost
+  std::uint64_t published = 0;    ///< events (alerts, acks) the server has taken (JetStream: stored)
+  std::uint64_t retries = 0;      ///< publications tried again (no server, no acknowledgement in time)
+  std::uint64_t queued = 0;       ///< events waiting for the server now
+  std::uint64_t dropped = 0;      ///< events dropped: more than [nats] outbox waited
+  std::uint64_t status_published = 0;  ///< ALIVE and TRACKS objects (not kept)
 };
 
 struct ModbusStatistics {
@@ -67,6 +79,7 @@ struct ServiceStatistics {
   std::vector<InputStatistics> inputs;
   std::optional<Cat004Statistics> cat004;  ///< when CAT004 is enabled
   std::optional<ModbusStatistics> modbus;  ///< when Modbus is enabled
+  std::optional<NatsStatistics> nats;      ///< when [nats] url is set
   std::optional<std::uint64_t> alert_log_errors;  ///< when an alert log is written
   /// When an alert log is written: bytes of events waiting for it (a failing disk) and
   /// lines dropped because more than the queue's bound waited.

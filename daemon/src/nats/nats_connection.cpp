@@ -1,0 +1,99 @@
+#include "nats_connection.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace kew::nats {
+
+NatsError::NatsError(std::string_view what, natsStatus status)
+    : std::runtime_error(fmt::format("{}: {}", what, describe(status))), status_(status) {}
+
+void check(natsStatus status, std::string_view what) {
+  if (status != NATS_OK) throw NatsError(what, status);
+}
+
+std::string describe(natsStatus status) {
+  std::string text = natsStatus_GetText(status);
+  natsStatus last = NATS_OK;
+  const char* detail = nats_GetLastError(&last);
+  if (detail && *detail && last == status && text != detail) text += fmt::format(" ({})", detail);
+  return text;
+}
+
+namespace {
+
+// The options live only through Connect: the connection keeps a copy.
+struct Options {
+  natsOptions* options = nullptr;
+  Options() { check(natsOptions_Create(&options), "NATS options"); }
+  ~Options() { natsOptions_Destroy(options); }
+};
+
+}  // namespace
+
+NatsConnection::NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
+                               double reconnect_wait_s)
+    : url_(url), on_event_(std::move(on_event)) {
+  Options o;
+  check(natsOptions_SetURL(o.options, url.c_str()), fmt::format("NATS url \"{}\"", url));
+  check(natsOptions_SetName(o.options, name.c_str()), "NATS connection name");
+  // For ever: a safety net outlives its bus's restarts.
+  check(natsOptions_SetMaxReconnect(o.options, -1), "NATS reconnect");
+  const auto wait_ms = static_cast<std::int64_t>(std::llround(std::max(reconnect_wait_s, 0.01) * 1000.0));
+  check(natsOptions_SetReconnectWait(o.options, wait_ms), "NATS reconnect wait");
+  check(natsOptions_SetRetryOnFailedConnect(o.options, true, &NatsConnection::on_connected, this),
+        "NATS retry on failed connect");
+  check(natsOptions_SetDisconnectedCB(o.options, &NatsConnection::on_disconnected, this), "NATS callbacks");
+  check(natsOptions_SetReconnectedCB(o.options, &NatsConnection::on_reconnected, this), "NATS callbacks");
+  check(natsOptions_SetErrorHandler(o.options, &NatsConnection::on_error, this), "NATS callbacks");
+  const natsStatus status = natsConnection_Connect(&connection_, o.options);
+  if (status == NATS_OK) {
+    ++connects_;
+  } else if (status == NATS_NOT_YET_CONNECTED) {
+    if (on_event_) on_event_(fmt::format("no NATS server at {} yet: connecting in the background", url_));
+  } else {
+    throw NatsError(fmt::format("NATS connection to {}", url_), status);
+  }
+  const natsStatus js = natsConnection_JetStream(&jetstream_, connection_, nullptr);
+  if (js != NATS_OK) {
+    natsConnection_Destroy(connection_);
+    throw NatsError("JetStream context", js);
+  }
+}
+
+NatsConnection::~NatsConnection() {
+  closing_ = true;
+  jsCtx_Destroy(jetstream_);
+  natsConnection_Close(connection_);
+  natsConnection_Destroy(connection_);
+}
+
+bool NatsConnection::connected() const { return natsConnection_Status(connection_) == NATS_CONN_STATUS_CONNECTED; }
+
+void NatsConnection::on_connected(natsConnection*, void* self) {
+  auto* c = static_cast<NatsConnection*>(self);
+  ++c->connects_;
+  if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", c->url_));
+}
+
+void NatsConnection::on_disconnected(natsConnection*, void* self) {
+  auto* c = static_cast<NatsConnection*>(self);
+  // Called also when a first connection attempt fails: only a lost connection counts.
+  if (c->connects_.load() == 0 || c->closing_) return;
+  ++c->disconnects_;
+  if (c->on_event_) c->on_event_(fmt::format("lost the NATS server at {}: reconnecting", c->url_));
+}
+
+void NatsConnection::on_reconnected(natsConnection*, void* self) {
+  auto* c = static_cast<NatsConnection*>(self);
+  ++c->connects_;
+  if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", c->url_));
+}
+
+void NatsConnection::on_error(natsConnection*, natsSubscription*, natsStatus status, void* self) {
+  auto* c = static_cast<NatsConnection*>(self);
+  if (c->on_event_) c->on_event_(fmt::format("NATS: {}", describe(status)));
+}
+
+}  // namespace kew::nats

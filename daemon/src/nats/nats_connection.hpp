@@ -1,0 +1,75 @@
+#pragma once
+// One connection to a NATS server (or cluster) through the NATS C client, with its
+// JetStream context (design §5.9). It connects in the background when no server answers
+// yet and reconnects for ever; what happens to it is told through `on_event` (called on
+// the client's own threads). kewd's NATS inputs and its publisher each own one, as does
+// kew-watch --nats.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include <nats/nats.h>
+
+namespace kew::nats {
+
+/// The header of every message kewd publishes: the seq of the last alert event at that
+/// point (an ALERT's own), by which `kew-watch --since` finds where to start.
+inline constexpr const char* kSeqHeader = "Kew-Seq";
+
+/// A NATS C client call failed: its status text and the client's last error.
+class NatsError : public std::runtime_error {
+ public:
+  NatsError(std::string_view what, natsStatus status);
+  natsStatus status() const { return status_; }
+
+ private:
+  natsStatus status_;
+};
+
+/// Throws NatsError unless `status` is NATS_OK.
+void check(natsStatus status, std::string_view what);
+
+/// "no such stream", "timeout", …: the text of a status and the client's last error.
+std::string describe(natsStatus status);
+
+class NatsConnection {
+ public:
+  using EventHandler = std::function<void(std::string_view)>;
+  /// Connects to `url` ("nats://HOST:PORT", several comma-separated for a cluster) naming
+  /// the connection `name` on the server. Returns at once when no server answers: the
+  /// client keeps trying every `reconnect_wait_s` seconds (> 0), then and after any later
+  /// loss. Throws NatsError for a malformed URL or a client that cannot start.
+  NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
+                 double reconnect_wait_s = 1.0);
+  ~NatsConnection();
+  NatsConnection(const NatsConnection&) = delete;
+  NatsConnection& operator=(const NatsConnection&) = delete;
+
+  natsConnection* get() const { return connection_; }
+  jsCtx* jetstream() const { return jetstream_; }
+  bool connected() const;
+  /// Connections made (the first one included) and lost so far.
+  std::uint64_t connects() const { return connects_.load(); }
+  std::uint64_t disconnects() const { return disconnects_.load(); }
+  const std::string& url() const { return url_; }
+
+ private:
+  static void on_connected(natsConnection*, void* self);
+  static void on_disconnected(natsConnection*, void* self);
+  static void on_reconnected(natsConnection*, void* self);
+  static void on_error(natsConnection*, natsSubscription*, natsStatus, void* self);
+
+  std::string url_;
+  EventHandler on_event_;
+  natsConnection* connection_ = nullptr;
+  jsCtx* jetstream_ = nullptr;
+  std::atomic<std::uint64_t> connects_{0};
+  std::atomic<std::uint64_t> disconnects_{0};
+  std::atomic<bool> closing_{false};  // the destructor's own disconnection is not news
+};
+
+}  // namespace kew::nats

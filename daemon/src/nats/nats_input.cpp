@@ -1,0 +1,256 @@
+#include "nats_input.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <boost/asio/post.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "nats_connection.hpp"
+#include "repeated_failure.hpp"
+
+namespace kew::daemon {
+
+namespace {
+
+namespace asio = boost::asio;
+using nats::NatsConnection;
+
+constexpr int kFetchBatch = 256;            // messages per JetStream pull
+constexpr std::int64_t kWaitMs = 200;       // a read waits this long, then looks at stopping_
+constexpr int kBatchesInFlight = 2;         // posted to the I/O thread and not yet taken
+constexpr auto kRetryPeriod = std::chrono::seconds(1);
+// JetStream's wait for an acknowledgement before it sends a message again; kewd
+// acknowledges each batch as soon as it has decoded it.
+constexpr std::int64_t kAckWaitNs = 30'000'000'000;
+constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
+
+/// Messages owned until decoded; the last one of a JetStream batch is acknowledged then
+/// (acknowledge-all: it acknowledges the batch).
+struct MessageBatch {
+  std::vector<natsMsg*> messages;
+  MessageBatch() = default;
+  MessageBatch(const MessageBatch&) = delete;
+  MessageBatch& operator=(const MessageBatch&) = delete;
+  ~MessageBatch() {
+    for (natsMsg* m : messages) natsMsg_Destroy(m);
+  }
+};
+
+class NatsInput final : public Input {
+ public:
+  NatsInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
+      : Input(std::move(config), std::move(options), std::move(handler)),
+        io_(io),
+        connection_(config_.nats_url, "kewd input " + config_.name,
+                    [name = config_.name](std::string_view event) { spdlog::info("input {}: {}", name, event); }),
+        failures_("input " + config_.name) {
+    decoder_ = make_stream_decoder();
+  }
+  ~NatsInput() override { halt(); }
+
+  void start() override {
+    reader_ = std::thread([this] { read(); });
+  }
+  void stop() override {
+    halt();
+    stopped_ = true;
+    if (decoder_) retire(*decoder_);
+  }
+
+ private:
+  bool jetstream() const { return !config_.durable.empty(); }
+
+  void halt() {
+    {
+      const std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    taken_.notify_all();
+    if (reader_.joinable()) reader_.join();
+  }
+
+  void add_open_stream_rejections(Rejections& out) const override {
+    if (decoder_ && !stopped_) out.merge(decoder_->rejections());
+  }
+  void add_live_figures(protocol::InputStatistics& s) const override {
+    s.connections = connection_.connects();
+    s.messages_dropped = dropped_.load();
+  }
+
+  bool stopping() {
+    const std::lock_guard lock(mutex_);
+    return stopping_;
+  }
+  void pause() {
+    std::unique_lock lock(mutex_);
+    taken_.wait_for(lock, kRetryPeriod, [this] { return stopping_; });
+  }
+
+  // The reader thread: subscribes (again and again until it can), then reads.
+  void read() {
+    natsSubscription* subscription = nullptr;
+    while (!stopping()) {
+      if (!subscription) {
+        subscription = subscribe();
+        if (!subscription) pause();
+        continue;
+      }
+      auto batch = std::make_shared<MessageBatch>();
+      const natsStatus status = jetstream() ? fetch(subscription, *batch) : next(subscription, *batch);
+      if (!batch->messages.empty()) post(std::move(batch));
+      if (status == NATS_OK || status == NATS_TIMEOUT) {
+        failures_.recovered("reading again");
+        continue;
+      }
+      if (status == NATS_SLOW_CONSUMER) {
+        std::int64_t dropped = 0;
+        natsSubscription_GetDropped(subscription, &dropped);
+        dropped_.store(static_cast<std::uint64_t>(dropped));
+        failures_.report(fmt::format("kewd fell behind {}: {} messages dropped so far", config_.address, dropped));
+        continue;
+      }
+      // Disconnected: the client reconnects and the subscription carries on after it.
+      if (!connection_.connected()) {
+        pause();
+        continue;
+      }
+      failures_.report(fmt::format("reading {}: {}", config_.address, nats::describe(status)));
+      if (status == NATS_INVALID_SUBSCRIPTION || status == NATS_CONNECTION_CLOSED) {
+        natsSubscription_Destroy(subscription);
+        subscription = nullptr;
+      }
+      pause();
+    }
+    // Destroyed, not unsubscribed: a durable consumer stays on the server for the next run.
+    natsSubscription_Destroy(subscription);
+  }
+
+  natsSubscription* subscribe() {
+    natsSubscription* subscription = nullptr;
+    if (!jetstream()) {
+      const natsStatus s = natsConnection_SubscribeSync(&subscription, connection_.get(), config_.address.c_str());
+      if (s != NATS_OK) failures_.report(fmt::format("cannot subscribe to {}: {}", config_.address, nats::describe(s)));
+      return s == NATS_OK ? subscription : nullptr;
+    }
+    if (!connection_.connected()) return nullptr;
+    if (!config_.stream.empty() && !ensure_stream()) return nullptr;
+    jsSubOptions options;
+    jsSubOptions_Init(&options);
+    if (!config_.stream.empty()) options.Stream = config_.stream.c_str();
+    options.Config.AckPolicy = js_AckAll;
+    options.Config.AckWait = kAckWaitNs;
+    options.Config.DeliverPolicy = js_DeliverAll;
+    jsErrCode error = static_cast<jsErrCode>(0);
+    const natsStatus s = js_PullSubscribe(&subscription, connection_.jetstream(), config_.address.c_str(),
+                                          config_.durable.c_str(), nullptr, &options, &error);
+    if (s != NATS_OK) {
+      failures_.report(fmt::format("cannot read {} through the JetStream consumer {}: {}{}", config_.address,
+                                   config_.durable, nats::describe(s),
+                                   error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
+      return nullptr;
+    }
+    spdlog::info("input {}: reading {} through the JetStream consumer {}", config_.name, config_.address,
+                 config_.durable);
+    return subscription;
+  }
+
+  bool ensure_stream() {
+    jsStreamConfig stream;
+    jsStreamConfig_Init(&stream);
+    stream.Name = config_.stream.c_str();
+    const char* subjects[] = {config_.address.c_str()};
+    stream.Subjects = subjects;
+    stream.SubjectsLen = 1;
+    stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
+    stream.Storage = js_FileStorage;
+    jsStreamInfo* info = nullptr;
+    jsErrCode error = static_cast<jsErrCode>(0);
+    const natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
+    jsStreamInfo_Destroy(info);
+    if (s == NATS_OK) {
+      spdlog::info("input {}: created the JetStream stream {} for {}", config_.name, config_.stream, config_.address);
+      return true;
+    }
+    if (error == kStreamNameInUse) return true;  // made by an earlier run or the operator
+    failures_.report(fmt::format("cannot create the JetStream stream {}: {}", config_.stream, nats::describe(s)));
+    return false;
+  }
+
+  static natsStatus fetch(natsSubscription* subscription, MessageBatch& batch) {
+    natsMsgList list{};
+    const natsStatus s = natsSubscription_Fetch(&list, subscription, kFetchBatch, kWaitMs, nullptr);
+    for (int i = 0; i < list.Count; ++i) {
+      batch.messages.push_back(list.Msgs[i]);
+      list.Msgs[i] = nullptr;  // owned by the batch now
+    }
+    natsMsgList_Destroy(&list);
+    return s;
+  }
+
+  // One message (waiting for it), then whatever has already arrived behind it.
+  static natsStatus next(natsSubscription* subscription, MessageBatch& batch) {
+    natsMsg* message = nullptr;
+    natsStatus s = natsSubscription_NextMsg(&message, subscription, kWaitMs);
+    if (s != NATS_OK) return s;
+    batch.messages.push_back(message);
+    int pending = 0;
+    natsSubscription_GetPending(subscription, &pending, nullptr);
+    for (int i = 0; i < std::min(pending, kFetchBatch - 1); ++i) {
+      s = natsSubscription_NextMsg(&message, subscription, 0);
+      if (s != NATS_OK) return NATS_OK;
+      batch.messages.push_back(message);
+    }
+    return NATS_OK;
+  }
+
+  // Hands a batch to the I/O thread, then waits while it is behind: what kewd has not yet
+  // taken stays with the client (its pending limit) and the server (JetStream).
+  void post(std::shared_ptr<MessageBatch> batch) {
+    std::unique_lock lock(mutex_);
+    ++in_flight_;
+    asio::post(io_, [this, batch = std::move(batch)] { take(*batch); });
+    taken_.wait(lock, [this] { return stopping_ || in_flight_ < kBatchesInFlight; });
+  }
+
+  // On the I/O thread.
+  void take(MessageBatch& batch) {
+    if (!stopped_) {
+      for (natsMsg* m : batch.messages)
+        feed_message(*decoder_, natsMsg_GetData(m), static_cast<std::size_t>(natsMsg_GetDataLength(m)));
+      // Acknowledged once decoded: the records are the pipeline's now.
+      if (jetstream() && !batch.messages.empty()) natsMsg_Ack(batch.messages.back(), nullptr);
+    }
+    {
+      const std::lock_guard lock(mutex_);
+      --in_flight_;
+    }
+    taken_.notify_all();
+  }
+
+  asio::io_context& io_;
+  NatsConnection connection_;
+  std::unique_ptr<protocol::Decoder> decoder_;
+  std::thread reader_;
+  std::mutex mutex_;
+  std::condition_variable taken_;
+  int in_flight_ = 0;       // guarded by mutex_
+  bool stopping_ = false;   // guarded by mutex_
+  bool stopped_ = false;    // I/O thread
+  std::atomic<std::uint64_t> dropped_{0};
+  RepeatedFailure failures_;  // reader thread
+};
+
+}  // namespace
+
+std::unique_ptr<Input> make_nats_input(asio::io_context& io, const InputConfig& config,
+                                       const protocol::DecoderOptions& options, Input::ReportHandler handler) {
+  return std::make_unique<NatsInput>(io, config, options, std::move(handler));
+}
+
+}  // namespace kew::daemon

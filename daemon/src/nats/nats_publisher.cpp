@@ -1,0 +1,199 @@
+#include "nats_publisher.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace kew::daemon {
+
+namespace {
+
+// What a stopping kewd gives the server to take the last events.
+constexpr auto kDrainOnStop = std::chrono::seconds(2);
+constexpr auto kRetryPeriod = std::chrono::milliseconds(250);
+constexpr std::int64_t kAcknowledgementWaitMs = 2000;
+constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
+
+/// A message with the seq header, destroyed with its owner.
+class OutgoingMessage {
+ public:
+  OutgoingMessage(const std::string& subject, std::string_view json, std::uint64_t seq) {
+    nats::check(natsMsg_Create(&message_, subject.c_str(), nullptr, json.data(), static_cast<int>(json.size())),
+                "NATS message");
+    natsMsgHeader_Set(message_, nats::kSeqHeader, std::to_string(seq).c_str());
+  }
+  ~OutgoingMessage() { natsMsg_Destroy(message_); }
+  OutgoingMessage(const OutgoingMessage&) = delete;
+  OutgoingMessage& operator=(const OutgoingMessage&) = delete;
+  natsMsg* get() const { return message_; }
+
+ private:
+  natsMsg* message_ = nullptr;
+};
+
+}  // namespace
+
+NatsPublisher::NatsPublisher(const NatsConfig& config, std::string run_id)
+    : config_(config),
+      run_id_(std::move(run_id)),
+      failures_("[nats]"),
+      connection_(config.url, config.name, [](std::string_view event) { spdlog::info("[nats] {}", event); }) {
+  thread_ = std::thread([this] { run(); });
+}
+
+NatsPublisher::~NatsPublisher() {
+  {
+    std::unique_lock lock(mutex_);
+    changed_.wait_for(lock, kDrainOnStop, [this] { return outbox_.empty(); });
+    if (!outbox_.empty())
+      spdlog::error("[nats] stopping with {} events the server has not taken", outbox_.size());
+    stopping_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void NatsPublisher::publish_alert(std::string_view zone, std::string_view json, std::uint64_t seq) {
+  enqueue(fmt::format("{}.{}", config_.alerts_subject, zone), json, seq);
+}
+
+void NatsPublisher::publish_ack(std::string_view json, std::uint64_t seq) { enqueue(config_.acks_subject, json, seq); }
+
+void NatsPublisher::publish_status(std::string_view json, std::uint64_t seq) {
+  publish_now(config_.status_subject, json, seq);
+}
+
+void NatsPublisher::publish_tracks(std::string_view json, std::uint64_t seq) {
+  publish_now(config_.tracks_subject, json, seq);
+}
+
+void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uint64_t seq) {
+  if (!json.empty() && json.back() == '\n') json.remove_suffix(1);
+  {
+    const std::lock_guard lock(mutex_);
+    if (outbox_.size() >= config_.outbox) {
+      outbox_.pop_front();
+      if (dropped_++ % 1000 == 0)
+        spdlog::error("[nats] outbox full ({} events): dropping the oldest ({} dropped so far)", config_.outbox,
+                      dropped_.load());
+    }
+    outbox_.push_back(Message{std::move(subject), std::string(json), seq, ++numbered_});
+  }
+  changed_.notify_all();
+}
+
+void NatsPublisher::publish_now(const std::string& subject, std::string_view json, std::uint64_t seq) {
+  if (!connection_.connected()) return;
+  if (!json.empty() && json.back() == '\n') json.remove_suffix(1);
+  try {
+    OutgoingMessage message(subject, json, seq);
+    if (natsConnection_PublishMsg(connection_.get(), message.get()) == NATS_OK) ++status_published_;
+  } catch (const nats::NatsError&) {
+    // Out of memory in the client: a status object is not worth more.
+  }
+}
+
+bool NatsPublisher::wait(std::chrono::milliseconds period) {
+  std::unique_lock lock(mutex_);
+  changed_.wait_for(lock, period, [this] { return stopping_; });
+  return stopping_;
+}
+
+void NatsPublisher::run() {
+  bool stream_ready = config_.stream.empty();
+  for (;;) {
+    Message message;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [this] { return stopping_ || !outbox_.empty(); });
+      if (stopping_) return;
+      message = outbox_.front();
+    }
+    if (!stream_ready) stream_ready = ensure_stream();
+    if (stream_ready && send(message)) {
+      ++published_;
+      {
+        const std::lock_guard lock(mutex_);
+        // Dropped meanwhile by a full outbox? Then the front is another message.
+        if (!outbox_.empty() && outbox_.front().number == message.number) outbox_.pop_front();
+      }
+      changed_.notify_all();
+      failures_.recovered("publishing again");
+      continue;
+    }
+    ++retries_;
+    if (wait(kRetryPeriod)) return;
+  }
+}
+
+bool NatsPublisher::ensure_stream() {
+  if (!connection_.connected()) return false;
+  const std::string alerts = config_.alerts_subject + ".>";
+  const char* subjects[] = {alerts.c_str(), config_.acks_subject.c_str()};
+  jsStreamConfig stream;
+  jsStreamConfig_Init(&stream);
+  stream.Name = config_.stream.c_str();
+  stream.Subjects = subjects;
+  stream.SubjectsLen = 2;
+  stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
+  stream.MaxBytes = static_cast<std::int64_t>(config_.stream_max_bytes);
+  stream.Storage = js_FileStorage;
+  jsStreamInfo* info = nullptr;
+  jsErrCode error = static_cast<jsErrCode>(0);
+  natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
+  if (s != NATS_OK && error == kStreamNameInUse) {
+    // Kept from an earlier run: its limits follow this configuration.
+    error = static_cast<jsErrCode>(0);
+    s = js_UpdateStream(&info, connection_.jetstream(), &stream, nullptr, &error);
+  }
+  jsStreamInfo_Destroy(info);
+  if (s == NATS_OK) {
+    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {})", config_.stream, alerts, config_.acks_subject);
+    return true;
+  }
+  failures_.report(fmt::format("cannot create the JetStream stream {}: {}{} (events wait in the outbox)",
+                               config_.stream, nats::describe(s),
+                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
+  return false;
+}
+
+bool NatsPublisher::send(const Message& message) {
+  natsStatus s = NATS_OK;
+  jsErrCode error = static_cast<jsErrCode>(0);
+  try {
+    OutgoingMessage outgoing(message.subject, message.json, message.seq);
+    if (config_.stream.empty()) {
+      s = natsConnection_PublishMsg(connection_.get(), outgoing.get());
+    } else {
+      const std::string id = fmt::format("{}-{}", run_id_, message.number);
+      jsPubOptions options;
+      jsPubOptions_Init(&options);
+      options.MsgId = id.c_str();
+      options.MaxWait = kAcknowledgementWaitMs;
+      jsPubAck* ack = nullptr;
+      s = js_PublishMsg(&ack, connection_.jetstream(), outgoing.get(), &options, &error);
+      jsPubAck_Destroy(ack);
+    }
+  } catch (const nats::NatsError& e) {
+    s = e.status();
+  }
+  if (s == NATS_OK) return true;
+  failures_.report(fmt::format("{} not taken by the server: {}{} (tried again until it is)", message.subject,
+                               nats::describe(s),
+                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
+  return false;
+}
+
+protocol::NatsStatistics NatsPublisher::statistics() const {
+  protocol::NatsStatistics s;
+  s.connected = connection_.connected();
+  s.disconnects = connection_.disconnects();
+  s.published = published_.load();
+  s.retries = retries_.load();
+  s.dropped = dropped_.load();
+  s.status_published = status_published_.load();
+  const std::lock_guard lock(mutex_);
+  s.queued = outbox_.size();
+  return s;
+}
+
+}  // namespace kew::daemon

@@ -1,0 +1,77 @@
+#pragma once
+// kewd's publisher on NATS ([nats], design §5.9). Alert events and acknowledgements go
+// to an outbox that one thread empties in order into the JetStream stream, each
+// publication acknowledged by the server and tried again (with the same message id, so
+// JetStream keeps it once) until it is: a server that goes away and comes back loses
+// none of them. ALIVE and TRACKS objects are published as they come and not kept.
+// Every message carries the stream's JSON object (without its newline) and the header
+// nats::kSeqHeader.
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include "kew/daemon/config.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
+#include "nats_connection.hpp"
+#include "repeated_failure.hpp"
+
+namespace kew::daemon {
+
+class NatsPublisher {
+ public:
+  /// Connects (in the background when no server answers yet) and starts the outbox's
+  /// thread. `run_id` makes message ids unique to this run. Throws nats::NatsError for a
+  /// malformed url.
+  NatsPublisher(const NatsConfig& config, std::string run_id);
+  /// Gives the outbox up to `kDrainOnStop` to empty, then stops.
+  ~NatsPublisher();
+  NatsPublisher(const NatsPublisher&) = delete;
+  NatsPublisher& operator=(const NatsPublisher&) = delete;
+
+  /// An ALERT object (its seq) judged in `zone` (a subject token): to
+  /// <alerts_subject>.<zone>, kept.
+  void publish_alert(std::string_view zone, std::string_view json, std::uint64_t seq);
+  /// An ACK object: to acks_subject, kept.
+  void publish_ack(std::string_view json, std::uint64_t seq);
+  /// An ALIVE object to status_subject, or a TRACKS snapshot to tracks_subject: now, or
+  /// never when the server is away.
+  void publish_status(std::string_view json, std::uint64_t seq);
+  void publish_tracks(std::string_view json, std::uint64_t seq);
+
+  protocol::NatsStatistics statistics() const;
+
+ private:
+  struct Message {
+    std::string subject;
+    std::string json;
+    std::uint64_t seq = 0;
+    std::uint64_t number = 0;  // this run's count of kept messages: the message id
+  };
+  void enqueue(std::string subject, std::string_view json, std::uint64_t seq);
+  void publish_now(const std::string& subject, std::string_view json, std::uint64_t seq);
+  void run();
+  bool ensure_stream();
+  bool send(const Message& message);
+  /// Waits `period` or until stopping; true when stopping.
+  bool wait(std::chrono::milliseconds period);
+
+  NatsConfig config_;
+  std::string run_id_;
+  RepeatedFailure failures_;  // outbox thread
+  nats::NatsConnection connection_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Message> outbox_;     // guarded by mutex_
+  std::uint64_t numbered_ = 0;     // guarded by mutex_
+  bool stopping_ = false;          // guarded by mutex_
+  std::atomic<std::uint64_t> published_{0}, retries_{0}, dropped_{0}, status_published_{0};
+  std::thread thread_;
+};
+
+}  // namespace kew::daemon

@@ -1,0 +1,47 @@
+#pragma once
+// A failure that repeats while a NATS server is away (no connection, no stream, no
+// acknowledgement) goes to the log once, then at most every 30 s with how often it
+// happened meanwhile; recovered() says so once it stops. One thread uses an instance.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include <spdlog/spdlog.h>
+
+namespace kew::daemon {
+
+class RepeatedFailure {
+ public:
+  static constexpr auto kReportPeriod = std::chrono::seconds(30);
+
+  /// `who` prefixes every message ("input bus", "[nats]").
+  explicit RepeatedFailure(std::string who) : who_(std::move(who)) {}
+
+  void report(std::string_view what) {
+    ++since_report_;
+    ++since_recovery_;
+    const auto now = std::chrono::steady_clock::now();
+    if (since_report_ > 1 && now - last_report_ < kReportPeriod) return;
+    if (since_report_ > 1)
+      spdlog::warn("{}: {} ({} times since the last report)", who_, what, since_report_);
+    else
+      spdlog::warn("{}: {}", who_, what);
+    last_report_ = now;
+    since_report_ = 0;
+  }
+  void recovered(std::string_view what) {
+    if (!since_recovery_) return;
+    spdlog::info("{}: {} after {} failed attempts", who_, what, since_recovery_);
+    since_recovery_ = since_report_ = 0;
+  }
+
+ private:
+  std::string who_;
+  std::uint64_t since_report_ = 0;
+  std::uint64_t since_recovery_ = 0;
+  std::chrono::steady_clock::time_point last_report_{};
+};
+
+}  // namespace kew::daemon
