@@ -240,3 +240,71 @@ def write_pcap(path, datagrams, udp_port=8600):
 
 def temporary_directory():
     return tempfile.TemporaryDirectory(prefix="kew-e2e-")
+
+
+NATS_SERVER = os.environ.get("NATS_SERVER", "nats-server")
+
+
+class NatsServer:
+    """A real nats-server (Debian's) on loopback with JetStream (its store in `workdir`,
+    kept across restart()) and its MQTT listener, on free ports."""
+
+    def __init__(self, workdir):
+        self.port = free_port()
+        self.mqtt_port = free_port()
+        self.store = os.path.join(workdir, "jetstream")
+        self.config_path = os.path.join(workdir, "nats.conf")
+        with open(self.config_path, "w") as f:
+            # MQTT needs JetStream and a server name.
+            f.write(f'server_name: kew_e2e\nlisten: 127.0.0.1:{self.port}\n'
+                    f'jetstream {{ store_dir: "{self.store}" }}\nmqtt {{ listen: 127.0.0.1:{self.mqtt_port} }}\n')
+        self.log_path = os.path.join(workdir, "nats.log")
+        self.process = None
+        self.start()
+
+    @property
+    def url(self):
+        return f"nats://127.0.0.1:{self.port}"
+
+    def start(self):
+        self._log = open(self.log_path, "a")
+        self.process = subprocess.Popen([NATS_SERVER, "-c", self.config_path], stdout=self._log,
+                                        stderr=subprocess.STDOUT)
+        wait_until(self._ready, STARTUP_TIMEOUT_S, "nats-server to be ready")
+
+    def _ready(self):
+        if self.process.poll() is not None:
+            with open(self.log_path) as f:
+                raise AssertionError("nats-server exited:\n" + f.read())
+        try:
+            with socket.create_connection(("127.0.0.1", self.port), timeout=1) as s:
+                return s.makefile("rb").readline().startswith(b"INFO ")
+        except OSError:
+            return False
+
+    def stop(self):
+        if self.process and self.process.poll() is None:
+            self.process.terminate()
+            self.process.wait(timeout=20)
+        if self.process:
+            self._log.close()
+        self.process = None
+
+
+def nats_publish(port, subject, payloads):
+    """Publishes each of `payloads` (bytes) as one message through NATS's text protocol,
+    then waits for the server's PONG: every message has reached it."""
+    with socket.create_connection(("127.0.0.1", port), timeout=10) as s:
+        reader = s.makefile("rb")
+        assert reader.readline().startswith(b"INFO ")
+        out = [b'CONNECT {"verbose":false,"pedantic":false,"name":"kew-e2e"}\r\n']
+        for payload in payloads:
+            out.append(b"PUB %s %d\r\n%s\r\n" % (subject.encode(), len(payload), payload))
+        out.append(b"PING\r\n")
+        s.sendall(b"".join(out))
+        while True:
+            line = reader.readline()
+            if not line or line.startswith(b"PONG"):
+                break
+            if line.startswith(b"-ERR"):
+                raise AssertionError(line.decode())

@@ -17,6 +17,7 @@
 
 #include "kew/config/address.hpp"
 #include "kew/config/document.hpp"
+#include "kew/config/nats_subject.hpp"
 #include "kew/config/shared_config.hpp"
 #include "kew/config/utc_day.hpp"
 
@@ -47,6 +48,17 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.record_file, defaults.service.record_file);
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
   EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
+  EXPECT_EQ(file.nats.url, defaults.nats.url);
+  EXPECT_EQ(file.nats.name, defaults.nats.name);
+  EXPECT_EQ(file.nats.alerts_subject, defaults.nats.alerts_subject);
+  EXPECT_EQ(file.nats.acks_subject, defaults.nats.acks_subject);
+  EXPECT_EQ(file.nats.status_subject, defaults.nats.status_subject);
+  EXPECT_EQ(file.nats.tracks_subject, defaults.nats.tracks_subject);
+  EXPECT_EQ(file.nats.tracks_interval_s, defaults.nats.tracks_interval_s);
+  EXPECT_EQ(file.nats.stream, defaults.nats.stream);
+  EXPECT_EQ(file.nats.stream_max_age_s, defaults.nats.stream_max_age_s);
+  EXPECT_EQ(file.nats.stream_max_bytes, defaults.nats.stream_max_bytes);
+  EXPECT_EQ(file.nats.outbox, defaults.nats.outbox);
   EXPECT_FALSE(p.reference.has_value());
   EXPECT_EQ(p.zone_mode, d.zone_mode);
   EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
@@ -348,6 +360,56 @@ void expect_check_error(const std::string& text, const std::string& needle, bool
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
   }
+}
+
+TEST(Config, NatsInputsAndPublisher) {
+  const Config c = parse_config(R"(
+[nats]
+url = "nats://10.0.0.5:4222"
+alerts_subject = "ops.alerts"
+stream = ""
+[[input]]
+transport = "nats"
+address = "feeds.radar.>"
+durable = "kewd_a"
+stream = "FEEDS"
+[[input]]
+transport = "nats"
+address = "feeds.adsb"
+nats_url = "nats://127.0.0.1:4223"
+)");
+  EXPECT_EQ(c.nats.alerts_subject, "ops.alerts");
+  EXPECT_EQ(c.nats.stream, "");
+  ASSERT_EQ(c.inputs.size(), 2u);
+  EXPECT_EQ(c.inputs[0].transport, Transport::Nats);
+  EXPECT_EQ(c.inputs[0].nats_url, "nats://10.0.0.5:4222");  // [nats] url when the input names none
+  EXPECT_EQ(c.inputs[0].durable, "kewd_a");
+  EXPECT_EQ(c.inputs[1].nats_url, "nats://127.0.0.1:4223");
+  EXPECT_EQ(parse_config("[[input]]\ntransport = \"nats\"\naddress = \"a\"\n").inputs[0].nats_url,
+            kDefaultNatsUrl);
+  expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a..b\"\n", "address = \"a..b\" is not a NATS subject");
+  expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a.>.b\"\n", "is not a NATS subject");
+  expect_error("[nats]\nalerts_subject = \"kew.*\"\n", "is not a NATS subject to publish to");
+  expect_error("[nats]\nstream = \"KEW.ALERTS\"\n", "a JetStream name has no '.'");
+  expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a\"\nstream = \"S\"\n", "give durable too");
+  expect_error("[[input]]\ntransport = \"udp\"\naddress = \"127.0.0.1:8600\"\ndurable = \"d\"\n",
+               "durable is for transport nats only");
+}
+
+TEST(NatsSubject, TokensAndWildcards) {
+  EXPECT_TRUE(config::valid_nats_subject("kew.alerts.N49_5E013_3", false));
+  EXPECT_TRUE(config::valid_nats_subject("kew.*.x", true));
+  EXPECT_TRUE(config::valid_nats_subject("kew.>", true));
+  EXPECT_FALSE(config::valid_nats_subject("kew.>", false));
+  EXPECT_FALSE(config::valid_nats_subject("kew.a*", true));
+  EXPECT_FALSE(config::valid_nats_subject("kew. a", false));
+  EXPECT_FALSE(config::valid_nats_subject(".kew", false));
+  EXPECT_FALSE(config::valid_nats_subject("kew.", false));
+  EXPECT_FALSE(config::valid_nats_subject("", true));
+  EXPECT_EQ(config::nats_subject_token("N40.5E004.5"), "N40_5E004_5");
+  EXPECT_EQ(config::nats_subject_token("S04.5W177.5"), "S04_5W177_5");
+  EXPECT_EQ(config::nats_subject_token("a/b+c#d e"), "a_b_c_d_e");  // MQTT topic levels too
+  EXPECT_EQ(config::nats_subject_token(""), "_");
 }
 
 TEST(Config, InputNamesAreDistinct) {

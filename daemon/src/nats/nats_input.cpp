@@ -135,8 +135,12 @@ class NatsInput final : public Input {
     natsSubscription* subscription = nullptr;
     if (!jetstream()) {
       const natsStatus s = natsConnection_SubscribeSync(&subscription, connection_.get(), config_.address.c_str());
-      if (s != NATS_OK) failures_.report(fmt::format("cannot subscribe to {}: {}", config_.address, nats::describe(s)));
-      return s == NATS_OK ? subscription : nullptr;
+      if (s != NATS_OK) {
+        failures_.report(fmt::format("cannot subscribe to {}: {}", config_.address, nats::describe(s)));
+        return nullptr;
+      }
+      spdlog::info("input {}: subscribed to {}", config_.name, config_.address);
+      return subscription;
     }
     if (!connection_.connected()) return nullptr;
     if (!config_.stream.empty() && !ensure_stream()) return nullptr;

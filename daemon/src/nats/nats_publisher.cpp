@@ -99,8 +99,15 @@ bool NatsPublisher::wait(std::chrono::milliseconds period) {
 }
 
 void NatsPublisher::run() {
+  // The stream first, before any event: a subscriber may start reading it before kewd
+  // has anything to say.
   bool stream_ready = config_.stream.empty();
   for (;;) {
+    if (!stream_ready) {
+      stream_ready = ensure_stream();
+      if (!stream_ready && wait(kRetryPeriod)) return;
+      continue;
+    }
     Message message;
     {
       std::unique_lock lock(mutex_);
@@ -108,8 +115,7 @@ void NatsPublisher::run() {
       if (stopping_) return;
       message = outbox_.front();
     }
-    if (!stream_ready) stream_ready = ensure_stream();
-    if (stream_ready && send(message)) {
+    if (send(message)) {
       ++published_;
       {
         const std::lock_guard lock(mutex_);

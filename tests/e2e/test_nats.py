@@ -1,0 +1,222 @@
+"""kewd on a real NATS server (design §5.9): the NATS input, the alerts kept in JetStream
+for a subscriber that was away, MQTT through nats-server's own listener, bad input on a
+subject, a durable consumer across a restart and a server that goes away and comes back.
+
+Run by ctest with a real `nats-server` (Debian's, with JetStream) and `mosquitto_sub`;
+by hand: KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest test_nats -v
+"""
+
+import json
+import os
+import subprocess
+import threading
+import time
+import unittest
+
+from kewd_harness import (KEW_WATCH, Kewd, NatsServer, Subscriber, count_lines, generate, nats_publish,
+                          offline_alerts, replay_to, temporary_directory, wait_until)
+
+# The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
+SERVICE = """
+[service]
+alert_listen = "127.0.0.1:0"
+tick_interval_s = 60
+subscriber_queue = 20000
+"""
+
+NATS_OUTPUT = """
+[nats]
+url = "{url}"
+"""
+
+NATS_INPUT = """
+[[input]]
+name = "bus"
+format = "ndjson"
+transport = "nats"
+address = "kew.feed.tma"
+"""
+
+DURABLE = """durable = "kewd_e2e"
+stream = "KEW_FEED"
+"""
+
+UDP_INPUT = """
+[[input]]
+name = "udp"
+format = "ndjson"
+transport = "udp"
+address = "127.0.0.1:0"
+"""
+
+
+def watch(url, *args, timeout=60):
+    """kew-watch --nats URL --json ARGS: its JSON lines."""
+    result = subprocess.run([KEW_WATCH, "--nats", url, "--json", *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, timeout=timeout)
+    assert result.returncode == 0, result.stderr
+    return result.stdout.splitlines(keepends=True)
+
+
+class NatsCase(unittest.TestCase):
+    def setUp(self):
+        self._dir = temporary_directory()
+        self.workdir = self._dir.name
+        self.nats = NatsServer(self.workdir)
+        self.daemons = []
+        self.processes = []
+        self.recording = self.path("tma.ndjson")
+        generate(self.recording, "tma", aircraft=150, duration=120, seed=3)
+
+    def tearDown(self):
+        for d in self.daemons:
+            d.kill()
+        for p in self.processes:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+        while Subscriber.opened:
+            Subscriber.opened.pop().close()
+        self.nats.stop()
+        self._dir.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.workdir, name)
+
+    def start(self, config):
+        daemon = Kewd(config, self.workdir)
+        self.daemons.append(daemon)
+        return daemon
+
+    def feed_lines(self):
+        with open(self.recording, "rb") as f:
+            return [line for line in f if line.strip() and not line.startswith(b"#")]
+
+
+class NatsInputAndOutput(NatsCase):
+    def test_nats_input_gives_the_file_alerts_on_the_stream_jetstream_and_mqtt(self):
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + NATS_INPUT + DURABLE)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        self.assertGreater(len(expected), 100)
+        kewd.wait_log("reading kew.feed.tma through the JetStream consumer kewd_e2e")
+        reader = Subscriber(kewd.alert_port)
+        mqtt = subprocess.Popen(["mosquitto_sub", "-h", "127.0.0.1", "-p", str(self.nats.mqtt_port), "-v",
+                                 "-t", "kew/alerts/#", "-t", "kew/probe"], stdout=subprocess.PIPE, text=True)
+        self.processes.append(mqtt)
+        received = []
+        threading.Thread(target=lambda: received.extend(mqtt.stdout), daemon=True).start()
+        # mosquitto_sub says nothing once subscribed: a probe published on NATS until it
+        # arrives over MQTT says it is.
+        wait_until(lambda: nats_publish(self.nats.port, "kew.probe", [b"probe"]) or time.sleep(0.2)
+                   or received, 20, "the MQTT subscriber")
+        replay_to(f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "40")
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: len(reader.alert_lines()) >= len(expected), 30, "every alert")
+        self.assertEqual(reader.alert_lines(), expected, "the NATS input gives the file's alerts")
+
+        kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
+        self.assertEqual(kept, expected, "JetStream keeps every alert event, in order")
+
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected), 20, "every event published")
+        wait_until(lambda: len(received) >= len(expected) + 1, 20, "every event over MQTT")
+        time.sleep(0.5)
+        mqtt.terminate()
+        mqtt.wait(timeout=10)
+        received = [line.rstrip("\n") for line in received if not line.startswith("kew/probe ")]
+        self.assertEqual(len(received), len(expected), "MQTT subscribers receive every alert event")
+        for line, alert in zip(received, expected):
+            topic, _, payload = line.partition(" ")
+            self.assertRegex(topic, r"^kew/alerts/[NS]\d\d_\dE\d\d\d_\d$")  # kew.alerts.<zone>
+            self.assertEqual(payload + "\n", alert)
+        stats = kewd.stats()
+        self.assertEqual(stats["nats"]["dropped"], 0)
+        self.assertTrue(stats["nats"]["connected"])
+        self.assertEqual(stats["inputs"][0]["reports"], count_lines(self.recording))
+        self.assertEqual(kewd.terminate(), 0)
+
+    def test_a_subscriber_away_for_30_s_reads_every_alert_it_missed(self):
+        # A plain subscription (no durable) feeds kewd here.
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + NATS_INPUT)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        kewd.wait_log("input bus: subscribed to kew.feed.tma")
+        first = subprocess.Popen([KEW_WATCH, "--nats", self.nats.url, "--json"], stdout=subprocess.PIPE, text=True)
+        self.processes.append(first)
+        time.sleep(1.0)  # subscribed before the first alert
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "2.5"))
+        feeder.start()
+        lines = []
+        wait_until(lambda: lines.append(first.stdout.readline()) or len(lines) >= 20, 30, "the first alerts")
+        first.kill()
+        first.wait()
+        seen = [json.loads(line) for line in lines]
+        last_seq = seen[-1]["seq"]
+        time.sleep(30)  # away
+        feeder.join()
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected), 20, "every event published")
+        missed = watch(self.nats.url, "--since", str(last_seq), "-n", str(len(expected) - len(seen)))
+        self.assertEqual(lines + missed, expected, "what it saw and what it missed are every event, once")
+
+
+class NatsFaults(NatsCase):
+    def test_garbage_on_the_subject_is_counted_and_refused(self):
+        # No [nats] table: the input names its server.
+        kewd = self.start(SERVICE + NATS_INPUT + f'nats_url = "{self.nats.url}"\n')
+        kewd.wait_log("input bus: subscribed to kew.feed.tma")
+        good = self.feed_lines()[:200]
+        nats_publish(self.nats.port, "kew.feed.tma",
+                     [b"\x00\xff garbage", b'{"t":1714400000,"id":', bytes(range(256)) * 4]
+                     + [b"".join(good[i:i + 10]) for i in range(0, len(good), 10)])
+        kewd.wait_records(len(good))
+        stats = kewd.stats()
+        bus = stats["inputs"][0]
+        self.assertEqual(bus["reports"], len(good), "every good record after the garbage is taken")
+        self.assertGreaterEqual(sum(bus["rejected"].values()), 3, bus)
+        self.assertTrue(kewd.running())
+        self.assertIn("rejected", kewd.log())
+
+    def test_a_durable_consumer_resumes_where_kewd_stopped(self):
+        config = SERVICE + NATS_INPUT + f'nats_url = "{self.nats.url}"\n' + DURABLE
+        kewd = self.start(config)
+        kewd.wait_log("reading kew.feed.tma through the JetStream consumer kewd_e2e")
+        lines = self.feed_lines()
+        half = len(lines) // 2
+        nats_publish(self.nats.port, "kew.feed.tma", [b"".join(lines[i:i + 20]) for i in range(0, half, 20)])
+        kewd.wait_records(half)
+        self.assertEqual(kewd.terminate(), 0)
+        # Published while kewd is down: kept by JetStream, read by the next run.
+        nats_publish(self.nats.port, "kew.feed.tma", [b"".join(lines[i:i + 20]) for i in range(half, len(lines), 20)])
+        again = self.start(config)
+        again.wait_records(len(lines) - half)
+        time.sleep(1.0)
+        self.assertEqual(again.stats()["records"], len(lines) - half, "each message read once, by one run")
+
+    def test_a_server_away_and_back_loses_no_alert(self):
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + UDP_INPUT)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        wait_until(lambda: kewd.stats()["nats"]["connected"], 10, "kewd connected to NATS")
+        feeder = threading.Thread(target=replay_to, args=(
+            f"udp://127.0.0.1:{kewd.input_port('udp')}", self.recording, "--speed", "10"))
+        feeder.start()
+        time.sleep(3)
+        self.nats.stop()
+        wait_until(lambda: not kewd.stats()["nats"]["connected"], 10, "kewd to see the server gone")
+        time.sleep(3)
+        self.nats.start()
+        feeder.join()
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected) and kewd.stats()["nats"]["queued"] == 0,
+                   60, "the outbox emptied")
+        stats = kewd.stats()["nats"]
+        self.assertGreaterEqual(stats["disconnects"], 1)
+        self.assertEqual(stats["dropped"], 0)
+        kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
+        self.assertEqual(kept, expected, "every alert event in JetStream once, in order")
+        # Nothing after the last event: a retried publication kept twice would be there.
+        with self.assertRaises(subprocess.TimeoutExpired):
+            watch(self.nats.url, "--since", str(json.loads(expected[-1])["seq"]), "-n", "1", timeout=3)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,38 @@
+// kew-replay --to: the targets it streams records to (design §5.6, §5.9).
+#include "kew/replay/stream_sender.hpp"
+
+#include <gtest/gtest.h>
+
+namespace kew::replay {
+namespace {
+
+using Protocol = StreamTarget::Protocol;
+
+TEST(StreamTarget, TcpUdpAndNats) {
+  const auto tcp = parse_stream_target("127.0.0.1:4748");
+  ASSERT_TRUE(tcp);
+  EXPECT_EQ(tcp->protocol, Protocol::Tcp);
+  EXPECT_EQ(tcp->port, 4748);
+  const auto udp = parse_stream_target("udp://[::1]:8600");
+  ASSERT_TRUE(udp);
+  EXPECT_EQ(udp->protocol, Protocol::Udp);
+  EXPECT_EQ(udp->host, "::1");
+  const auto nats = parse_stream_target("nats://127.0.0.1:4222/kew.feed.radar1");
+  ASSERT_TRUE(nats);
+  EXPECT_EQ(nats->protocol, Protocol::Nats);
+  EXPECT_EQ(nats->host, "127.0.0.1");
+  EXPECT_EQ(nats->port, 4222);
+  EXPECT_EQ(nats->subject, "kew.feed.radar1");
+}
+
+TEST(StreamTarget, ANatsTargetNeedsASubjectToPublishTo) {
+  std::string error;
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1:4222", &error));
+  EXPECT_NE(error.find("needs a subject"), std::string::npos) << error;
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1:4222/", &error));
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1:4222/kew.>", &error));  // a wildcard is no destination
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1/kew.feed", &error));    // no port
+}
+
+}  // namespace
+}  // namespace kew::replay
