@@ -1,5 +1,5 @@
 // Sustained ingestion of a running kewd over loopback (issue 6): records are streamed to
-// a TCP or UDP input at a target rate (or as fast as possible) while a subscriber reads
+// a TCP, UDP or NATS input at a target rate (or as fast as possible) while a subscriber reads
 // the alert stream. Reports the rate the daemon sustained and the record-to-alert latency
 // percentiles: for every ALERT, the time from sending the record that triggered it (the
 // record of track a or b at the alert's data time) to receiving the line.
@@ -7,7 +7,9 @@
 //   kew_ingest_bench --kewd build/daemon/kewd --records traffic.ndjson --transport tcp [--rate R]
 //                    [--map-clients N] [--json FILE]
 //
-// It starts its own kewd (loopback, ephemeral ports) and stops it with SIGTERM.
+// It starts its own kewd (loopback, ephemeral ports) and stops it with SIGTERM; with
+// --transport nats, its own nats-server too (--nats-server), the records published to a
+// subject kewd subscribes to (design §5.9), in messages as big as UDP's datagrams.
 // --map-clients N connects N clients to kewd's HTTP server as the live map does (issue 20):
 // each reads the /ws WebSocket, polls /api/status every 2 s and /api/tracks every 10 s.
 
@@ -39,6 +41,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <nats/nats.h>
+
 #include "free_port.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 
@@ -56,7 +60,58 @@ struct Options {
   double rate = 0.0;  // records per second; 0 = as fast as possible
   std::size_t map_clients = 0;
   std::string json;
+  std::string nats_server = "nats-server";
 };
+
+/// A child process, stopped with SIGTERM and waited for.
+class Child {
+ public:
+  explicit Child(std::vector<std::string> argv) {
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      std::vector<char*> args;
+      for (std::string& a : argv) args.push_back(a.data());
+      args.push_back(nullptr);
+      ::execvp(args[0], args.data());
+      std::_Exit(127);
+    }
+  }
+  ~Child() {
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+
+ private:
+  pid_t pid_ = -1;
+};
+
+/// nats-server on a free loopback port (plain NATS: kewd's input subscribes to a subject).
+class NatsServer {
+ public:
+  explicit NatsServer(const std::string& binary)
+      : address_(kew::testing::free_loopback_address()),
+        process_({binary, "-a", "127.0.0.1", "-p", address_.substr(address_.rfind(':') + 1)}) {
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      if (natsConnection_ConnectTo(&connection_, url().c_str()) == NATS_OK) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    }
+    throw std::runtime_error("nats-server did not start");
+  }
+  ~NatsServer() { natsConnection_Destroy(connection_); }
+  std::string url() const { return "nats://" + address_; }
+  /// The publishing connection of the sender.
+  natsConnection* connection() const { return connection_; }
+
+ private:
+  std::string address_;
+  Child process_;
+  natsConnection* connection_ = nullptr;
+};
+
+constexpr const char* kNatsSubject = "bench.feed";
 
 struct Record {
   std::string line;  // with its '\n'
@@ -86,15 +141,19 @@ std::vector<Record> load_records(const std::string& path) {
 /// kewd as a child process with its stderr in a pipe; learns its ports from its log.
 class Daemon {
  public:
-  Daemon(const std::string& binary, const std::string& transport, const std::string& config_path)
+  /// `nats_url`: with transport nats, the server the input subscribes on.
+  Daemon(const std::string& binary, const std::string& transport, const std::string& config_path,
+         const std::string& nats_url = {})
       : http_address_(kew::testing::free_loopback_address()) {
+    const bool nats = transport == "nats";
     // The map's clients are batched per service tick: 1 s, as kewd's default.
     std::ofstream(config_path) << fmt::format(
         "[service]\nalert_listen = \"{}\"\ntick_interval_s = 1\nsubscriber_queue = 1000000\n"
         "log_level = \"info\"\n[http]\nlisten = \"{}\"\n[[input]]\nname = \"bench\"\nformat = \"ndjson\"\n"
-        "transport = \"{}\"\naddress = \"{}\"\n",
-        kew::testing::free_loopback_address(), http_address_, transport == "udp" ? "udp" : "tcp-server",
-        kew::testing::free_loopback_address());
+        "transport = \"{}\"\naddress = \"{}\"\n{}",
+        kew::testing::free_loopback_address(), http_address_, nats ? "nats" : transport == "udp" ? "udp" : "tcp-server",
+        nats ? kNatsSubject : kew::testing::free_loopback_address(),
+        nats ? fmt::format("nats_url = \"{}\"\n", nats_url) : "");
     int err[2];
     if (::pipe(err) != 0) throw std::runtime_error("pipe");
     pid_ = ::fork();
@@ -109,6 +168,7 @@ class Daemon {
     char buffer[1024];
     while ((alert_port_ == 0 || input_port_ == 0) && std::fgets(buffer, sizeof buffer, log_)) {
       const std::string line = buffer;
+      if (nats && line.find("input bench: subscribed to") != std::string::npos) input_port_ = 1;  // no port
       if (const auto at = line.find("alerts on port "); at != std::string::npos)
         alert_port_ = static_cast<std::uint16_t>(std::stoi(line.substr(at + 15)));
       if (const auto at = line.find("(port "); at != std::string::npos && line.find("input bench") != std::string::npos)
@@ -260,7 +320,10 @@ int main(int argc, char** argv) {
   app.add_option("--kewd", options.kewd, "kewd binary")->required()->check(CLI::ExistingFile);
   app.add_option("--records", options.records, "canonical NDJSON to send (kew-gen output)")->required()->check(
       CLI::ExistingFile);
-  app.add_option("--transport", options.transport, "tcp or udp")->check(CLI::IsMember({"tcp", "udp"}));
+  app.add_option("--transport", options.transport, "tcp, udp or nats")
+      ->check(CLI::IsMember({"tcp", "udp", "nats"}));
+  app.add_option("--nats-server", options.nats_server, "with --transport nats: the nats-server binary")
+      ->default_val(options.nats_server);
   app.add_option("--rate", options.rate, "records per second to send (0: as fast as possible)");
   app.add_option("--map-clients", options.map_clients,
                  "clients of the HTTP server acting as the live map (WebSocket + polling)");
@@ -269,7 +332,9 @@ int main(int argc, char** argv) {
 
   const std::vector<Record> records = load_records(options.records);
   const std::string config = fmt::format("/tmp/kew_ingest_bench_{}.toml", ::getpid());
-  Daemon daemon(options.kewd, options.transport, config);
+  std::unique_ptr<NatsServer> nats;
+  if (options.transport == "nats") nats = std::make_unique<NatsServer>(options.nats_server);
+  Daemon daemon(options.kewd, options.transport, config, nats ? nats->url() : std::string());
   std::vector<std::unique_ptr<MapClient>> map_clients;
   for (std::size_t i = 0; i < options.map_clients; ++i)
     map_clients.push_back(std::make_unique<MapClient>(daemon.http_address()));
@@ -338,8 +403,12 @@ int main(int argc, char** argv) {
       }
       const auto now = Clock::now();
       for (std::size_t k = first; k < i; ++k) sent_at.emplace(records[k].key, now);
-      if (options.transport == "tcp") asio::write(tcp_socket, asio::buffer(batch));
-      else udp_socket.send_to(asio::buffer(batch), udp::endpoint(address, daemon.input_port()));
+      if (options.transport == "tcp")
+        asio::write(tcp_socket, asio::buffer(batch));
+      else if (nats)
+        natsConnection_Publish(nats->connection(), kNatsSubject, batch.data(), static_cast<int>(batch.size()));
+      else
+        udp_socket.send_to(asio::buffer(batch), udp::endpoint(address, daemon.input_port()));
       sent = i;
     }
   }

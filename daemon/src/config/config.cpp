@@ -83,7 +83,8 @@ void subject(TableReader& r, std::string_view key, std::string& out, bool wildca
 void stream_name(TableReader& r, std::string_view key, std::string& out) {
   r.string(key, out);
   if (out.find_first_of(".*>/\\ \t") != std::string::npos)
-    r.fail(r.node(key), fmt::format("{} = \"{}\": a JetStream name has no '.', '*', '>', '/', '\\' or space", key, out));
+    r.fail(r.node(key),
+           fmt::format("{} = \"{}\": a JetStream name has no '.', '*', '>', '/', '\\' or space", key, out));
 }
 
 void read_nats(TableReader& r, NatsConfig& n) {

@@ -153,7 +153,8 @@ bool NatsPublisher::ensure_stream() {
   }
   jsStreamInfo_Destroy(info);
   if (s == NATS_OK) {
-    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {})", config_.stream, alerts, config_.acks_subject);
+    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {})", config_.stream, alerts,
+                 config_.acks_subject);
     return true;
   }
   failures_.report(fmt::format("cannot create the JetStream stream {}: {}{} (events wait in the outbox)",

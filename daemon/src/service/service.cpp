@@ -178,7 +178,8 @@ int Service::run() {
   if (record_file_) spdlog::info("record file: {}", record_file_->path());
   if (nats_)
     spdlog::info("NATS: alerts to {}.<zone>{}, status to {}", config_.nats.alerts_subject,
-                 config_.nats.stream.empty() ? "" : fmt::format(" (kept in the JetStream stream {})", config_.nats.stream),
+                 config_.nats.stream.empty() ? ""
+                                             : fmt::format(" (kept in the JetStream stream {})", config_.nats.stream),
                  config_.nats.status_subject);
   if (state_file_) spdlog::info("state file: {}", state_file_->path());
   for (const auto& input : inputs_) {
