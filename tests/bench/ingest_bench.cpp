@@ -13,6 +13,7 @@
 // --map-clients N connects N clients to kewd's HTTP server as the live map does (issue 20):
 // each reads the /ws WebSocket, polls /api/status every 2 s and /api/tracks every 10 s.
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -69,6 +70,10 @@ class Child {
   explicit Child(std::vector<std::string> argv) {
     pid_ = ::fork();
     if (pid_ == 0) {
+      // Its log would interleave with the result on the terminal.
+      const int null = ::open("/dev/null", O_WRONLY);
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
       std::vector<char*> args;
       for (std::string& a : argv) args.push_back(a.data());
       args.push_back(nullptr);
