@@ -1,6 +1,7 @@
 """kewd on a real NATS server (design §5.9): the NATS input, the alerts kept in JetStream
 for a subscriber that was away, MQTT through nats-server's own listener, bad input on a
-subject, a durable consumer across a restart and a server that goes away and comes back.
+subject, a durable consumer across a restart, a server that goes away and comes back,
+and hot standby: a killed active replaced with no event lost or repeated.
 
 Run by ctest with a real `nats-server` (Debian's, with JetStream) and `mosquitto_sub`;
 by hand: KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest test_nats -v
@@ -216,6 +217,65 @@ class NatsFaults(NatsCase):
         # Nothing after the last event: a retried publication kept twice would be there.
         with self.assertRaises(subprocess.TimeoutExpired):
             watch(self.nats.url, "--since", str(json.loads(expected[-1])["seq"]), "-n", "1", timeout=3)
+
+
+HOT_STANDBY = """
+[nats]
+url = "{url}"
+hot_standby = true
+instance = "{name}"
+
+[[input]]
+name = "bus"
+format = "ndjson"
+transport = "nats"
+address = "kew.feed.tma"
+durable = "kewd_{name}"
+stream = "KEW_FEED"
+"""
+
+
+class HotStandby(NatsCase):
+    def test_the_standby_takes_over_a_killed_active_and_no_event_is_lost_or_repeated(self):
+        first = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="a"))
+        first.wait_log("a holds the lease active: active")
+        second = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="b"))
+        second.wait_log("hot standby as b")
+        for kewd in (first, second):
+            kewd.wait_log("reading kew.feed.tma through the JetStream consumer")
+        # The run without failure: every event once, in order (as the other tests show the
+        # stream, JetStream and the file give).
+        expected = offline_alerts(first.config_path, self.recording)
+        on_first = Subscriber(first.alert_port)
+        on_second = Subscriber(second.alert_port)
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "4"))
+        feeder.start()
+        # Mid-conflict: alerts are open when the active dies.
+        wait_until(lambda: len(on_first.alert_lines()) >= len(expected) // 4, 60, "alerts from the active")
+        first.process.kill()
+        killed = time.monotonic()
+        line = second.wait_log("active now (hot standby b)", timeout_s=30)
+        print(f"\nthe standby took over {time.monotonic() - killed:.2f} s after SIGKILL: {line}")
+        feeder.join()
+        second.wait_records(count_lines(self.recording))
+        wait_until(lambda: second.stats()["nats"]["published"] > 0 and second.stats()["nats"]["queued"] == 0, 30,
+                   "the new active's outbox emptied")
+        time.sleep(1.0)
+        self.assertTrue(second.stats()["nats"]["active"])
+
+        kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
+        self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
+        with self.assertRaises(subprocess.TimeoutExpired):
+            watch(self.nats.url, "--since", str(json.loads(expected[-1])["seq"]), "-n", "1", timeout=3)
+        self.assertFalse(any('"reason":"restart"' in event for event in kept), "no alert ended by the failover")
+
+        seen_first = on_first.alert_lines()
+        self.assertEqual(seen_first, expected[:len(seen_first)], "the active's stream until it died")
+        published = int(line.split("published up to seq ")[1].split(";")[0])
+        wait_until(lambda: len(on_second.alert_lines()) >= len(expected) - published, 20, "the new active's stream")
+        # Its stream continues with the next seq: nothing the dead active had sent, nothing missing.
+        self.assertEqual(on_second.alert_lines(), expected[published:])
 
 
 if __name__ == "__main__":

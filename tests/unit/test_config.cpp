@@ -59,6 +59,12 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.nats.stream_max_age_s, defaults.nats.stream_max_age_s);
   EXPECT_EQ(file.nats.stream_max_bytes, defaults.nats.stream_max_bytes);
   EXPECT_EQ(file.nats.outbox, defaults.nats.outbox);
+  EXPECT_EQ(file.nats.hot_standby, defaults.nats.hot_standby);
+  EXPECT_EQ(file.nats.lease_bucket, defaults.nats.lease_bucket);
+  EXPECT_EQ(file.nats.lease_key, defaults.nats.lease_key);
+  EXPECT_EQ(file.nats.lease_ttl_s, defaults.nats.lease_ttl_s);
+  EXPECT_EQ(file.nats.instance, defaults.nats.instance);
+  EXPECT_EQ(file.nats.standby_history, defaults.nats.standby_history);
   EXPECT_FALSE(p.reference.has_value());
   EXPECT_EQ(p.zone_mode, d.zone_mode);
   EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
@@ -391,6 +397,9 @@ nats_url = "nats://127.0.0.1:4223"
   expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a.>.b\"\n", "is not a NATS subject");
   expect_error("[nats]\nalerts_subject = \"kew.*\"\n", "is not a NATS subject to publish to");
   expect_error("[nats]\nstream = \"KEW.ALERTS\"\n", "a JetStream name has no '.'");
+  expect_error("[nats]\nhot_standby = true\n", "hot_standby needs url");
+  expect_error("[nats]\nurl = \"nats://127.0.0.1:4222\"\nlease_key = \"a.b\"\n", "is not a key");
+  EXPECT_TRUE(parse_config("[nats]\nurl = \"nats://127.0.0.1:4222\"\nhot_standby = true\n").nats.hot_standby);
   expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a\"\nstream = \"S\"\n", "give durable too");
   expect_error("[[input]]\ntransport = \"udp\"\naddress = \"127.0.0.1:8600\"\ndurable = \"d\"\n",
                "durable is for transport nats only");

@@ -99,6 +99,15 @@ void read_nats(TableReader& r, NatsConfig& n) {
   r.number("stream_max_age_s", n.stream_max_age_s, 1.0, 10.0 * 365 * 86400);
   r.integer("stream_max_bytes", n.stream_max_bytes, 1 << 20, std::int64_t{1} << 50);
   r.integer("outbox", n.outbox, 16, 100'000'000);
+  r.boolean("hot_standby", n.hot_standby);
+  stream_name(r, "lease_bucket", n.lease_bucket);
+  r.string("lease_key", n.lease_key);
+  if (!config::valid_nats_subject(n.lease_key, false) || n.lease_key.find('.') != std::string::npos)
+    r.fail(r.node("lease_key"), fmt::format("lease_key = \"{}\" is not a key (no '.', wildcard or space)", n.lease_key));
+  r.number("lease_ttl_s", n.lease_ttl_s, 0.2, 60.0);
+  r.string("instance", n.instance);
+  r.integer("standby_history", n.standby_history, 16, 10'000'000);
+  if (n.hot_standby && n.url.empty()) r.fail(r.node("hot_standby"), "hot_standby needs url: the lease is on NATS");
 }
 
 void read_input(TableReader& r, InputConfig& in) {

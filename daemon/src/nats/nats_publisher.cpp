@@ -190,6 +190,18 @@ bool NatsPublisher::send(const Message& message) {
   return false;
 }
 
+void NatsPublisher::discard_outbox() {
+  std::size_t discarded = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    discarded = outbox_.size();
+    // The front may be in flight: published or not, it is no longer this kewd's.
+    outbox_.clear();
+  }
+  changed_.notify_all();
+  if (discarded) spdlog::warn("[nats] {} unpublished events discarded (standby now)", discarded);
+}
+
 protocol::NatsStatistics NatsPublisher::statistics() const {
   protocol::NatsStatistics s;
   s.connected = connection_.connected();

@@ -44,6 +44,10 @@ class NatsPublisher {
   void publish_status(std::string_view json, std::uint64_t seq);
   void publish_tracks(std::string_view json, std::uint64_t seq);
 
+  /// Forgets the events not yet published (a hot-standby instance that lost its lease:
+  /// they are the next active's).
+  void discard_outbox();
+
   protocol::NatsStatistics statistics() const;
 
  private:

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "../nats/leader_lease.hpp"
 #include "../nats/nats_publisher.hpp"
 #include "logging.hpp"
 #include "kew/config/address.hpp"
@@ -111,6 +112,22 @@ Service::Service(Config config, ServiceOptions options)
   if (config_.cat004.enabled) cat004_ = std::make_unique<Cat004Sender>(io_, config_.cat004);
   run_id_ = make_run_id();
   if (!config_.nats.url.empty()) nats_ = std::make_unique<NatsPublisher>(config_.nats, run_id_);
+  if (config_.nats.hot_standby) {
+    // Silent until the lease says otherwise (design §5.9).
+    active_ = false;
+    std::string instance = config_.nats.instance;
+    if (instance.empty()) {
+      char host[256] = "kewd";
+      ::gethostname(host, sizeof host - 1);
+      instance = fmt::format("{}-{}", host, ::getpid());
+    }
+    LeaderLease::Handlers handlers;
+    handlers.on_acquired = [this](std::uint64_t published) {
+      asio::post(io_, [this, published] { take_over(published); });
+    };
+    handlers.on_lost = [this] { asio::post(io_, [this] { step_down(); }); };
+    lease_ = std::make_unique<LeaderLease>(config_.nats, instance, std::move(handlers));
+  }
 
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
@@ -157,7 +174,12 @@ Service::Service(Config config, ServiceOptions options)
   }
 }
 
-Service::~Service() = default;
+Service::~Service() {
+  // The last events reach the server before the lease goes: a standby that took over
+  // earlier would find them unpublished and send them again.
+  nats_.reset();
+  lease_.reset();
+}
 
 int Service::run() {
   begin_run();
@@ -176,6 +198,9 @@ int Service::run() {
   // Paths as resolved (design §5.7: relative to the working directory kewd started in).
   if (alert_log_) spdlog::info("alert log: {}", alert_log_->path());
   if (record_file_) spdlog::info("record file: {}", record_file_->path());
+  if (lease_)
+    spdlog::info("hot standby as {}: alerts are computed, and sent once this instance holds the lease {} of {}",
+                 lease_->instance(), config_.nats.lease_key, config_.nats.lease_bucket);
   if (nats_)
     spdlog::info("NATS: alerts to {}.<zone>{}, status to {}", config_.nats.alerts_subject,
                  config_.nats.stream.empty() ? ""
@@ -190,8 +215,7 @@ int Service::run() {
   }
   if (modbus_) {
     publish_modbus();
-    modbus_->start();
-    spdlog::info("Modbus TCP alarm map on port {} (unit id {})", modbus_->bound_port(), config_.modbus.unit_id);
+    if (active_) start_modbus();
     schedule_modbus_publish();
   }
   wait_for_signal();
@@ -296,8 +320,7 @@ void Service::begin_run() {
     line_.clear();
     protocol::append_alert_json(line_, event, event.seq);
     alert_log_->append(line_);
-    if (nats_) nats_->publish_alert(nats_zone(event), line_, event.seq);
-    if (cat004_) cat004_->send_alert(event);
+    emit_or_keep(event);
   }
   if (alert_log_) alert_log_->flush();
   pipeline_.alerts().resume(numbering.last_seq, numbering.next_number);
@@ -361,6 +384,22 @@ void Service::on_alert(const AlertEvent& event) {
     alert_log_->flush();
     if (was_failing != alert_log_->failing()) modbus_dirty_ = true;
   }
+  emit_or_keep(event);
+  modbus_dirty_ = true;
+}
+
+void Service::emit_or_keep(const AlertEvent& event) {
+  if (active_) {
+    emit(event);
+    return;
+  }
+  if (!lease_) return;
+  history_.push_back(event);
+  if (history_.size() > config_.nats.standby_history) history_.pop_front();
+}
+
+void Service::emit(const AlertEvent& event) {
+  if (event.seq <= emit_floor_) return;  // the previous active published it
   subscribers_->broadcast_alert(event);
   if (http_ && http_->has_websockets()) {
     line_.clear();
@@ -373,7 +412,41 @@ void Service::on_alert(const AlertEvent& event) {
     protocol::append_alert_json(line_, event, event.seq);
     nats_->publish_alert(nats_zone(event), line_, event.seq);
   }
+}
+
+void Service::take_over(std::uint64_t published) {
+  if (active_ || stopping_) return;
+  emit_floor_ = std::max(emit_floor_, published);
+  active_ = true;
+  std::size_t sent = 0;
+  for (const AlertEvent& event : history_) {
+    if (event.seq <= emit_floor_) continue;
+    emit(event);
+    ++sent;
+  }
+  history_.clear();
+  if (modbus_) start_modbus();
   modbus_dirty_ = true;
+  spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
+               "{} alerts open",
+               lease_->instance(), published, sent, pipeline_.alerts().active_count());
+  sd_notifyf(0, "STATUS=active, serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
+}
+
+void Service::step_down() {
+  if (!active_) return;
+  active_ = false;
+  // What it has not published yet is the next active's to send.
+  if (nats_) nats_->discard_outbox();
+  spdlog::error("standby now: the lease is lost; alerts are computed, not sent");
+  sd_notify(0, "STATUS=standby (lease lost)");
+}
+
+void Service::start_modbus() {
+  if (modbus_started_) return;
+  modbus_->start();
+  modbus_started_ = true;
+  spdlog::info("Modbus TCP alarm map on port {} (unit id {})", modbus_->bound_port(), config_.modbus.unit_id);
 }
 
 std::string Service::nats_zone(const AlertEvent& event) const {
@@ -413,6 +486,10 @@ void Service::publish_modbus() {
 std::vector<std::string> Service::acknowledge(std::string_view by, std::string_view client,
                                               std::optional<std::string_view> id) {
   if (stopping_) return {};
+  if (!active_) {
+    spdlog::warn("{} client {}: acknowledgements go to the active kewd (this one is standby)", by, client);
+    return {};
+  }
   const std::vector<std::string> ids = id ? pipeline_.alerts().acknowledge(*id) : pipeline_.alerts().acknowledge_all();
   spdlog::info("{} client {} acknowledged {} alerts", by, client, ids.size());
   if (ids.empty()) return ids;
@@ -503,6 +580,7 @@ void Service::alive() {
     protocol::append_alive_json(line_, status, last_alert_seq_);
     http_->push(line_);
   }
+  if (!active_) return;  // a standby's status goes only to its own subscribers and map
   if (nats_) {
     line_.clear();
     protocol::append_alive_json(line_, status, last_alert_seq_);
@@ -616,7 +694,10 @@ protocol::ServiceStatistics Service::service_statistics() const {
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   if (cat004_) service.cat004 = protocol::Cat004Statistics{cat004_->datagrams_sent(), cat004_->send_errors()};
   if (modbus_) service.modbus = modbus_->stats();
-  if (nats_) service.nats = nats_->statistics();
+  if (nats_) {
+    service.nats = nats_->statistics();
+    if (lease_) service.nats->active = active_;
+  }
   if (alert_log_) {
     service.alert_log_errors = alert_log_->write_errors();
     service.alert_log_queued_bytes = alert_log_->pending_bytes();

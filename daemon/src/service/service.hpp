@@ -4,6 +4,7 @@
 // the Modbus server has its own thread and receives copies of the alarm state.
 
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,7 @@
 namespace kew::daemon {
 
 class ModbusServer;
+class LeaderLease;
 class NatsPublisher;
 
 
@@ -60,6 +62,16 @@ class Service {
   /// Runs the pipeline's pending batch (posted after the handler that took its records).
   void flush_pipeline();
   void on_alert(const AlertEvent& event);
+  /// An alert event to every output when active; kept for a takeover when standby.
+  void emit_or_keep(const AlertEvent& event);
+  /// To the subscribers, the map, CAT004 and NATS, unless the previous active sent it.
+  void emit(const AlertEvent& event);
+  /// Hot standby (design §5.9): the lease is this instance's; the previous active
+  /// published up to seq `published`. Sends the kept events after it and serves.
+  void take_over(std::uint64_t published);
+  /// The lease is lost: computes on, silently.
+  void step_down();
+  void start_modbus();
   /// Before the inputs start: the run id, the START line, the End ("restart") of every
   /// alert the last run left open, and the numbering continued (design §4.7).
   void begin_run();
@@ -127,6 +139,14 @@ class Service {
   std::unique_ptr<ModbusServer> modbus_;
   std::unique_ptr<http::HttpServer> http_;
   std::unique_ptr<NatsPublisher> nats_;
+  std::unique_ptr<LeaderLease> lease_;  // hot standby only
+  /// Serving outputs: always, unless in hot standby without the lease.
+  bool active_ = true;
+  bool modbus_started_ = false;
+  /// Events up to this seq were published by the previous active: not sent again.
+  std::uint64_t emit_floor_ = 0;
+  /// A standby's recent events, for a takeover.
+  std::deque<AlertEvent> history_;
   /// Per input: what /metrics says of it beyond its own statistics.
   struct InputFigures {
     Rejections pipeline_refused;  ///< the pipeline's refusals of its records

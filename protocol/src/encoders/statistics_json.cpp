@@ -212,6 +212,7 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     c.integer("queued", s.queued);
     c.integer("dropped", s.dropped);
     c.integer("status_published", s.status_published);
+    if (s.active) c.boolean("active", *s.active);
     c.close();
   }
   if (service.modbus) {

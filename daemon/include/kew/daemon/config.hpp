@@ -102,6 +102,16 @@ struct NatsConfig {
   std::uint64_t stream_max_bytes = 1ull << 30;
   /// Events waiting for the server (while it is away) before the oldest are dropped (counted).
   std::size_t outbox = 100000;
+  /// Hot standby: kewd instances of one lease_key elect one active through the JetStream
+  /// key-value bucket lease_bucket; the others compute silently and take over when it dies.
+  bool hot_standby = false;
+  std::string lease_bucket = "KEW_LEASE";
+  std::string lease_key = "active";
+  double lease_ttl_s = 1.5;  ///< a dead active is replaced within 1.25 × this
+  std::string instance;      ///< this kewd's name in the lease; "" = HOST-PID
+  /// Alert events a standby keeps for a takeover (the active's last ones it may not have
+  /// published).
+  std::size_t standby_history = 10000;
 };
 
 struct ServiceConfig {

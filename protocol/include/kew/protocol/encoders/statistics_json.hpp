@@ -55,6 +55,7 @@ struct NatsStatistics {
   std::uint64_t queued = 0;       ///< events waiting for the server now
   std::uint64_t dropped = 0;      ///< events dropped: more than [nats] outbox waited
   std::uint64_t status_published = 0;  ///< ALIVE and TRACKS objects (not kept)
+  std::optional<bool> active;          ///< hot standby: holds the lease
 };
 
 struct ModbusStatistics {
