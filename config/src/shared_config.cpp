@@ -39,6 +39,17 @@ void read_projection(TableReader& r, PipelineConfig& p) {
   double radius_km = p.coverage_radius_m ? *p.coverage_radius_m / 1000.0 : NAN;
   r.number("coverage_radius_km", radius_km, 1.0, largest_km);
   if (!std::isnan(radius_km)) p.coverage_radius_m = radius_km * 1000.0;
+  // Zones across machines (design §4.9): this instance's band of pair midpoints.
+  LongitudeBand band = p.served_longitudes.value_or(LongitudeBand{});
+  r.number("serve_west_deg", band.west_deg, -180.0, 180.0);
+  r.number("serve_east_deg", band.east_deg, -180.0, 180.0);
+  if (r.node("serve_west_deg") || r.node("serve_east_deg")) {
+    if (p.zone_mode != ZoneMode::Worldwide)
+      r.fail(nullptr, "serve_west_deg and serve_east_deg share the worldwide zones among instances: zones = \"single\" has one");
+    if (band.west_deg >= band.east_deg)
+      r.fail(nullptr, fmt::format("serve_west_deg = {} must be west of serve_east_deg = {}", band.west_deg, band.east_deg));
+    p.served_longitudes = band;
+  }
 }
 
 void read_tracks(TableReader& r, track::TrackTableConfig& t) {

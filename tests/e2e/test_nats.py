@@ -1,7 +1,8 @@
 """kewd on a real NATS server (design §5.9): the NATS input, the alerts kept in JetStream
 for a subscriber that was away, MQTT through nats-server's own listener, bad input on a
 subject, a durable consumer across a restart, a server that goes away and comes back,
-and hot standby: a killed active replaced with no event lost or repeated.
+hot standby (a killed active replaced with no event lost or repeated) and zones across
+machines (three instances, each serving a band of longitudes, together equal to one).
 
 Run by ctest with a real `nats-server` (Debian's, with JetStream) and `mosquitto_sub`;
 by hand: KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest test_nats -v
@@ -276,6 +277,64 @@ class HotStandby(NatsCase):
         wait_until(lambda: len(on_second.alert_lines()) >= len(expected) - published, 20, "the new active's stream")
         # Its stream continues with the next seq: nothing the dead active had sent, nothing missing.
         self.assertEqual(on_second.alert_lines(), expected[published:])
+
+
+ZONE_SHARE = """
+[projection]
+serve_west_deg = {west}
+serve_east_deg = {east}
+
+[nats]
+url = "{url}"
+
+[[input]]
+name = "bus"
+format = "ndjson"
+transport = "nats"
+address = "kew.feed.world"
+durable = "kewd_{name}"
+stream = "KEW_WORLD"
+"""
+
+
+def without_stream_numbers(line):
+    """An ALERT line as every instance writes it: seq and alert numbers are each stream's own."""
+    event = json.loads(line)
+    event.pop("seq")
+    event.pop("number")
+    return json.dumps(event, sort_keys=True)
+
+
+class ZonesAcrossMachines(NatsCase):
+    def test_three_instances_owning_different_zones_give_the_single_process_alerts(self):
+        world = self.path("global.ndjson")
+        generate(world, "global", aircraft=3000, duration=300, seed=4)
+        bands = {"west": (-180, -60), "middle": (-60, 60), "east": (60, 180)}
+        instances = []
+        for name, (west, east) in bands.items():
+            kewd = self.start(SERVICE + ZONE_SHARE.format(west=west, east=east, url=self.nats.url, name=name))
+            kewd.wait_log("reading kew.feed.world through the JetStream consumer")
+            instances.append(kewd)
+        with open(self.path("single.toml"), "w") as f:
+            f.write("")  # the same pipeline tables, every zone
+        whole = offline_alerts(self.path("single.toml"), world)
+        self.assertGreater(len(whole), 100)
+        # The feed is published once; every instance reads it all.
+        replay_to(f"nats://127.0.0.1:{self.nats.port}/kew.feed.world", world, "--max-speed")
+        records = count_lines(world)
+        published = 0
+        for kewd in instances:
+            kewd.wait_records(records, timeout_s=120)
+        wait_until(lambda: sum(k.stats()["nats"]["published"] for k in instances) >= len(whole), 30,
+                   "every instance's events published")
+        for kewd in instances:
+            stats = kewd.stats()
+            self.assertEqual(stats["nats"]["queued"], 0)
+            published += stats["nats"]["published"]
+        self.assertEqual(published, len(whole), "no pair twice, none missing")
+        union = watch(self.nats.url, "--since", "0", "-n", str(len(whole)), timeout=120)
+        self.assertEqual(sorted(map(without_stream_numbers, union)), sorted(map(without_stream_numbers, whole)),
+                         "together the single process's alerts, ids and all")
 
 
 if __name__ == "__main__":

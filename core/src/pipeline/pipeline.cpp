@@ -98,6 +98,22 @@ Pipeline::Pipeline(const PipelineConfig& config)
     const double margin = 0.5 * largest_horizontal_m_ * kScaleBound +
                           fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s) + kMarginSlack_m;
     tiling_.emplace(margin);
+    if (config_.served_longitudes) {
+      // One core width beyond the band: an alert's pair moves far less while it lasts,
+      // so the zones that judged it before its midpoint entered the band are worked too.
+      const LongitudeBand band = *config_.served_longitudes;
+      worked_zone_.assign(zone::ZoneTiling::key_end(), false);
+      unworked_planes_.resize(zone::ZoneTiling::key_end());
+      for (zone::ZoneKey key = 0; key < zone::ZoneTiling::key_end(); ++key) {
+        if (!tiling_->valid(key)) continue;
+        const zone::ZoneTiling::Core core = tiling_->core(key);
+        const double width = core.east_deg - core.west_deg;
+        bool worked = width >= 360.0;  // a cap
+        for (const double shift : {-360.0, 0.0, 360.0})
+          worked = worked || (core.west_deg - width + shift < band.east_deg && band.west_deg < core.east_deg + width + shift);
+        worked_zone_[key] = worked;
+      }
+    }
     brute_reach_m_ = 2.0 * (largest_horizontal_m_ + 2.0 * fastest_mps * (largest_lookahead_s_ + config_.tracks.track_timeout_s)) +
                      kBruteSlack_m;
     work_.resize(zone::ZoneTiling::key_end());
@@ -266,8 +282,8 @@ void Pipeline::apply_record(const TrackReport& report) {
     tracks_.rejections().reject("outside_coverage", report.id);
     admitted.refusal = "outside_coverage";
   } else {
-    zone::Zone& home = home_of(report);
-    admitted = tracks_.admit(report, clock_, home.projection(), home.key());
+    const zone::ZoneKey home = tiling_ ? tiling_->home({report.lat_deg, report.lon_deg}) : 0;
+    admitted = tracks_.admit(report, clock_, home_projection(home), home);
   }
   if (admitted.admission == track::Admission::Rejected) {
     if (admitted.refusal == "too_late") {
@@ -313,8 +329,14 @@ bool Pipeline::outside_limit(const TrackReport& report) const {
          *config_.coverage_radius_m;
 }
 
-zone::Zone& Pipeline::home_of(const TrackReport& report) {
-  return zone_at(tiling_ ? tiling_->home({report.lat_deg, report.lon_deg}) : 0);
+const geo::Projection& Pipeline::home_projection(zone::ZoneKey key) {
+  if (worked_zone_.empty() || worked_zone_[key]) return zone_at(key).projection();
+  // A zone this pipeline does not work still gives its tracks their kinematics, on the
+  // very plane its zone would have: a track entering the worked zones is the same track
+  // as in a pipeline that works them all.
+  std::optional<geo::Projection>& plane = unworked_planes_[key];
+  if (!plane) plane.emplace(tiling_->centre(key), tiling_->extent_m(key));
+  return *plane;
 }
 
 void Pipeline::touch(zone::ZoneKey key) {
@@ -459,6 +481,8 @@ void Pipeline::apply(track::TrackSlot slot) {
   zones_scratch_.clear();
   if (tiling_) tiling_->zones_near({track.lat_deg, track.lon_deg}, zones_scratch_);
   else zones_scratch_.push_back(0);
+  if (!worked_zone_.empty())
+    std::erase_if(zones_scratch_, [&](zone::ZoneKey key) { return !worked_zone_[key]; });
   for (const zone::ZoneKey key : members) {
     if (std::find(zones_scratch_.begin(), zones_scratch_.end(), key) != zones_scratch_.end()) continue;
     ZoneWork& w = work_[key];
@@ -1072,8 +1096,16 @@ void Pipeline::fill_event(AlertEvent& event, const geo::Projection& projection, 
 
 void Pipeline::deliver() {
   if (sink_)
-    for (const AlertEvent& event : pending_events_) sink_(event);
+    for (const AlertEvent& event : pending_events_)
+      if (serves(event)) sink_(event);
   pending_events_.clear();
+}
+
+bool Pipeline::serves(const AlertEvent& event) const {
+  if (!config_.served_longitudes || !tiling_) return true;
+  double lon = zone::ZoneTiling::midpoint({event.a.lat_deg, event.a.lon_deg}, {event.b.lat_deg, event.b.lon_deg}).lon_deg;
+  if (lon >= 180.0) lon -= 360.0;  // 180 is −180, as in ZoneTiling::home
+  return lon >= config_.served_longitudes->west_deg && lon < config_.served_longitudes->east_deg;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -47,6 +47,12 @@ inline constexpr util::NameTable<ZoneMode, 2> kZoneModeNames({{
     {ZoneMode::Single, "single"},
 }});
 
+/// A band of longitudes, degrees: [west_deg, east_deg), −180 ≤ west_deg < east_deg ≤ 180.
+struct LongitudeBand {
+  double west_deg = -180.0;
+  double east_deg = 180.0;
+};
+
 struct PipelineConfig {
   track::TrackTableConfig tracks;
   ZoneMode zone_mode = ZoneMode::Worldwide;
@@ -59,6 +65,13 @@ struct PipelineConfig {
   std::optional<double> coverage_radius_m;
   /// Single mode's plane radius when coverage_radius_m is empty (m).
   static constexpr double kSingleCoverage_m = 1.5e6;
+  /// Zones across machines (worldwide mode, design §4.9): the pairs whose midpoint's
+  /// longitude lies in this band are this pipeline's to report; it works only the zones
+  /// whose core lies within one core width of the band (the polar caps always), and
+  /// delivers only the events of the pairs it serves. Instances whose bands partition
+  /// [−180, 180) report, together, exactly one pipeline's events (ids included; seq and
+  /// alert numbers are each instance's own). Empty: every pair.
+  std::optional<LongitudeBand> served_longitudes;
   kinetic::KineticConfig kinetic = default_kinetic();
   probe::ProbeMode probe_mode = probe::ProbeMode::Exact;
   /// Exact mode: search around the predicted position p_i + v_i·T, over the smaller disk
@@ -276,8 +289,10 @@ class Pipeline {
   void apply(track::TrackSlot slot);
   /// The zone of `key`, created (empty, its engine starting now) when it does not exist.
   zone::Zone& zone_at(zone::ZoneKey key);
-  /// The plane and home zone of a report: single mode's plane, or the home zone's.
-  zone::Zone& home_of(const TrackReport& report);
+  /// The plane of a home zone (single mode's plane for key 0 there): its zone's, created
+  /// when missing, or for a zone this pipeline does not work (served_longitudes) the
+  /// same plane without a zone.
+  const geo::Projection& home_projection(zone::ZoneKey key);
   /// A worldwide run's explicit coverage limit refuses the report.
   bool outside_limit(const TrackReport& report) const;
   /// Single mode's plane radius (m).
@@ -338,6 +353,8 @@ class Pipeline {
   /// The zone that judges pair (a, b) (design §4.9): the home of the midpoint of their
   /// last reported positions (single mode: zone 0).
   zone::ZoneKey owner_of(const track::Track& a, const track::Track& b) const;
+  /// served_longitudes: the event's pair is this pipeline's to report.
+  bool serves(const AlertEvent& event) const;
   /// Whether zone `key` holds both tracks (members of it by their last reports).
   bool holds_both(zone::ZoneKey key, const track::Track& a, const track::Track& b);
   /// The track's kinematics and point scale in `key`'s plane, at the track's last
@@ -405,6 +422,8 @@ class Pipeline {
   double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::Projection> projection_;  // single mode
   std::optional<zone::ZoneTiling> tiling_;     // worldwide mode
+  std::vector<bool> worked_zone_;  // served_longitudes: by key, the zones this pipeline works
+  std::vector<std::optional<geo::Projection>> unworked_planes_;  // by key, made on first use
   std::optional<geo::GeodeticPosition> coverage_centre_;  // of the reference or first record
   std::vector<ZoneWork> work_;  // by zone key
   std::size_t zone_count_ = 0;
