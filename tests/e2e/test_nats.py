@@ -14,6 +14,7 @@ import subprocess
 import threading
 import time
 import unittest
+import urllib.request
 
 from kewd_harness import (KEW_WATCH, Kewd, NatsServer, Subscriber, count_lines, generate, nats_publish,
                           offline_alerts, replay_to, temporary_directory, wait_until)
@@ -277,6 +278,40 @@ class HotStandby(NatsCase):
         wait_until(lambda: len(on_second.alert_lines()) >= len(expected) - published, 20, "the new active's stream")
         # Its stream continues with the next seq: nothing the dead active had sent, nothing missing.
         self.assertEqual(on_second.alert_lines(), expected[published:])
+
+    def test_an_acknowledgement_on_the_active_stays_after_the_takeover(self):
+        first = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="a"))
+        first.wait_log("a holds the lease active: active")
+        second = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="b"))
+        for kewd in (first, second):
+            kewd.wait_log("reading kew.feed.tma through the JetStream consumer")
+        lines = self.feed_lines()
+        half = lines[:len(lines) // 2]
+        nats_publish(self.nats.port, "kew.feed.tma", [b"".join(half[i:i + 20]) for i in range(0, len(half), 20)])
+        for kewd in (first, second):
+            kewd.wait_records(len(half))
+        self.assertGreater(len(active_alerts(first)), 0, "alerts are open")
+        acknowledged = ack_all(first)
+        self.assertTrue(acknowledged)
+        second.wait_log(f"standby: {len(acknowledged)} alerts acknowledged on the active")
+        first.process.kill()
+        second.wait_log("active now (hot standby b)", timeout_s=30)
+        after = {a["id"]: a for a in active_alerts(second)}
+        for alert_id in acknowledged:
+            self.assertTrue(after[alert_id]["ack"], f"{alert_id} acknowledged on the active stays so")
+
+
+def active_alerts(kewd):
+    with urllib.request.urlopen(f"http://127.0.0.1:{kewd.http_port}/api/alerts", timeout=10) as reply:
+        return json.load(reply)["alerts"]
+
+
+def ack_all(kewd):
+    """POST /api/ack {"all": true} as the map does; the ids acknowledged."""
+    request = urllib.request.Request(f"http://127.0.0.1:{kewd.http_port}/api/ack", data=b'{"all":true}', headers={
+        "Content-Type": "application/json", "X-Kew-Ack": "1", "Origin": f"http://127.0.0.1:{kewd.http_port}"})
+    with urllib.request.urlopen(request, timeout=10) as reply:
+        return json.load(reply)["acknowledged"]
 
 
 ZONE_SHARE = """

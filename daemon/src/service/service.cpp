@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "../nats/ack_follower.hpp"
 #include "../nats/leader_lease.hpp"
 #include "../nats/nats_publisher.hpp"
 #include "logging.hpp"
@@ -127,6 +128,10 @@ Service::Service(Config config, ServiceOptions options)
     };
     handlers.on_lost = [this] { asio::post(io_, [this] { step_down(); }); };
     lease_ = std::make_unique<LeaderLease>(config_.nats, instance, std::move(handlers));
+    // The active's acknowledgements, kept by the standby for after a takeover.
+    acks_ = std::make_unique<AckFollower>(config_.nats, [this](std::vector<std::string> ids) {
+      asio::post(io_, [this, ids = std::move(ids)] { follow_acknowledgements(ids); });
+    });
   }
 
   if (config_.modbus.enabled) {
@@ -179,6 +184,7 @@ Service::~Service() {
   // earlier would find them unpublished and send them again.
   nats_.reset();
   lease_.reset();
+  acks_.reset();
 }
 
 int Service::run() {
@@ -431,6 +437,16 @@ void Service::take_over(std::uint64_t published) {
                "{} alerts open",
                lease_->instance(), published, sent, pipeline_.alerts().active_count());
   sd_notifyf(0, "STATUS=active, serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
+}
+
+void Service::follow_acknowledgements(const std::vector<std::string>& ids) {
+  if (active_ || stopping_) return;  // the active's own are already applied
+  std::size_t applied = 0;
+  for (const std::string& id : ids) applied += pipeline_.alerts().acknowledge(id).size();
+  if (applied) {
+    spdlog::info("standby: {} alerts acknowledged on the active", applied);
+    modbus_dirty_ = true;
+  }
 }
 
 void Service::step_down() {

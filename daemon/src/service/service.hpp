@@ -28,6 +28,7 @@
 namespace kew::daemon {
 
 class ModbusServer;
+class AckFollower;
 class LeaderLease;
 class NatsPublisher;
 
@@ -69,6 +70,8 @@ class Service {
   /// Hot standby (design §5.9): the lease is this instance's; the previous active
   /// published up to seq `published`. Sends the kept events after it and serves.
   void take_over(std::uint64_t published);
+  /// Standby: the active acknowledged these alerts.
+  void follow_acknowledgements(const std::vector<std::string>& ids);
   /// The lease is lost: computes on, silently.
   void step_down();
   void start_modbus();
@@ -140,6 +143,7 @@ class Service {
   std::unique_ptr<http::HttpServer> http_;
   std::unique_ptr<NatsPublisher> nats_;
   std::unique_ptr<LeaderLease> lease_;  // hot standby only
+  std::unique_ptr<AckFollower> acks_;   // hot standby only
   /// Serving outputs: always, unless in hot standby without the lease.
   bool active_ = true;
   bool modbus_started_ = false;
