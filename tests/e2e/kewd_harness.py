@@ -308,3 +308,21 @@ def nats_publish(port, subject, payloads):
                 break
             if line.startswith(b"-ERR"):
                 raise AssertionError(line.decode())
+
+
+def nats_next_message(port, subject, timeout_s=10.0):
+    """Subscribes to `subject` through NATS's text protocol and returns the payload (bytes)
+    of the first message published to it, headers left out."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout_s) as s:
+        reader = s.makefile("rb")
+        assert reader.readline().startswith(b"INFO ")
+        s.sendall(b'CONNECT {"verbose":false,"name":"kew-e2e"}\r\nSUB %s 1\r\nPING\r\n' % subject.encode())
+        while True:
+            line = reader.readline()
+            if not line:
+                raise AssertionError(f"the server closed before a message on {subject}")
+            if line.startswith(b"PING"):
+                s.sendall(b"PONG\r\n")
+            elif line.startswith(b"MSG "):
+                size = int(line.split()[-1])
+                return reader.read(size + 2)[:size]

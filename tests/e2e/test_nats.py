@@ -16,8 +16,8 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEW_WATCH, Kewd, NatsServer, Subscriber, count_lines, generate, nats_publish,
-                          offline_alerts, replay_to, temporary_directory, wait_until)
+from kewd_harness import (KEW_WATCH, Kewd, NatsServer, Subscriber, count_lines, generate, nats_next_message,
+                          nats_publish, offline_alerts, replay_to, temporary_directory, wait_until)
 
 # The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
 SERVICE = """
@@ -78,6 +78,8 @@ class NatsCase(unittest.TestCase):
             if p.poll() is None:
                 p.kill()
                 p.wait()
+            if p.stdout:
+                p.stdout.close()
         while Subscriber.opened:
             Subscriber.opened.pop().close()
         self.nats.stop()
@@ -98,9 +100,13 @@ class NatsCase(unittest.TestCase):
 
 class NatsInputAndOutput(NatsCase):
     def test_nats_input_gives_the_file_alerts_on_the_stream_jetstream_and_mqtt(self):
-        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + NATS_INPUT + DURABLE)
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + "tracks_interval_s = 1\n"
+                          + NATS_INPUT + DURABLE)
         expected = offline_alerts(kewd.config_path, self.recording)
         self.assertGreater(len(expected), 100)
+        # Status and track snapshots, published and not kept.
+        self.assertEqual(json.loads(nats_next_message(self.nats.port, "kew.status"))["class"], "ALIVE")
+        self.assertEqual(json.loads(nats_next_message(self.nats.port, "kew.tracks"))["class"], "TRACKS")
         kewd.wait_log("reading kew.feed.tma through the JetStream consumer kewd_e2e")
         reader = Subscriber(kewd.alert_port)
         mqtt = subprocess.Popen(["mosquitto_sub", "-h", "127.0.0.1", "-p", str(self.nats.mqtt_port), "-v",
@@ -133,6 +139,10 @@ class NatsInputAndOutput(NatsCase):
             self.assertEqual(payload + "\n", alert)
         stats = kewd.stats()
         self.assertEqual(stats["nats"]["dropped"], 0)
+        with urllib.request.urlopen(f"http://127.0.0.1:{kewd.http_port}/metrics", timeout=10) as reply:
+            metrics = reply.read().decode()
+        self.assertIn(f"kew_nats_published_total {stats['nats']['published']}\n", metrics)
+        self.assertIn("kew_nats_connected 1\n", metrics)
         self.assertTrue(stats["nats"]["connected"])
         self.assertEqual(stats["inputs"][0]["reports"], count_lines(self.recording))
         self.assertEqual(kewd.terminate(), 0)
@@ -265,6 +275,12 @@ class HotStandby(NatsCase):
                    "the new active's outbox emptied")
         time.sleep(1.0)
         self.assertTrue(second.stats()["nats"]["active"])
+        with urllib.request.urlopen(f"http://127.0.0.1:{second.http_port}/metrics", timeout=10) as reply:
+            metrics = reply.read()
+        self.assertIn(b"kew_standby_active 1\n", metrics)
+        # Every NATS metric in Prometheus' own checker (Debian's prometheus package).
+        result = subprocess.run(["promtool", "check", "metrics"], input=metrics, capture_output=True)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
 
         kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
         self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")

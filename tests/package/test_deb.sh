@@ -40,11 +40,14 @@ for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-ge
             /usr/bin/kew-decode /lib/systemd/system/kewd.service /etc/kew/kew.toml \
             /usr/share/man/man8/kewd.8.gz /usr/share/man/man5/kew.toml.5.gz /usr/share/man/man1/kew-replay.1.gz \
             /usr/share/man/man1/kew-gen.1.gz /usr/share/man/man1/kew-watch.1.gz /usr/share/man/man1/kew-decode.1.gz \
-            /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/doc/kew/copyright; do
+            /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/doc/kew/copyright \
+            /usr/share/doc/kew/examples/nats/nats-server.conf \
+            /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf; do
   grep -qx "$path" <<<"$contents" || fail "$path is not in the package"
 done
 dpkg-deb -f "$deb" Depends | grep -q libjs-leaflet || fail "Depends lacks libjs-leaflet"
 dpkg-deb -f "$deb" Depends | grep -q libmodbus || fail "Depends lacks the shared libraries (\${shlibs:Depends})"
+dpkg-deb -f "$deb" Depends | grep -q libnats || fail "Depends lacks the NATS C client library"
 control=$work/control
 dpkg-deb -e "$deb" "$control"
 grep -qx /etc/kew/kew.toml "$control/conffiles" || fail "/etc/kew/kew.toml is not a conffile"

@@ -398,6 +398,7 @@ nats_url = "nats://127.0.0.1:4223"
   expect_error("[nats]\nalerts_subject = \"kew.*\"\n", "is not a NATS subject to publish to");
   expect_error("[nats]\nstream = \"KEW.ALERTS\"\n", "a JetStream name has no '.'");
   expect_error("[nats]\nhot_standby = true\n", "hot_standby needs url");
+  expect_error("[nats]\nurl = \"nats://127.0.0.1:4222\"\nhot_standby = true\nstream = \"\"\n", "hot_standby needs stream");
   expect_error("[nats]\nurl = \"nats://127.0.0.1:4222\"\nlease_key = \"a.b\"\n", "is not a key");
   EXPECT_TRUE(parse_config("[nats]\nurl = \"nats://127.0.0.1:4222\"\nhot_standby = true\n").nats.hot_standby);
   expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a\"\nstream = \"S\"\n", "give durable too");
@@ -517,6 +518,9 @@ allow_remote = true
 [[input]]
 transport = "tcp-client"
 address = "192.0.2.1:30003"
+[nats]
+url = "nats://192.0.2.7:4222"
+hot_standby = true
 )", "site.toml");
   ReplaySettings replay;
   replay.file = "incident.ast";
@@ -537,6 +541,8 @@ address = "192.0.2.1:30003"
   EXPECT_TRUE(state_directory(c.service).empty());
   EXPECT_FALSE(c.cat004.enabled);
   EXPECT_FALSE(c.modbus.enabled);
+  EXPECT_TRUE(c.nats.url.empty());  // a replay never reaches the production bus
+  EXPECT_FALSE(c.nats.hot_standby);
   EXPECT_THROW(check_config(c, false), ConfigError);  // the file's 0.0.0.0 is no longer allowed
   replay.alert_listen = "127.0.0.1:4848";
   replay.speed = 0.0;  // --max-speed

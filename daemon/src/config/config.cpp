@@ -108,6 +108,9 @@ void read_nats(TableReader& r, NatsConfig& n) {
   r.string("instance", n.instance);
   r.integer("standby_history", n.standby_history, 16, 10'000'000);
   if (n.hot_standby && n.url.empty()) r.fail(r.node("hot_standby"), "hot_standby needs url: the lease is on NATS");
+  // A new active learns from the stream what the last one published.
+  if (n.hot_standby && n.stream.empty())
+    r.fail(r.node("hot_standby"), "hot_standby needs stream: a takeover reads the last event sent from it");
 }
 
 void read_input(TableReader& r, InputConfig& in) {

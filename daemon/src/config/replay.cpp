@@ -28,6 +28,8 @@ void apply_replay(Config& config, const ReplaySettings& replay) {
   config.cat004.enabled = false;
   config.modbus.enabled = false;
   config.modbus.allow_remote = false;
+  // Nor a production bus (its subscribers, MQTT integrations, a hot-standby lease).
+  config.nats = NatsConfig{};
   // The map and API stay (they are how a replay is watched), on loopback like the rest.
   config.http.allow_remote = false;
   if (!replay.http_listen.empty()) config.http.listen = replay.http_listen;

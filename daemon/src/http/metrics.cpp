@@ -166,6 +166,20 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
   if (s.alert_log_queued_bytes)
     e.single("kew_alert_log_queued_bytes", "gauge", "Bytes of alert events waiting for the alert log.",
              num(*s.alert_log_queued_bytes));
+  if (s.nats) {
+    const protocol::NatsStatistics& n = *s.nats;
+    e.single("kew_nats_connected", "gauge", "1 while the publisher is connected to its NATS server.",
+             n.connected ? 1.0 : 0.0);
+    e.single("kew_nats_disconnects_total", "counter", "Connections to the NATS server lost.", num(n.disconnects));
+    e.single("kew_nats_published_total", "counter", "Alert events and acknowledgements the NATS server took.",
+             num(n.published));
+    e.single("kew_nats_retries_total", "counter", "Publications tried again.", num(n.retries));
+    e.single("kew_nats_queued", "gauge", "Events waiting for the NATS server.", num(n.queued));
+    e.single("kew_nats_dropped_total", "counter", "Events dropped from a full NATS outbox.", num(n.dropped));
+    if (n.active)
+      e.single("kew_standby_active", "gauge", "Hot standby: 1 while this kewd holds the lease and sends alerts.",
+               *n.active ? 1.0 : 0.0);
+  }
   if (!s.http) return;
   const HttpStatistics& h = *s.http;
   e.single("kew_http_connections", "gauge", "HTTP and WebSocket connections open.", num(s.http_connections));

@@ -53,6 +53,7 @@ struct MetricsSources {
   const HttpStatistics* http = nullptr;
   std::uint64_t http_connections = 0, websockets = 0, websocket_queued_bytes = 0;
   std::optional<std::uint64_t> alert_log_queued_bytes;
+  std::optional<protocol::NatsStatistics> nats;  ///< with [nats] url
   const LatencyHistogram* latency = nullptr;
   double start_time_unix_s = 0.0;
 };

@@ -758,6 +758,7 @@ std::string Service::metrics_text() const {
     m.websocket_queued_bytes = http_->queued_bytes();
   }
   m.alert_log_queued_bytes = service.alert_log_queued_bytes;
+  m.nats = service.nats;
   m.latency = &latency_;
   m.start_time_unix_s = started_unix_s_;
   return http::metrics_text(m);
