@@ -30,7 +30,7 @@ constexpr int kDetectMaxLines = 16;
 constexpr double kAsterixMinConfidence = 0.4;
 // Bytes looked at to tell text from binary.
 constexpr std::size_t kTextSampleBytes = 1024;
-// Line starts tried after leading noise (a stream opening with garbage, issue 18), within
+// Line starts tried after leading noise (a stream opening with garbage), within
 // the 64 KiB the auto decoder buffers: bounds the work of one detection.
 constexpr int kDetectMaxRestarts = 1024;
 

@@ -1,4 +1,4 @@
-// Sustained ingestion of a running kewd over loopback (issue 6): records are streamed to
+// Sustained ingestion of a running kewd over loopback: records are streamed to
 // a TCP, UDP or NATS input at a target rate (or as fast as possible) while a subscriber reads
 // the alert stream. Reports the rate the daemon sustained and the record-to-alert latency
 // percentiles: for every ALERT, the time from sending the record that triggered it (the
@@ -10,7 +10,7 @@
 // It starts its own kewd (loopback, ephemeral ports) and stops it with SIGTERM; with
 // --transport nats, its own nats-server too (--nats-server), the records published to a
 // subject kewd subscribes to (design §5.9), in messages as big as UDP's datagrams.
-// --map-clients N connects N clients to kewd's HTTP server as the live map does (issue 20):
+// --map-clients N connects N clients to kewd's HTTP server as the live map does:
 // each reads the /ws WebSocket, polls /api/status every 2 s and /api/tracks every 10 s.
 
 #include <fcntl.h>

@@ -1,12 +1,12 @@
 // kew_peers_bench: kew's per-radar-period cost against what an engineer would otherwise
-// build (design §6.7, issue 8), on the same generated traffic and in one run:
+// build (design §6.7), on the same generated traffic and in one run:
 //   (a) kew         the Pipeline (track table, projection, kinetic Delaunay updates and
 //                   events, exact BFS probe, alert manager) — no alert output;
 //   (a') kew-index  kew's kinetic triangulation and exact search alone, driven with the
 //                   same updates and conflict test as (b)-(e): the method measured as
 //                   the baselines are (also split into maintenance, search and tests,
 //                   and H counted: what kinetic detection would keep, design §2.7);
-//   (a'') kew-lookahead  the prototype of kinetic detection (issue 22 item 4, design §2.7,
+//   (a'') kew-lookahead  the prototype of kinetic detection (design §2.7,
 //                   tests/support/lookahead_pairs.hpp): H kept by events on a kinetic
 //                   triangulation of the look-ahead points, each update testing H(i);
 //   (b) cgal        a static Delaunay triangulation rebuilt by CGAL every period
@@ -45,7 +45,7 @@
 // that report every 5-15 s want more, or most kept reports end as Drifts).
 // --first-order permutes the first period's records (which create every track, point and
 // face) into a random or a Hilbert-curve order of their positions: the worst and the best
-// memory order a renumbering could leave (issue 22 item 5); arrival order by default.
+// memory order a renumbering could leave; arrival order by default.
 // --renumber-every is kew-renumbered's PipelineConfig::renumber_every_s (default 60).
 //
 // Density: the region grows with √N (one aircraft per 126 km² at every N), but the
@@ -411,7 +411,7 @@ struct MethodResult {
 // ---------------------------------------------------------------------------------
 // (a) kew
 
-// kew as configured, and each lever of issue 22 turned back off, beside it in one run.
+// kew as configured, and each of its speed levers turned back off, beside it in one run.
 std::string fixed(double x, int decimals);
 
 enum class KewVariant { Default, Centred, Eager, Reinserting, Renumbered };
@@ -565,7 +565,7 @@ bool in_conflict(const World& world, Slot slot, const Kinematics& k_self, Slot o
 // whose clock source is not the TSC, which is what distorts PipelineConfig::time_phases.
 enum class IndexWork { Maintenance, Search, All };
 
-// What kinetic detection (issue 22 item 4, design §2.7) would have to keep, counted on
+// What kinetic detection (design §2.7) would have to keep, counted on
 // kew-index's updates: H, the pairs whose horizontal separation is below S_h somewhere in
 // the look-ahead window [t, t + T] (every pair that can be in conflict is in H).
 struct HorizontalCensus {
@@ -711,7 +711,7 @@ MethodResult run_kinetic_index(const Params& prm, const Workload& w, IndexWork w
   return result;
 }
 
-// (a'') Kinetic detection (issue 22 item 4): the prototype fed the same steps, testing
+// (a'') Kinetic detection: the prototype fed the same steps, testing
 // the candidates LookaheadPairs gives with the same conflict test. Its own counters
 // (reports kept and replaced, disk searches, entries) are printed to stderr.
 MethodResult run_lookahead(const Params& prm, const Workload& w) {

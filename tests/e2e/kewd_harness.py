@@ -1,4 +1,4 @@
-"""Test harness for end-to-end tests of the real kewd binary (issue 6, design §6).
+"""Test harness for end-to-end tests of the real kewd binary (design §6).
 
 Starts kewd in the foreground on loopback on free ports, learns the ports from its log,
 and talks to it as subscribers, feeds and operators do. kewd refuses port 0 (a listener

@@ -1,4 +1,4 @@
-"""End-to-end tests of kewd's HTTP server (issue 20, design §5.8): every route's shape, the
+"""End-to-end tests of kewd's HTTP server (design §5.8): every route's shape, the
 /ws WebSocket, POST /api/ack, /metrics through promtool and a real Prometheus, and bad
 input (oversized headers, 1,000 connections, slow clients, garbage on the WebSocket) that
 leaves kewd serving and counting. A real kewd on loopback, fed by kew-replay."""

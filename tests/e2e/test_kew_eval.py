@@ -1,4 +1,4 @@
-"""End-to-end test of kew-eval (issue 17, design §2.6) on a generated recording whose
+"""End-to-end test of kew-eval (design §2.6) on a generated recording whose
 losses of separation are planted with known geometry.
 
 Every planted aircraft flies straight legs in a local east/north frame at one latitude,

@@ -1,4 +1,4 @@
-"""End-to-end tests of the real kewd binary on loopback (issue 6, design §5.3–5.7, §6).
+"""End-to-end tests of the real kewd binary on loopback (design §5.3–5.7, §6).
 
 Run by ctest (tests/CMakeLists.txt) with the binaries in the environment; by hand:
   KEWD=build/daemon/kewd KEW_REPLAY=build/replay/kew-replay KEW_GEN=build/replay/kew-gen \
@@ -278,8 +278,8 @@ def limited_memory():
 
 
 class InputFraming(E2eCase):
-    """Datagrams, noise, configurations that never end and the recording (issue 18,
-    README "Input framing")."""
+    """Datagrams, noise, configurations that never end and the recording (README
+    "Input framing")."""
 
     def test_udp_datagrams_never_contaminate_each_other(self):
         good = self.path("good.ndjson")
@@ -519,7 +519,7 @@ def pymodbus_python():
 
 
 class ModbusMap(E2eCase):
-    """kewd's Modbus TCP alarm map read by real clients (issue 7, design §5.5)."""
+    """kewd's Modbus TCP alarm map read by real clients (design §5.5)."""
 
     def setUp(self):
         super().setUp()
@@ -649,7 +649,7 @@ class ModbusMap(E2eCase):
 
 
 class ListenAddresses(E2eCase):
-    """Listeners bind loopback unless allowed; --check-config catches what start would not survive (issue 18)."""
+    """Listeners bind loopback unless allowed; --check-config catches what start would not survive."""
 
     def check(self, config_text, *args):
         path = self.path("check.toml")

@@ -1,4 +1,4 @@
-"""kewd when a record, a client, a restart or the disk misbehaves (issue 18, README
+"""kewd when a record, a client, a restart or the disk misbehaves (README
 "Reliability"). Run by ctest with test_kewd; by hand as test_kewd.py says.
 """
 import errno
@@ -178,8 +178,8 @@ def parked_pairs(count, t):
 
 
 class Connections(E2eCase):
-    """Silent, slow and greedy clients neither lock others out nor exhaust kewd (issue 18
-    item 2, README "Reliability", "Connections")."""
+    """Silent, slow and greedy clients neither lock others out nor exhaust kewd (README
+    "Reliability", "Connections")."""
 
     def try_watch(self, port):
         """A subscriber that got its snapshot, or None when kewd refused it."""
@@ -281,7 +281,7 @@ class Connections(E2eCase):
         with socket.create_connection(("127.0.0.1", kewd.input_port("feed"))) as feed:
             feed.sendall(lines(pairs))
         kewd.wait_records(len(pairs))
-        # A second round of records confirms every conflict (alerts open after two).
+        # A second pass of records confirms every conflict (alerts open after two).
         for r in pairs:
             r["t"] += 4
         with socket.create_connection(("127.0.0.1", kewd.input_port("feed"))) as feed:
@@ -387,7 +387,7 @@ def read_log(path):
 
 class Restarts(E2eCase):
     """A restart neither leaves alerts open in the alert log nor reuses seq or numbers;
-    a full disk neither tears a line nor loses an event (issue 18 items 4 and 5)."""
+    a full disk neither tears a line nor loses an event."""
 
     CONFIG = FEED.replace('alert_listen = "127.0.0.1:0"\n', 'alert_listen = "127.0.0.1:0"\nalert_log = "{log}"\n')
 

@@ -1,4 +1,4 @@
-"""End-to-end tests of `kewd --replay FILE` (issue 20 item 3, design §5.6): a recording
+"""End-to-end tests of `kewd --replay FILE` (design §5.6): a recording
 replayed by kewd with a built-in configuration, on loopback, writing nothing.
 
 Run by ctest with the e2e tests; by hand as test_kewd.py says.
@@ -124,7 +124,7 @@ class Replay(E2eCase):
                          (before["tracks"], before["alerts_active"], before["data_time_last"]),
                          "the last state stays on show")
         self.assertIn("serving the last state until SIGINT or SIGTERM", kewd.log())
-        # The map and its API are how a replay is watched (issue 20).
+        # The map and its API are how a replay is watched.
         http = f"http://127.0.0.1:{http_port}"
         with urllib.request.urlopen(http + "/api/tracks", timeout=10) as reply:
             self.assertEqual(len(json.loads(reply.read())["tracks"]), after["tracks"])

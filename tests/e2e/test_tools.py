@@ -1,4 +1,4 @@
-"""Command-line behaviour of the tools (issue 21): `--version` of every tool with the
+"""Command-line behaviour of the tools: `--version` of every tool with the
 source revision, the VERSION and ALIVE objects carrying it, and kew-decode's input,
 output and refusal reporting. That kew-decode's NDJSON replays to the same alerts as
 every bundled and shared recording is checked by the golden test (run_golden.py).

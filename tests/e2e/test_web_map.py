@@ -1,4 +1,4 @@
-"""The live map in a real browser (issue 20, design §5.8): headless Chromium opens the map
+"""The live map in a real browser (design §5.8): headless Chromium opens the map
 served by a real kewd fed a scenario with conflicts, and what it draws is checked against
 kewd's own /api/tracks and /api/alerts; acknowledging from the page must put an ACK object
 with "by":"web" on the alert stream. A screenshot is saved in the build directory.

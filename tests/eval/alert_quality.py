@@ -4,7 +4,7 @@
     python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR] [--zones]
 
 Prints four markdown tables: each recording with every filter off (filters-off.toml, kew
-before issue 17) and with the default configuration; then, summed over the recordings,
+without its eligibility rules) and with the default configuration; then, summed over the recordings,
 what switching off each rule alone gives back; the turn hypothesis (off by default)
 switched on, recording by recording; and UPC with the Barcelona terminal-area example
 (deploy/examples/barcelona-tma.toml) beside the defaults. UPC is read with its [[radar]]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Golden replay tests in the style of gpsd's regression tests (issue 5).
+"""Golden replay tests in the style of gpsd's regression tests.
 
 Every case in CASES is replayed offline with kew-replay; its ALERT lines and the stable
 part of its statistics must equal the files checked in under tests/golden/expected/
@@ -16,7 +16,7 @@ decoder supports, with --audit: exit 0, statistics printed, no unrepaired violat
 
 Every recording (bundled or shared, not the generated ones, which are NDJSON already) is
 also converted by kew-decode (KEW_DECODE) and the conversion replayed: its alerts must be
-byte-identical to the original's, and kew-eval (KEW_EVAL) must score both alike (issue 21).
+byte-identical to the original's, and kew-eval (KEW_EVAL) must score both alike.
 """
 
 import argparse

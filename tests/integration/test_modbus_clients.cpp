@@ -181,7 +181,7 @@ TEST_F(WithPymodbus, CoilZeroAcknowledges) {
   EXPECT_EQ(json_values(coil.output), (std::vector<long>{0}));
 }
 
-// Issue 18, item 7: an acknowledgement names the client's address and port, as the
+// An acknowledgement names the client's address and port, as the
 // client itself sees its socket.
 TEST_F(WithPymodbus, AcknowledgementNamesTheClientAddressAndPort) {
   RunningServer s;

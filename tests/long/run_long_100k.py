@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The largest scenario of issue 5: kew-gen's 100,000 aircraft for 600 s through
+"""The largest generated scenario: kew-gen's 100,000 aircraft for 600 s through
 kew-replay with audits, every aircraft inside the coverage.
 
 Usage: run_long_100k.py KEW_GEN KEW_REPLAY STATS_JSON

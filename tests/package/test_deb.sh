@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Debian package (issue 21): builds kew_<version>_<arch>.deb with dpkg-buildpackage
+# The Debian package: builds kew_<version>_<arch>.deb with dpkg-buildpackage
 # from a copy of this tree, checks what it contains and runs lintian on it; then, only
 # when the environment says CI=true and we are root (never on a user's machine), installs
 # it with dpkg -i, checks the installed service, configuration, manual page and tools, and

@@ -1,4 +1,4 @@
-// Kinetic detection (issue 22 item 4, design §2.7): the prototype LookaheadPairs gives,
+// Kinetic detection (design §2.7): the prototype LookaheadPairs gives,
 // at every update, candidates among which the conflict test finds exactly the pairs brute
 // force finds: on the generated scenarios, on aircraft stacked at one position on
 // several levels, on one airway flown at three levels in both directions, and on exact

@@ -1,5 +1,5 @@
 #pragma once
-// Kinetic detection (issue 22 item 4, design §2.7): the prototype. It keeps H, the pairs
+// Kinetic detection (design §2.7): the prototype. It keeps H, the pairs
 // of tracks that may come within the horizontal minimum during the look-ahead window,
 // as a set changed by kinetic events instead of searched for at every update, so that an
 // update of track i tests H(i) only.

@@ -469,7 +469,7 @@ TEST(AsterixRoundTrip, TimeOfDayRollsOverToTheNextDay) {
 }
 
 TEST(AsterixRoundTrip, ALiveStreamIsDatedByWhenItsBytesArrived) {
-  // Issue 18: a live feed started at 00:00:05 (kewd takes today's date) whose first record
+  // A live feed started at 00:00:05 (kewd takes today's date) whose first record
   // is a late one stamped 23:59:58 was dated 23:59:58 *today*, a day ahead. Live inputs
   // now tell the decoder when the bytes arrived; each time of day takes the day within
   // 12 h of that, across midnight in both directions, for every framing.
@@ -498,7 +498,7 @@ TEST(AsterixRoundTrip, ALiveStreamIsDatedByWhenItsBytesArrived) {
 }
 
 TEST(AsterixRoundTrip, ACat062FeedAcrossMidnightKeepsAlerting) {
-  // Issue 18: a head-on pair 45 NM apart reported by one SDPS every 4 s from 23:59:20
+  // A head-on pair 45 NM apart reported by one SDPS every 4 s from 23:59:20
   // UTC, closing at 900 kt: the conflict comes within the 120 s look-ahead after
   // midnight. Decoded as a stream (days counted from the
   // first record) and live (dated by arrival), the records cross midnight in order and

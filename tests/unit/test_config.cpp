@@ -223,7 +223,7 @@ asterix_day = "2023-05-02"
 }
 
 TEST(Config, TheRadarsCentreTheProjectionUnlessAReferenceIsConfigured) {
-  // Issue 18: the projection reference is never taken from a single record when the
+  // The projection reference is never taken from a single record when the
   // configuration knows better. Two radars: their mean position.
   const Config c = parse_config(R"(
 [[radar]]
@@ -357,7 +357,7 @@ TEST(Config, EveryAddressKeyUsesTheOneParser) {
             (std::filesystem::current_path() / "C:/x.ast").string());
 }
 
-// Listen addresses (issue 18, item 6): loopback unless the listener's table says
+// Listen addresses (item 6): loopback unless the listener's table says
 // allow_remote = true or kewd runs with --listen-any; the error names the listener.
 void expect_check_error(const std::string& text, const std::string& needle, bool listen_any = false) {
   try {
@@ -636,7 +636,7 @@ address = "./data/x.ast"
   EXPECT_EQ(parse_config("[service]\nalert_log = \"\"\n").service.alert_log, "");
 }
 
-// [modbus] acknowledge_from (issue 18, item 7): addresses, kept in canonical form.
+// [modbus] acknowledge_from (item 7): addresses, kept in canonical form.
 TEST(Config, AcknowledgeFromIsAListOfAddresses) {
   const Config c = parse_config("[modbus]\nacknowledge_from = [\"127.0.0.1\", \"::0001\", \"::ffff:10.0.0.7\"]\n");
   EXPECT_EQ(c.modbus.acknowledge_from, (std::vector<std::string>{"127.0.0.1", "::1", "10.0.0.7"}));
@@ -701,7 +701,7 @@ lon = 8
   }
 }
 
-// A configuration is read with a size cap (issue 18): a file over kMaxConfigBytes or a
+// A configuration is read with a size cap: a file over kMaxConfigBytes or a
 // directory is refused with a message naming it, and nothing past the cap is read
 // (`/dev/zero` and pipes: tests/e2e test_kewd.InputFraming.test_config_that_never_ends_is_refused).
 TEST(Config, FilesAreReadWithASizeCap) {

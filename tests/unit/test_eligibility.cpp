@@ -1,4 +1,4 @@
-// Who may alert (design §4.5, issue 17): one aircraft seen as two tracks never alerts
+// Who may alert (design §4.5): one aircraft seen as two tracks never alerts
 // against itself, targets that are not airborne aircraft open no alert, level pairs at
 // adjacent levels are separated, and every suppression is counted by rule.
 #include "kew/eligibility/eligibility.hpp"

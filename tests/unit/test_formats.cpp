@@ -197,7 +197,7 @@ TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   EXPECT_EQ(short_decoder->rejections().count("unknown_format"), 1u);
 }
 
-// Issue 18: a stream opening with noise (binary or text) is still detected, from the first
+// A stream opening with noise (binary or text) is still detected, from the first
 // line after the noise; the noise is counted once, wherever the feed boundaries fall.
 TEST(AutoDecoder, FindsTheFormatAfterNoise) {
   const std::string sample = test::read_file(test::bundled_path("canonical_sample.ndjson"));
@@ -218,7 +218,7 @@ TEST(AutoDecoder, FindsTheFormatAfterNoise) {
   }
 }
 
-// Issue 18: end_message() closes a datagram. A last line without its newline is whole;
+// End_message() closes a datagram. A last line without its newline is whole;
 // nothing (a partial line, an over-long line being skipped) reaches the next datagram.
 TEST(Decoder, EachDatagramIsDecodedAlone) {
   const std::string record = R"({"t":1714400000,"id":"A1","lat":50,"lon":8,"alt_ft":30000})";

@@ -1,4 +1,4 @@
-// The probe's fast paths (issue 8) must decide exactly what the slow ones decide:
+// The probe's fast paths must decide exactly what the slow ones decide:
 // the allocation-free neighbour walk, the level-pair shortcut of the CPA test, and the
 // conflict tap the peers benchmark compares against.
 #include <gtest/gtest.h>

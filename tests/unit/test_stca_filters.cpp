@@ -1,4 +1,4 @@
-// STCA filters (design §4.4, §4.8; issue 19): vertical intent from the selected altitude,
+// STCA filters (design §4.4, §4.8): vertical intent from the selected altitude,
 // parameter regions and inhibition volumes, and the turn hypothesis.
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/probe/cpa.hpp"

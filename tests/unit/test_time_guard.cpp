@@ -1,4 +1,4 @@
-// Time and place you can trust (design §4.1–4.2, issue 18): one record dated in the
+// Time and place you can trust (design §4.1–4.2): one record dated in the
 // future never moves the data clock, a real jump of the data (a gap in a recording) loses
 // nothing, and a stray first record does not fix the clock or the projection for good.
 #include "kew/pipeline/pipeline.hpp"

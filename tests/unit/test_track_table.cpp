@@ -95,7 +95,7 @@ TEST(BadRecords, AreRefusedWithTheirReasonAndNeverReachTheTriangulation) {
   EXPECT_TRUE(pipeline.is_valid());
 }
 
-// Issue 17: a feed whose I062/220 held −165,100 ft/min lost those records whole, its
+// A feed whose I062/220 held −165,100 ft/min lost those records whole, its
 // tracks starved and real conflicts went unalerted. A bad optional field now costs only
 // that field; the track table derives what is missing.
 TEST(BadOptionalFields, CostOnlyTheFieldAndTheRecordIsAccepted) {

@@ -1,5 +1,5 @@
 #pragma once
-// Hilbert-curve order of planar points, for memory order (design §8.3, issue 22 item 5):
+// Hilbert-curve order of planar points, for memory order (design §8.3):
 // points close along the curve are close in the plane, so structures numbered in this
 // order keep neighbours in nearby memory.
 

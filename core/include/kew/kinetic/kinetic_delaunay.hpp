@@ -127,7 +127,7 @@ enum class UpdateKind {
 /// flip, repair, rebuild) is told at the engine time it appears, and edges around a
 /// point whose motion changed are told again. Twins are not vertices: their edges are
 /// their host's. For structures that must see each edge before it can matter, such as
-/// the look-ahead pairs prototype of issue 22 item 4 (tests/support/lookahead_pairs.hpp).
+/// the look-ahead pairs prototype of kinetic detection (tests/support/lookahead_pairs.hpp).
 class EdgeListener {
  public:
   virtual ~EdgeListener() = default;
