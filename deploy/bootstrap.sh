@@ -46,7 +46,7 @@ configure_and_build() {  # [CMAKE_ARGS...]
 }
 
 # A Release tree with the defaults (and -Werror), built only: a build type other than the
-# suite's must keep building with every warning on (README "Build").
+# suite's must keep building with every warning on (README "Building and testing").
 build_release() {
   cmake -S "$here" -B "$build-release" -DCMAKE_BUILD_TYPE=Release -DKEW_WERROR=ON >/dev/null
   cmake --build "$build-release" -j "$jobs"
@@ -117,7 +117,7 @@ case "$mode" in
     # Warnings are errors in CI only: a user's compiler may warn where this one does not.
     configure_and_build -DKEW_WERROR=ON
     build_release
-    # Tests that take hours are not registered here (KEW_LONG_TESTS, README "Tests").
+    # Tests that take hours are not registered here (KEW_LONG_TESTS, docs/testing.md).
     ctest --test-dir "$build" --output-on-failure -j "$jobs"
     package
     sanitize_and_fuzz

@@ -28,7 +28,7 @@ using detail::SlotPlan;
 // Shares of random, airways, stacks and TMA traffic (in FlightKind order).
 using KindShares = std::array<double, 4>;
 constexpr KindShares kMixedShares = {0.25, 0.40, 0.15, 0.20};
-// Calibrated (README "Calibration"): two thirds cruise on airways, a fifth arrives in
+// Calibrated (docs/performance.md, calibrated traffic): two thirds cruise on airways, a fifth arrives in
 // the TMA, the rest climbs or descends below the airways, and stacks are rare (one
 // holding aircraft in a hundred, not a sixth of the sky).
 constexpr KindShares kCalibratedShares = {0.15, 0.64, 0.01, 0.20};

@@ -1,4 +1,4 @@
-// The cost of [service] alert_log_sync (design §6.6, README "Restarts and the alert
+// The cost of [service] alert_log_sync (design §6.6, docs/reliability.md "Restarts and the alert
 // log"): alert-sized lines written as kewd writes them (LineFile::append + flush per
 // event), with fdatasync never ("none"), once a second ("interval") or after each event
 // ("every"). Run by hand on the disk that will hold the alert log:

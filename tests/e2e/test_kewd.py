@@ -278,7 +278,7 @@ def limited_memory():
 
 
 class InputFraming(E2eCase):
-    """Datagrams, noise, configurations that never end and the recording (README
+    """Datagrams, noise, configurations that never end and the recording (docs/reliability.md
     "Input framing")."""
 
     def test_udp_datagrams_never_contaminate_each_other(self):

@@ -1,5 +1,5 @@
-"""kewd when a record, a client, a restart or the disk misbehaves (README
-"Reliability"). Run by ctest with test_kewd; by hand as test_kewd.py says.
+"""kewd when a record, a client, a restart or the disk misbehaves (docs/reliability.md).
+Run by ctest with test_kewd; by hand as test_kewd.py says.
 """
 import errno
 import json
@@ -178,8 +178,8 @@ def parked_pairs(count, t):
 
 
 class Connections(E2eCase):
-    """Silent, slow and greedy clients neither lock others out nor exhaust kewd (README
-    "Reliability", "Connections")."""
+    """Silent, slow and greedy clients neither lock others out nor exhaust kewd (docs/reliability.md
+    "Connections")."""
 
     def try_watch(self, port):
         """A subscriber that got its snapshot, or None when kewd refused it."""

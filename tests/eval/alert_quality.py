@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's "Alert quality" tables: kew-eval on every shared recording kew reads.
+"""The docs/alert-quality.md tables: kew-eval on every shared recording kew reads.
 
     python3 tests/eval/alert_quality.py [--kew-eval BIN] [--recordings DIR] [--zones]
 

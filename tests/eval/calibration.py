@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's calibration table: what real traffic looks like against kew-gen's scenarios.
+"""docs/performance.md's calibration table: what real traffic looks like against kew-gen's scenarios.
 
     python3 tests/eval/calibration.py [--build DIR] [--recordings DIR] [--aircraft N] [--duration S]
 

@@ -3,7 +3,7 @@
 #   bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz [SECONDS_EACH]
 # Each fuzz_* executable runs for SECONDS_EACH (default 20) from a seed corpus cut from
 # tests/data, plus the kept corpus tests/fuzz/corpus/TARGET when it exists, two at a time
-# on two cores. A long run that grows the kept corpus (README "Tests"):
+# on two cores. A long run that grows the kept corpus (docs/testing.md):
 #   KEW_FUZZ_KEEP=1 KEW_FUZZ_TARGETS="fuzz_ndjson fuzz_asterix_datagram" \
 #     bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz 3600
 # KEW_FUZZ_TARGETS limits the run to those targets; KEW_FUZZ_KEEP=1 merges what the run

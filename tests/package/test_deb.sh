@@ -61,7 +61,7 @@ reported=$("$work/root/usr/bin/kewd" --version)
 echo "test_deb: contents, conffile, maintainer scripts and version ($reported) as expected"
 
 # lintian, pedantic tags included: any finding fails unless debian/kew.lintian-overrides
-# justifies it (README "Debian package").
+# justifies it (docs/operations.md "Install as a service").
 lintian --info --pedantic --fail-on error,warning,info,pedantic "$deb" 2>&1 |
   grep -v 'running with root privileges' >"$work/lintian.log" || true
 if [ -s "$work/lintian.log" ]; then cat "$work/lintian.log"; fail "lintian has findings"; fi

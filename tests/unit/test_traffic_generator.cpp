@@ -427,7 +427,7 @@ INSTANTIATE_TEST_SUITE_P(RegionalScenarios, ScenarioTest, ::testing::ValuesIn(kR
                          });
 
 TEST(TrafficGenerator, CalibratedTrafficHasTheRecordingsShape) {
-  // README "Calibration": the controlled-airspace recordings put most records at FL300
+  // docs/performance.md, calibrated traffic: the controlled-airspace recordings put most records at FL300
   // and above, a tenth to a third below FL100, and 14–57 % climbing or descending; mixed
   // traffic puts a sixth in holding stacks, calibrated traffic one in a hundred.
   GeneratorConfig config;

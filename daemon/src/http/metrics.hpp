@@ -1,6 +1,6 @@
 #pragma once
-// The Prometheus text exposition (format 0.0.4) of GET /metrics (design §5.8; README
-// "HTTP API and metrics" lists every metric). This module is the only writer of it:
+// The Prometheus text exposition (format 0.0.4) of GET /metrics (design §5.8;
+// docs/protocol.md "Metrics" lists every metric). This module is the only writer of it:
 // the service gathers the figures into MetricsSources, metrics_text() writes them.
 
 #include <array>

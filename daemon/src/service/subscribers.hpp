@@ -140,7 +140,7 @@ class SubscriberServer {
   const Source& source() const { return source_; }
 
   void forget(const std::shared_ptr<SubscriberSession>& session);
-  /// Called once the last session has closed after shutdown().
+  /// Called once the last subscriber has gone after shutdown().
   void on_empty(std::function<void()> callback) { on_empty_ = std::move(callback); }
 
  private:

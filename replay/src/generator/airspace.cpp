@@ -67,7 +67,7 @@ constexpr std::size_t kMinArrivalRoutes = 8, kMaxArrivalRoutes = 72;
 
 constexpr double kLevelChangeMinFpm = 1000, kLevelChangeMaxFpm = 2500;
 
-// ---- calibrated (README "Calibration"): traffic below the airways climbs and descends
+// ---- calibrated (docs/performance.md, calibrated traffic): traffic below the airways climbs and descends
 // on semicircular levels (ICAO Annex 2 Appendix 3: tracks 000–179° odd thousands,
 // 180–359° even), at lower speeds than cruise.
 constexpr double kLowerLowestFl = 50, kLowerHighestFl = 240;

@@ -103,7 +103,7 @@ struct PipelineConfig {
   std::vector<region::Region> regions;
 
   /// kew's kinetic defaults: absolute τ = 300 m (above the one-step prediction residual
-  /// of 90–96 % of recorded reports, README "Measured position noise"), models kept
+  /// of 90–96 % of recorded reports, docs/performance.md, measured position noise), models kept
   /// through updates while they stay within τ for 4 s (design §2.3), H = 300 s, §8.3 on,
   /// certificates proved valid for 10 s (two to three radar periods) not solved further.
   static kinetic::KineticConfig default_kinetic() {

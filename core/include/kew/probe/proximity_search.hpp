@@ -80,7 +80,7 @@ class ProximitySearch {
   /// group_in_reach() the first time the search meets `vertex`: decides and marks it.
   bool first_group_in_reach(const kinetic::KineticDelaunay& kdt, PointId vertex, PointId center,
                             geometry::Point2 c, double reach2, std::vector<PointId>& out);
-  /// Marks p visited in this round (vertex search); false when it already was.
+  /// Marks p visited in this search (vertex search); false when it already was.
   bool first_visit(PointId p) {
     if (visited_round_[p] == round_) return false;
     visited_round_[p] = round_;

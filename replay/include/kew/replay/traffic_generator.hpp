@@ -38,7 +38,7 @@ enum class Scenario {
   Stacks,   ///< holding racetracks, one aircraft per level, 1000 ft apart
   Tma,      ///< arrivals converging on the region centre, descending and slowing
   Mixed,    ///< each aircraft drawn from the four above
-  /// Shaped like the shared recordings of controlled airspace (README "Calibration"):
+  /// Shaped like the shared recordings of controlled airspace (docs/performance.md, calibrated traffic):
   /// cruise on airways with route-allocated levels, lower traffic climbing and
   /// descending on semicircular levels, TMA arrivals, a few small holding stacks.
   Calibrated,
