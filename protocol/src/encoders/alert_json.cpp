@@ -11,7 +11,7 @@
 namespace kew::protocol {
 namespace {
 
-// Decimals per kind of figure; protocol/docs/encoders.md states the same table.
+// Decimals per kind of figure; docs/protocol.md states the same table.
 constexpr int kTimeDecimals = 3;
 constexpr int kDegreeDecimals = 6;
 constexpr int kMetreSecondDecimals = 1;

@@ -14,7 +14,7 @@
 // finite (NaN, ±inf) is printed as `null`; a magnitude of 10^15 or more (never a physical
 // figure) is printed in its shortest exact form with an exponent. Strings go through the project's one JSON
 // string escaper, append_json_string() of kew/protocol/ndjson_writer.hpp (any bytes give
-// valid JSON; invalid UTF-8 becomes \ufffd). protocol/docs/encoders.md lists every field.
+// valid JSON; invalid UTF-8 becomes \ufffd). docs/protocol.md lists every field.
 
 #include <cstdint>
 #include <optional>

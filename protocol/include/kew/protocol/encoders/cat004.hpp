@@ -2,7 +2,7 @@
 // ASTERIX Category 004, Safety Net Messages (EUROCONTROL ASTERIX Part 17, edition 1.12,
 // the edition Wireshark 4.0 decodes), as kew sends it over UDP (design §5.4):
 //   Alive (I004/000 = 1), STCA (= 7) for new and updated alerts, End Of Conflict (= 17).
-// protocol/docs/encoders.md lists every item and subfield written, with its scaling and
+// docs/protocol.md lists every item and subfield written, with its scaling and
 // the kew value it carries.
 
 #include <cstddef>
@@ -68,7 +68,7 @@ class Cat004Encoder {
   /// Adds an STCA message (New, Update) or an End Of Conflict message (End). Returns
   /// false (counted as "cat004_bad_time") when `event.t` is not finite; figures that are
   /// not finite are left out of the message, figures out of an item's range are
-  /// saturated (see encoders.md).
+  /// saturated (see docs/protocol.md).
   bool add_alert(const AlertEvent& event);
 
   /// True when no record was added since the last take_datagrams().

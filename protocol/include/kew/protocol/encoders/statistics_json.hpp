@@ -3,7 +3,7 @@
 // answer to ?STATS on the alert stream ({"class":"STATS",...}) and kew-replay's
 // --stats-json file. Both begin with the same figures of the pipeline, under the same
 // keys; each adds the figures only it has (kewd: its inputs and listeners; kew-replay:
-// audits and wall time). Every key is documented in protocol/docs/encoders.md
+// audits and wall time). Every key is documented in docs/protocol.md
 // ("Statistics").
 
 #include <cstdint>
