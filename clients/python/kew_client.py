@@ -9,11 +9,12 @@ Standard library only, Python >= 3.9: copy this one file next to your program.
             if isinstance(obj, Alert):
                 print(obj.state, obj.severity, obj.a.cs, obj.b.cs, obj.t_los_s)
 
-The protocol (every object and member) is documented in kew's docs/protocol.md
-("Stream objects, member by member") and design §5.3. Units are those of the JSON:
-times in UTC seconds since the Unix epoch, durations in seconds, horizontal distances in metres, altitudes and vertical
-distances in feet, vertical rates in feet per minute, speeds in knots, angles in degrees.
-A figure kewd printed as `null` (not finite) reads as NaN, as kew's own reader does.
+The protocol (every object and member) is documented in kew's docs/protocol.md ("Stream
+objects, member by member") and design §5.3. Units are those of the JSON: times in UTC
+seconds since the Unix epoch, durations in seconds, horizontal distances in metres,
+altitudes and vertical distances in feet, vertical rates in feet per minute, speeds in
+knots, angles in degrees. A figure kewd printed as `null` (not finite) reads as NaN, as
+kew's own reader does.
 """
 
 import dataclasses
