@@ -54,8 +54,17 @@ def free_port():
 
 
 def with_free_ports(config_text):
-    """The configuration with each "127.0.0.1:0" replaced by its own free port."""
-    return re.sub(r'"127\.0\.0\.1:0"', lambda _: f'"127.0.0.1:{free_port()}"', config_text)
+    """The configuration with each "127.0.0.1:0" replaced by its own free port: distinct,
+    since a port found free is not held, and the next search may find it again."""
+    taken = set()
+
+    def distinct(_):
+        while True:
+            port = free_port()
+            if port not in taken:
+                taken.add(port)
+                return f'"127.0.0.1:{port}"'
+    return re.sub(r'"127\.0\.0\.1:0"', distinct, config_text)
 
 
 class Kewd:
