@@ -82,33 +82,10 @@ package() {
   bash "$here/tests/package/test_deb.sh"
 }
 
-# The main job: kewd replays a bundled CAT062 recording (deploy/demo.toml) and kew-watch
-# shows its alerts as they happen; after KEW_DEMO_SECONDS (default 80: the recording at
-# 4x, then the last tracks time out) kewd is stopped with SIGTERM.
+# The main job: the demo (deploy/demo.sh): kewd replays a bundled recording with its
+# live map, kew-watch shows the alerts, kew-eval scores them when the recording ends.
 run_demo() {
-  local demo="$build/demo"
-  mkdir -p "$demo"
-  sed "s|@KEW_SOURCE_DIR@|$here|g" "$here/deploy/demo.toml" >"$demo/kew.toml"
-  rm -f "$demo/demo-alerts.jsonl"
-  (cd "$demo" && exec "$build/daemon/kewd" -N -c kew.toml) 2>"$demo/kewd.log" &
-  local kewd_pid=$!
-  trap 'kill "$kewd_pid" 2>/dev/null || true' EXIT
-  local tries=0
-  until (exec 3<>/dev/tcp/127.0.0.1/4747) 2>/dev/null; do
-    tries=$((tries + 1))
-    if [ "$tries" -gt 100 ] || ! kill -0 "$kewd_pid" 2>/dev/null; then
-      echo "bootstrap: kewd did not start:" >&2
-      cat "$demo/kewd.log" >&2
-      exit 1
-    fi
-    sleep 0.1
-  done
-  echo "kewd is replaying a recorded CAT062 feed; kew-watch shows its alerts (Ctrl-C stops)."
-  timeout "${KEW_DEMO_SECONDS:-80}" "$build/daemon/kew-watch" --alive 127.0.0.1:4747 || true
-  kill -TERM "$kewd_pid"
-  wait "$kewd_pid" || true
-  trap - EXIT
-  echo "kewd stopped. Its log: $demo/kewd.log; every alert: $demo/demo-alerts.jsonl"
+  bash "$here/deploy/demo.sh" "$build"
 }
 
 install_dependencies
