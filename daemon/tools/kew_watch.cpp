@@ -135,12 +135,12 @@ std::uint64_t first_after(jsCtx* js, const std::string& stream, std::uint64_t si
     const std::uint64_t middle = low + (high - low) / 2;
     natsMsg* message = nullptr;
     std::uint64_t seq = 0;
-    if (js_GetMsg(&message, js, stream.c_str(), middle, nullptr, nullptr) == NATS_OK) {
-      const char* value = nullptr;
-      if (natsMsgHeader_Get(message, kew::nats::kSeqHeader, &value) == NATS_OK)
-        seq = std::strtoull(value, nullptr, 10);
-      natsMsg_Destroy(message);
-    }
+    // A message that cannot be read would send the search the wrong way: an error.
+    kew::nats::check(js_GetMsg(&message, js, stream.c_str(), middle, nullptr, nullptr),
+                     fmt::format("message {} of {}", middle, stream));
+    const char* value = nullptr;
+    if (natsMsgHeader_Get(message, kew::nats::kSeqHeader, &value) == NATS_OK) seq = std::strtoull(value, nullptr, 10);
+    natsMsg_Destroy(message);
     if (seq > since) high = middle;
     else low = middle + 1;
   }
@@ -178,6 +178,11 @@ int watch_nats(const Flags& flags) {
       natsMsg* message = nullptr;
       const natsStatus s = natsSubscription_NextMsg(&message, subscription.get(), 1000);
       if (s == NATS_TIMEOUT) continue;
+      if (s == NATS_SLOW_CONSUMER) {
+        // The ordered consumer starts again where the client's backlog overflowed.
+        std::fprintf(stderr, "kew-watch: falling behind %s; the client resumes in order\n", flags.stream.c_str());
+        continue;
+      }
       kew::nats::check(s, "reading " + flags.stream);
       std::string line(natsMsg_GetData(message), static_cast<std::size_t>(natsMsg_GetDataLength(message)));
       natsMsg_Destroy(message);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -40,12 +41,22 @@ class LeaderLease {
   LeaderLease& operator=(const LeaderLease&) = delete;
 
   bool active() const { return active_.load(); }
+  /// Active, and still within the time the last renewal the server took guarantees that
+  /// no other instance can hold the lease (its send time + lease_ttl_s − a renewal
+  /// period). The service checks it before sending anything, so that a lease thread
+  /// stuck in a slow call cannot let two instances speak at once.
+  bool may_speak() const;
   const std::string& instance() const { return instance_; }
 
  private:
   void run();
   bool bind_bucket();
-  std::uint64_t last_published_seq();
+  /// The Kew-Seq of the stream's last message (0 for an empty stream or none); empty
+  /// when the server did not answer: the floor of a takeover must be known.
+  std::optional<std::uint64_t> last_published_seq();
+  /// A call failed because the bucket is gone (a server restarted without it): bind
+  /// again at the next try.
+  void forget_bucket_if_gone(natsStatus status);
   /// Waits `period` or until stopping; true when stopping.
   bool wait(std::chrono::steady_clock::duration period);
 
@@ -55,6 +66,8 @@ class LeaderLease {
   nats::NatsConnection connection_;
   kvStore* bucket_ = nullptr;  // lease thread
   std::atomic<bool> active_{false};
+  std::atomic<std::int64_t> speak_until_ns_{0};  // steady clock
+  std::chrono::steady_clock::time_point renewed_{};  // lease thread: send time of the last renewal taken
   std::mutex mutex_;
   std::condition_variable stop_;
   bool stopping_ = false;  // guarded by mutex_

@@ -1,5 +1,6 @@
 #include "nats_connection.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -33,7 +34,7 @@ struct Options {
 }  // namespace
 
 NatsConnection::NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
-                               double reconnect_wait_s)
+                               double reconnect_wait_s, double request_wait_s)
     : url_(url), on_event_(std::move(on_event)) {
   Options o;
   check(natsOptions_SetURL(o.options, url.c_str()), fmt::format("NATS url \"{}\"", url));
@@ -47,6 +48,11 @@ NatsConnection::NatsConnection(const std::string& url, const std::string& name, 
   check(natsOptions_SetDisconnectedCB(o.options, &NatsConnection::on_disconnected, this), "NATS callbacks");
   check(natsOptions_SetReconnectedCB(o.options, &NatsConnection::on_reconnected, this), "NATS callbacks");
   check(natsOptions_SetErrorHandler(o.options, &NatsConnection::on_error, this), "NATS callbacks");
+  check(natsOptions_SetClosedCB(o.options, &NatsConnection::on_closed, this), "NATS callbacks");
+  const auto request_wait_ms = static_cast<std::int64_t>(std::llround(std::max(request_wait_s, 0.01) * 1000.0));
+  // Two unanswered pings and the connection counts as lost.
+  check(natsOptions_SetPingInterval(o.options, request_wait_ms), "NATS ping interval");
+  check(natsOptions_SetMaxPingsOut(o.options, 2), "NATS pings");
   const natsStatus status = natsConnection_Connect(&connection_, o.options);
   if (status == NATS_OK) {
     ++connects_;
@@ -55,8 +61,16 @@ NatsConnection::NatsConnection(const std::string& url, const std::string& name, 
   } else {
     throw NatsError(fmt::format("NATS connection to {}", url_), status);
   }
-  const natsStatus js = natsConnection_JetStream(&jetstream_, connection_, nullptr);
+  jsOptions js_options;
+  jsOptions_Init(&js_options);
+  js_options.Wait = request_wait_ms;
+  const natsStatus js = natsConnection_JetStream(&jetstream_, connection_, &js_options);
   if (js != NATS_OK) {
+    closing_ = true;
+    natsConnection_Close(connection_);
+    std::unique_lock lock(closed_mutex_);
+    closed_changed_.wait_for(lock, std::chrono::seconds(5), [this] { return closed_; });
+    lock.unlock();
     natsConnection_Destroy(connection_);
     throw NatsError("JetStream context", js);
   }
@@ -66,7 +80,21 @@ NatsConnection::~NatsConnection() {
   closing_ = true;
   jsCtx_Destroy(jetstream_);
   natsConnection_Close(connection_);
+  {
+    // Bounded: a client that never calls back must not hang kewd's exit.
+    std::unique_lock lock(closed_mutex_);
+    closed_changed_.wait_for(lock, std::chrono::seconds(5), [this] { return closed_; });
+  }
   natsConnection_Destroy(connection_);
+}
+
+void NatsConnection::on_closed(natsConnection*, void* self) {
+  auto* c = static_cast<NatsConnection*>(self);
+  {
+    const std::lock_guard lock(c->closed_mutex_);
+    c->closed_ = true;
+  }
+  c->closed_changed_.notify_all();
 }
 
 bool NatsConnection::connected() const { return natsConnection_Status(connection_) == NATS_CONN_STATUS_CONNECTED; }
@@ -93,7 +121,7 @@ void NatsConnection::on_reconnected(natsConnection*, void* self) {
 
 void NatsConnection::on_error(natsConnection*, natsSubscription*, natsStatus status, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
-  if (c->on_event_) c->on_event_(fmt::format("NATS: {}", describe(status)));
+  if (c->on_event_ && !c->closing_) c->on_event_(fmt::format("NATS: {}", describe(status)));
 }
 
 }  // namespace kew::nats

@@ -6,7 +6,9 @@
 // kew-watch --nats.
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -43,8 +45,11 @@ class NatsConnection {
   /// the connection `name` on the server. Returns at once when no server answers: the
   /// client keeps trying every `reconnect_wait_s` seconds (> 0), then and after any later
   /// loss. Throws NatsError for a malformed URL or a client that cannot start.
+  /// `request_wait_s` (> 0): how long a JetStream call waits for the server's answer;
+  /// it is also the ping interval, so that a silent server is noticed that soon.
   NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
-                 double reconnect_wait_s = 1.0);
+                 double reconnect_wait_s = 1.0, double request_wait_s = 5.0);
+  /// Closes, and returns once the client will call nothing of this object any more.
   ~NatsConnection();
   NatsConnection(const NatsConnection&) = delete;
   NatsConnection& operator=(const NatsConnection&) = delete;
@@ -62,6 +67,7 @@ class NatsConnection {
   static void on_disconnected(natsConnection*, void* self);
   static void on_reconnected(natsConnection*, void* self);
   static void on_error(natsConnection*, natsSubscription*, natsStatus, void* self);
+  static void on_closed(natsConnection*, void* self);
 
   std::string url_;
   EventHandler on_event_;
@@ -70,6 +76,11 @@ class NatsConnection {
   std::atomic<std::uint64_t> connects_{0};
   std::atomic<std::uint64_t> disconnects_{0};
   std::atomic<bool> closing_{false};  // the destructor's own disconnection is not news
+  // The client calls back on its own thread, after natsConnection_Close has returned;
+  // the closed callback comes last, and the destructor waits for it.
+  std::mutex closed_mutex_;
+  std::condition_variable closed_changed_;
+  bool closed_ = false;
 };
 
 }  // namespace kew::nats

@@ -53,10 +53,15 @@ NatsPublisher::~NatsPublisher() {
 }
 
 void NatsPublisher::publish_alert(std::string_view zone, std::string_view json, std::uint64_t seq) {
-  enqueue(fmt::format("{}.{}", config_.alerts_subject, zone), json, seq);
+  // Hot standby: every instance numbers an event alike, so an event published by two of
+  // them (one stepping down with a publication in flight, one taking over) is kept once.
+  enqueue(fmt::format("{}.{}", config_.alerts_subject, zone), json, seq,
+          config_.hot_standby ? fmt::format("{}-{}", config_.lease_key, seq) : std::string());
 }
 
-void NatsPublisher::publish_ack(std::string_view json, std::uint64_t seq) { enqueue(config_.acks_subject, json, seq); }
+void NatsPublisher::publish_ack(std::string_view json, std::uint64_t seq) {
+  enqueue(config_.acks_subject, json, seq, {});
+}
 
 void NatsPublisher::publish_status(std::string_view json, std::uint64_t seq) {
   publish_now(config_.status_subject, json, seq);
@@ -66,7 +71,7 @@ void NatsPublisher::publish_tracks(std::string_view json, std::uint64_t seq) {
   publish_now(config_.tracks_subject, json, seq);
 }
 
-void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uint64_t seq) {
+void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uint64_t seq, std::string id) {
   if (!json.empty() && json.back() == '\n') json.remove_suffix(1);
   {
     const std::lock_guard lock(mutex_);
@@ -76,7 +81,9 @@ void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uin
         spdlog::error("[nats] outbox full ({} events): dropping the oldest ({} dropped so far)", config_.outbox,
                       dropped_.load());
     }
-    outbox_.push_back(Message{std::move(subject), std::string(json), seq, ++numbered_});
+    ++numbered_;
+    if (id.empty()) id = fmt::format("{}-{}", run_id_, numbered_);
+    outbox_.push_back(Message{std::move(subject), std::string(json), seq, numbered_, std::move(id)});
   }
   changed_.notify_all();
 }
@@ -171,10 +178,9 @@ bool NatsPublisher::send(const Message& message) {
     if (config_.stream.empty()) {
       s = natsConnection_PublishMsg(connection_.get(), outgoing.get());
     } else {
-      const std::string id = fmt::format("{}-{}", run_id_, message.number);
       jsPubOptions options;
       jsPubOptions_Init(&options);
-      options.MsgId = id.c_str();
+      options.MsgId = message.id.c_str();
       options.MaxWait = kAcknowledgementWaitMs;
       jsPubAck* ack = nullptr;
       s = js_PublishMsg(&ack, connection_.jetstream(), outgoing.get(), &options, &error);

@@ -55,9 +55,11 @@ class NatsPublisher {
     std::string subject;
     std::string json;
     std::uint64_t seq = 0;
-    std::uint64_t number = 0;  // this run's count of kept messages: the message id
+    std::uint64_t number = 0;  // this run's count of kept messages
+    std::string id;            // JetStream's message id: a retry or a second publisher's copy is kept once
   };
-  void enqueue(std::string subject, std::string_view json, std::uint64_t seq);
+  /// `id` empty: this run's own (run id and count).
+  void enqueue(std::string subject, std::string_view json, std::uint64_t seq, std::string id);
   void publish_now(const std::string& subject, std::string_view json, std::uint64_t seq);
   void run();
   bool ensure_stream();

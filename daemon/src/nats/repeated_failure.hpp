@@ -20,14 +20,17 @@ class RepeatedFailure {
   explicit RepeatedFailure(std::string who) : who_(std::move(who)) {}
 
   void report(std::string_view what) {
-    ++since_report_;
     ++since_recovery_;
     const auto now = std::chrono::steady_clock::now();
-    if (since_report_ > 1 && now - last_report_ < kReportPeriod) return;
-    if (since_report_ > 1)
-      spdlog::warn("{}: {} ({} times since the last report)", who_, what, since_report_);
+    if (reported_ && now - last_report_ < kReportPeriod) {
+      ++since_report_;  // told at the next report
+      return;
+    }
+    if (since_report_ > 0)
+      spdlog::warn("{}: {} ({} more times since the last report)", who_, what, since_report_);
     else
       spdlog::warn("{}: {}", who_, what);
+    reported_ = true;
     last_report_ = now;
     since_report_ = 0;
   }
@@ -35,12 +38,14 @@ class RepeatedFailure {
     if (!since_recovery_) return;
     spdlog::info("{}: {} after {} failed attempts", who_, what, since_recovery_);
     since_recovery_ = since_report_ = 0;
+    reported_ = false;  // the next failure is news again
   }
 
  private:
   std::string who_;
   std::uint64_t since_report_ = 0;
   std::uint64_t since_recovery_ = 0;
+  bool reported_ = false;
   std::chrono::steady_clock::time_point last_report_{};
 };
 

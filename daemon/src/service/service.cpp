@@ -395,13 +395,16 @@ void Service::on_alert(const AlertEvent& event) {
 }
 
 void Service::emit_or_keep(const AlertEvent& event) {
-  if (active_) {
-    emit(event);
-    return;
+  if (lease_) {
+    // Kept whether active or not: an instance that steps down and takes the lease back
+    // sends again what its outbox had not published (JetStream keeps each seq once).
+    history_.push_back(event);
+    if (history_.size() > config_.nats.standby_history) history_.pop_front();
+    // The lease thread may be stuck in a slow call: speak only while the last renewal
+    // the server took guarantees that nobody else can.
+    if (active_ && !lease_->may_speak()) step_down();
   }
-  if (!lease_) return;
-  history_.push_back(event);
-  if (history_.size() > config_.nats.standby_history) history_.pop_front();
+  if (active_) emit(event);
 }
 
 void Service::emit(const AlertEvent& event) {
@@ -425,12 +428,15 @@ void Service::take_over(std::uint64_t published) {
   emit_floor_ = std::max(emit_floor_, published);
   active_ = true;
   std::size_t sent = 0;
+  if (!history_.empty() && history_.front().seq > emit_floor_ + 1)
+    spdlog::error("active now, but events {} to {} are neither in the stream nor kept here (standby_history {}): "
+                  "they are lost",
+                  emit_floor_ + 1, history_.front().seq - 1, config_.nats.standby_history);
   for (const AlertEvent& event : history_) {
     if (event.seq <= emit_floor_) continue;
     emit(event);
     ++sent;
   }
-  history_.clear();
   if (modbus_) start_modbus();
   modbus_dirty_ = true;
   spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
@@ -518,9 +524,11 @@ std::vector<std::string> Service::acknowledge(std::string_view by, std::string_v
   }
   subscribers_->broadcast_ack(ack);
   if (nats_) {
+    // Never below what the previous active published: Kew-Seq grows along the stream.
+    const std::uint64_t seq = std::max(last_alert_seq_, emit_floor_);
     line_.clear();
-    protocol::append_ack_json(line_, ack, last_alert_seq_);
-    nats_->publish_ack(line_, last_alert_seq_);
+    protocol::append_ack_json(line_, ack, seq);
+    nats_->publish_ack(line_, seq);
   }
   if (http_ && http_->has_websockets()) {
     line_.clear();
@@ -800,7 +808,7 @@ void Service::schedule_nats_tracks() {
   nats_tracks_timer_.expires_after(seconds(config_.nats.tracks_interval_s));
   nats_tracks_timer_.async_wait([this](const boost::system::error_code& ec) {
     if (ec || stopping_) return;
-    nats_->publish_tracks(tracks_json(), last_alert_seq_);
+    if (active_) nats_->publish_tracks(tracks_json(), last_alert_seq_);
     schedule_nats_tracks();
   });
 }
