@@ -306,7 +306,7 @@ class Alive:
     degraded: bool
     """health is not "healthy"."""
     health: str
-    """"healthy", "no_data", "feed_stale", "records_refused" or "alert_log_failing"."""
+    """"healthy", "no_data", "feed_stale", "records_refused", "alert_log_failing" or "standby"."""
     release: Optional[str] = None
     revision: Optional[str] = None
 

@@ -260,6 +260,9 @@ class HotStandby(NatsCase):
         expected = offline_alerts(first.config_path, self.recording)
         on_first = Subscriber(first.alert_port)
         on_second = Subscriber(second.alert_port)
+        # A standby says so: a display connected to it must not take silence for a quiet sky.
+        wait_until(lambda: on_second.objects("ALIVE"), 10, "the standby's ALIVE")
+        self.assertEqual(on_second.objects("ALIVE")[-1]["health"], "standby")
         feeder = threading.Thread(target=replay_to, args=(
             f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "4"))
         feeder.start()
@@ -275,6 +278,7 @@ class HotStandby(NatsCase):
                    "the new active's outbox emptied")
         time.sleep(1.0)
         self.assertTrue(second.stats()["nats"]["active"])
+        self.assertNotEqual(on_second.objects("ALIVE")[-1]["health"], "standby", "active now")
         with urllib.request.urlopen(f"http://127.0.0.1:{second.http_port}/metrics", timeout=10) as reply:
             metrics = reply.read()
         self.assertIn(b"kew_standby_active 1\n", metrics)

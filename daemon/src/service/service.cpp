@@ -373,6 +373,9 @@ protocol::HealthReason Service::health(std::chrono::steady_clock::time_point now
   // The log first: the feed's state is also told by register 4 and ALIVE's "t", a lost
   // record of the alerts by nothing else.
   if (alert_log_ && alert_log_->failing()) return protocol::HealthReason::AlertLogFailing;
+  // A display connected to a standby (or to an active that lost its lease) must not
+  // take its silence for a quiet sky.
+  if (lease_ && !active_) return protocol::HealthReason::Standby;
   return health_.reason(now);
 }
 

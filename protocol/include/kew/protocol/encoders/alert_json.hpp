@@ -40,13 +40,16 @@ enum class HealthReason : std::uint8_t {
   RecordsRefused,  ///< most records of the last seconds were refused
   /// The alert log cannot be written (disk full, I/O error): events wait in memory.
   AlertLogFailing,
+  /// Hot standby: this kewd computes alerts and sends none; another one is active.
+  Standby,
 };
-inline constexpr util::NameTable<HealthReason, 5> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 6> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
     {HealthReason::RecordsRefused, "records_refused"},
     {HealthReason::AlertLogFailing, "alert_log_failing"},
+    {HealthReason::Standby, "standby"},
 }});
 
 /// Figures of the once-a-second ALIVE object.
