@@ -526,6 +526,12 @@ class KewClient:
             except OSError:
                 pass
 
+    def close_after(self, seconds: float) -> None:
+        """Closes the client `seconds` from now (> 0), from a timer thread."""
+        timer = threading.Timer(seconds, self.close)
+        timer.daemon = True
+        timer.start()
+
     @property
     def closed(self) -> bool:
         return self._closed.is_set()

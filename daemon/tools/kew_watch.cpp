@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <set>
@@ -133,14 +132,8 @@ std::uint64_t first_after(jsCtx* js, const std::string& stream, std::uint64_t si
   if (low == 0) return 1;  // an empty stream
   while (low < high) {
     const std::uint64_t middle = low + (high - low) / 2;
-    natsMsg* message = nullptr;
-    std::uint64_t seq = 0;
     // A message that cannot be read would send the search the wrong way: an error.
-    kew::nats::check(js_GetMsg(&message, js, stream.c_str(), middle, nullptr, nullptr),
-                     fmt::format("message {} of {}", middle, stream));
-    const char* value = nullptr;
-    if (natsMsgHeader_Get(message, kew::nats::kSeqHeader, &value) == NATS_OK) seq = std::strtoull(value, nullptr, 10);
-    natsMsg_Destroy(message);
+    const std::uint64_t seq = kew::nats::kept_seq(js, stream, middle);
     if (seq > since) high = middle;
     else low = middle + 1;
   }

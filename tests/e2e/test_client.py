@@ -17,8 +17,9 @@ import threading
 import typing
 import unittest
 
-from kewd_harness import (Kewd, active_at_end, count_lines, free_port, generate, offline_alerts, replay_to,
-                          temporary_directory, wait_until)
+from kewd_harness import (active_at_end, count_lines, free_port, generate, offline_alerts, replay_to,
+                          wait_until)
+from test_kewd import E2eCase
 
 CLIENT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "clients", "python")
 sys.path.insert(0, CLIENT_DIR)
@@ -106,27 +107,17 @@ def flatten(obj, prefix=""):
     return out
 
 
-class ClientCase(unittest.TestCase):
+class ClientCase(E2eCase):
+    """test_kewd's case (a work directory, kewd processes) with the clients' readers."""
+
     def setUp(self):
-        self._dir = temporary_directory()
-        self.workdir = self._dir.name
-        self.daemons = []
+        super().setUp()
         self.collectors = []
 
     def tearDown(self):
         for c in self.collectors:
             c.stop()
-        for d in self.daemons:
-            d.kill()
-        self._dir.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.workdir, name)
-
-    def start(self, config):
-        daemon = Kewd(config, self.workdir)
-        self.daemons.append(daemon)
-        return daemon
+        super().tearDown()
 
     def collect(self, client):
         collector = Collector(client)

@@ -9,15 +9,15 @@ by hand: KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest t
 """
 
 import json
-import os
 import subprocess
 import threading
 import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEW_WATCH, Kewd, NatsServer, Subscriber, count_lines, generate, nats_next_message,
-                          nats_publish, offline_alerts, replay_to, temporary_directory, wait_until)
+from kewd_harness import (KEW_WATCH, NatsServer, Subscriber, count_lines, generate, nats_next_message,
+                          nats_publish, offline_alerts, replay_to, wait_until)
+from test_kewd import E2eCase
 
 # The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
 SERVICE = """
@@ -61,37 +61,26 @@ def watch(url, *args, timeout=60):
     return result.stdout.splitlines(keepends=True)
 
 
-class NatsCase(unittest.TestCase):
+class NatsCase(E2eCase):
+    """test_kewd's case (a work directory, kewd processes) with a NATS server and helper
+    processes of its own."""
+
     def setUp(self):
-        self._dir = temporary_directory()
-        self.workdir = self._dir.name
+        super().setUp()
         self.nats = NatsServer(self.workdir)
-        self.daemons = []
         self.processes = []
         self.recording = self.path("tma.ndjson")
         generate(self.recording, "tma", aircraft=150, duration=120, seed=3)
 
     def tearDown(self):
-        for d in self.daemons:
-            d.kill()
         for p in self.processes:
             if p.poll() is None:
                 p.kill()
                 p.wait()
             if p.stdout:
                 p.stdout.close()
-        while Subscriber.opened:
-            Subscriber.opened.pop().close()
         self.nats.stop()
-        self._dir.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.workdir, name)
-
-    def start(self, config):
-        daemon = Kewd(config, self.workdir)
-        self.daemons.append(daemon)
-        return daemon
+        super().tearDown()
 
     def feed_lines(self):
         with open(self.recording, "rb") as f:

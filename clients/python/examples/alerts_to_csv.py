@@ -15,7 +15,6 @@ import csv
 import dataclasses
 import os
 import sys
-import threading
 
 # The examples run from a checkout, next to the module, without installing it.
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -69,9 +68,7 @@ def main():
     client = KewClient(args.host, args.port, min_severity=args.min_severity, http_port=args.http_port,
                        reconnect=not args.no_reconnect)
     if args.timeout > 0:
-        timer = threading.Timer(args.timeout, client.close)
-        timer.daemon = True
-        timer.start()
+        client.close_after(args.timeout)
     output = open(args.output, "w", newline="") if args.output else sys.stdout
     written = 0
     try:

@@ -13,7 +13,6 @@ import argparse
 import math
 import os
 import sys
-import threading
 from datetime import datetime, timezone
 
 # The examples run from a checkout, next to the module, without installing it.
@@ -69,9 +68,7 @@ def main():
     client = KewClient(args.host, args.port, min_severity=args.min_severity, http_port=args.http_port,
                        reconnect=not args.no_reconnect)
     if args.timeout > 0:
-        timer = threading.Timer(args.timeout, client.close)
-        timer.daemon = True
-        timer.start()
+        client.close_after(args.timeout)
     printed = 0
     try:
         with client:

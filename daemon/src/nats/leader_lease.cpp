@@ -1,7 +1,5 @@
 #include "leader_lease.hpp"
 
-#include <cstdlib>
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -88,14 +86,11 @@ std::optional<std::uint64_t> LeaderLease::last_published_seq() {
   const std::uint64_t last = info->State.LastSeq;
   jsStreamInfo_Destroy(info);
   if (last == 0) return 0;
-  natsMsg* message = nullptr;
-  if (js_GetMsg(&message, connection_.jetstream(), config_.stream.c_str(), last, nullptr, nullptr) != NATS_OK)
+  try {
+    return nats::kept_seq(connection_.jetstream(), config_.stream, last);
+  } catch (const nats::NatsError&) {
     return std::nullopt;
-  const char* value = nullptr;
-  std::uint64_t seq = 0;
-  if (natsMsgHeader_Get(message, nats::kSeqHeader, &value) == NATS_OK) seq = std::strtoull(value, nullptr, 10);
-  natsMsg_Destroy(message);
-  return seq;
+  }
 }
 
 void LeaderLease::run() {

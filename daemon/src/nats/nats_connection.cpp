@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -20,6 +21,17 @@ std::string describe(natsStatus status) {
   const char* detail = nats_GetLastError(&last);
   if (detail && *detail && last == status && text != detail) text += fmt::format(" ({})", detail);
   return text;
+}
+
+std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_t stream_seq) {
+  natsMsg* message = nullptr;
+  check(js_GetMsg(&message, jetstream, stream.c_str(), stream_seq, nullptr, nullptr),
+        fmt::format("message {} of {}", stream_seq, stream));
+  const char* value = nullptr;
+  std::uint64_t seq = 0;
+  if (natsMsgHeader_Get(message, kSeqHeader, &value) == NATS_OK) seq = std::strtoull(value, nullptr, 10);
+  natsMsg_Destroy(message);
+  return seq;
 }
 
 namespace {

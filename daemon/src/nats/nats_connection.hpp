@@ -35,6 +35,10 @@ class NatsError : public std::runtime_error {
 /// Throws NatsError unless `status` is NATS_OK.
 void check(natsStatus status, std::string_view what);
 
+/// The Kew-Seq header of message `stream_seq` of JetStream stream `stream` (0 when it has
+/// none). Throws NatsError when the message cannot be read.
+std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_t stream_seq);
+
 /// "no such stream", "timeout", …: the text of a status and the client's last error.
 std::string describe(natsStatus status);
 
