@@ -386,7 +386,11 @@ class Acknowledge(HttpCase):
 
 class BadInput(HttpCase):
     def test_bad_clients_leave_kewd_serving_and_counted(self):
-        kewd = self.start("max_connections = 64\nrequest_timeout_s = 2.0\nmax_header_bytes = 4096\n")
+        # The slow clients below are closed by request_timeout_s, the rule under test here:
+        # silent_per_address is raised so that they do not replace one another first
+        # (test_reliability's flood test covers that rule).
+        kewd = self.start("max_connections = 64\nrequest_timeout_s = 2.0\nmax_header_bytes = 4096\n"
+                          "silent_per_address = 32\n")
         port = kewd.http_port
 
         # Oversized headers: 431. A malformed request: 400.
@@ -464,6 +468,25 @@ class BadInput(HttpCase):
         self.feed(kewd)
         wait_until(lambda: watcher.alert_lines(), 10, "alerts after the abuse")
         self.assert_serving(kewd)
+
+
+class StatusUnderLoad(HttpCase):
+    def test_websockets_leave_room_for_a_status_request(self):
+        kewd = self.start("max_connections = 4\n")
+        sockets = [WebSocket(kewd.http_port) for _ in range(2)]
+        self.assertEqual([ws.status for ws in sockets], [101, 101])
+        third = WebSocket(kewd.http_port)  # max_connections - 2 WebSockets at most
+        self.assertEqual(third.status, 503)
+        third.sock.close()
+        start = time.monotonic()
+        status, _, data = self.request(kewd, "GET", "/api/status")
+        self.assertLess(time.monotonic() - start, 1.0)
+        self.assertEqual(status, 200, data)
+        for ws in sockets:
+            ws.message()  # the snapshot: both kept their slots
+            ws.close()
+        m = self.metrics(kewd)
+        self.assertEqual(m['kew_http_requests_refused_total{reason="websockets_full"}'], 1)
 
 
 class PrometheusScrape(HttpCase):

@@ -11,6 +11,7 @@ import subprocess
 import sys
 import time
 import unittest
+import urllib.request
 
 from kewd_harness import (Subscriber, count_lines, generate, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase, MODBUS_CLIENT, pymodbus_python
@@ -209,6 +210,78 @@ class Connections(E2eCase):
         self.assertEqual(stats["subscribers"]["timed_out"], 3, stats["subscribers"])
         self.assertFalse(early.closed, "a watching subscriber is never idle")
         self.assertIn("no complete request line in time", kewd.log())
+
+    def timed_stats(self, port, source="127.0.0.1"):
+        """(seconds, STATS object) of one ?STATS on a fresh connection from `source`."""
+        start = time.monotonic()
+        with socket.create_connection(("127.0.0.1", port), timeout=5, source_address=(source, 0)) as s:
+            s.sendall(b"?STATS\n")
+            for line in s.makefile("r"):
+                obj = json.loads(line)
+                if obj["class"] == "STATS":
+                    return time.monotonic() - start, obj
+        raise AssertionError("no STATS object")
+
+    def timed_status(self, port):
+        """(seconds, status line) of one GET /api/status on a fresh connection."""
+        start = time.monotonic()
+        with socket.create_connection(("127.0.0.1", port), timeout=5) as s:
+            s.sendall(b"GET /api/status HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n")
+            reply = b""
+            while b"\r\n" not in reply:
+                chunk = s.recv(4096)
+                if not chunk:
+                    break
+                reply += chunk
+        return time.monotonic() - start, reply.split(b"\r\n")[0].decode()
+
+    def test_health_answers_at_once_under_a_flood_of_silent_connections(self):
+        # The request time-out stays at its 10 s: the flood is not waited out.
+        kewd = self.start(feed_with("max_subscribers = 4\n",
+                                    rest='\n[http]\nlisten = "127.0.0.1:0"\nmax_connections = 4\n'))
+        watcher = Subscriber(kewd.alert_port)
+        wait_until(lambda: watcher.objects("ALERTS"), 10, "the watcher's snapshot")
+        reserved = 2
+        # Twice every slot, reserved ones included, from one address: silent, or a request
+        # begun and never finished.
+        subscribers = self.silent(kewd.alert_port, 2 * (4 + reserved))
+        for s in subscribers[::2]:
+            s.sendall(b"?WAT")
+        http = self.silent(kewd.http_port, 2 * (4 + reserved))
+        for s in http[::2]:
+            s.sendall(b"GET /api/sta")
+        time.sleep(0.5)  # every one of them accepted
+        seconds, stats = self.timed_stats(kewd.alert_port)
+        self.assertLess(seconds, 1.0)
+        self.assertGreaterEqual(stats["subscribers"]["evicted"], 2 * (4 + reserved) - 4, stats["subscribers"])
+        self.assertEqual(stats["subscribers"]["timed_out"], 0, stats["subscribers"])
+        seconds, status = self.timed_status(kewd.http_port)
+        self.assertLess(seconds, 1.0)
+        self.assertEqual(status, "HTTP/1.1 200 OK")
+        # A silent connection from another address was not closed for this address's flood.
+        other = socket.create_connection(("127.0.0.1", kewd.alert_port), source_address=("127.0.0.2", 0))
+        self.addCleanup(other.close)
+        self.silent(kewd.alert_port, 2 * (4 + reserved))
+        seconds, _ = self.timed_stats(kewd.alert_port)
+        self.assertLess(seconds, 1.0)
+        other.settimeout(0.3)
+        received = b""
+        with self.assertRaises(socket.timeout):  # not closed: it keeps its slot
+            while True:
+                chunk = other.recv(4096)
+                if not chunk:
+                    break
+                received += chunk
+        self.assertNotIn(b"ERROR", received)
+        # The watcher that reads keeps its slot and its stream.
+        alive = len(watcher.objects("ALIVE"))
+        wait_until(lambda: len(watcher.objects("ALIVE")) > alive, 5, "another ALIVE for the watcher")
+        self.assertFalse(watcher.closed)
+        with urllib.request.urlopen(f"http://127.0.0.1:{kewd.http_port}/metrics", timeout=5) as response:
+            metrics = response.read().decode()
+        self.assertRegex(metrics, r'kew_http_connections_refused_total{reason="evicted"} ([89]|[1-9][0-9])')
+        self.assertRegex(metrics, r"kew_subscribers_evicted_total ([89]|[1-9][0-9])")
+        self.assertIn("disconnecting it for a newcomer", kewd.log())
 
     def test_reserved_slot_answers_stats_and_refuses_watch(self):
         kewd = self.start(feed_with("max_subscribers = 1\n"))

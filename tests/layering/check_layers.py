@@ -23,7 +23,7 @@ LIBRARIES = {
     "protocol": (1, {"protocol"}, {"kew_protocol"}),
     "config": (2, {"config"}, {"kew_config"}),
     "replay": (3, {"replay"}, {"kew_replay"}),
-    "daemon": (4, {"daemon"}, {"kew_daemon_config", "kew_modbus", "kew_nats", "kew_service"}),
+    "daemon": (4, {"daemon"}, {"kew_daemon_config", "kew_modbus", "kew_nats", "kew_connections", "kew_http", "kew_service"}),
 }
 SOCKET_HEADERS = re.compile(r"#\s*include\s*<(boost/asio|boost/beast|sys/socket\.h|netinet/|arpa/inet\.h|netdb\.h)")
 KEW_INCLUDE = re.compile(r'#\s*include\s*"kew/([^/"]+)/')

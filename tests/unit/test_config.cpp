@@ -136,6 +136,9 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.http.leaflet_root, defaults.http.leaflet_root);
   EXPECT_EQ(file.http.host_names, defaults.http.host_names);
   EXPECT_EQ(file.http.max_connections, defaults.http.max_connections);
+  EXPECT_EQ(file.http.silent_per_address, defaults.http.silent_per_address);
+  EXPECT_EQ(file.service.silent_per_address, defaults.service.silent_per_address);
+  EXPECT_EQ(file.service.write_timeout_s, defaults.service.write_timeout_s);
   EXPECT_EQ(file.http.max_header_bytes, defaults.http.max_header_bytes);
   EXPECT_EQ(file.http.max_body_bytes, defaults.http.max_body_bytes);
   EXPECT_EQ(file.http.request_timeout_s, defaults.http.request_timeout_s);
@@ -177,6 +180,10 @@ coverage_radius_km = 2500
   EXPECT_THROW(parse_config("[projection]\ncoverage_radius_km = 30000\n"), ConfigError);
   EXPECT_THROW(parse_config("[projection]\nzones = \"tiles\"\n"), ConfigError);
   EXPECT_THROW(parse_config("[pipeline]\nthreads = 300\n"), ConfigError);
+  EXPECT_THROW(parse_config("[service]\nsilent_per_address = 0\n"), ConfigError);
+  EXPECT_THROW(parse_config("[http]\nsilent_per_address = 0\n"), ConfigError);
+  EXPECT_EQ(parse_config("[service]\nsilent_per_address = 2\n[http]\nsilent_per_address = 9\n").http.silent_per_address,
+            9u);
   EXPECT_THROW(parse_config("[pipeline]\nbatch_records = 0\n"), ConfigError);
 }
 

@@ -19,6 +19,7 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.number("request_timeout_s", s.request_timeout_s, 0.1, 3600.0);
   r.number("idle_timeout_s", s.idle_timeout_s, 0.1, 86400.0);
   r.number("write_timeout_s", s.write_timeout_s, 0.1, 3600.0);
+  r.integer("silent_per_address", s.silent_per_address, 1, 10000);
   r.number("alive_interval_s", s.alive_interval_s, 0.1, 3600.0);
   r.number("tick_interval_s", s.tick_interval_s, 0.05, 60.0);
   r.choice("log_level", s.log_level, kLogLevelNames);
@@ -63,6 +64,7 @@ void read_http(TableReader& r, HttpConfig& h) {
   r.path("leaflet_root", h.leaflet_root);
   r.host_name_list("host_names", h.host_names);
   r.integer("max_connections", h.max_connections, 1, 10000);
+  r.integer("silent_per_address", h.silent_per_address, 1, 10000);
   r.integer("max_header_bytes", h.max_header_bytes, 1024, 1 << 20);
   r.integer("max_body_bytes", h.max_body_bytes, 64, 1 << 20);
   r.number("request_timeout_s", h.request_timeout_s, 0.1, 3600.0);

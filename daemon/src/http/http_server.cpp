@@ -54,7 +54,8 @@ void HttpServer::accept() {
   acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {
     if (stopped_ || ec == asio::error::operation_aborted) return;
     if (!accept_guard_.accepted(ec, stats_.accept_failures, [this] { accept(); })) return;
-    if (connections() >= config_.max_connections && !evict_one()) {
+    make_room(socket);
+    if (connections() >= config_.max_connections) {
       ++stats_.connections_refused;
       boost::system::error_code ignored;
       socket.close(ignored);
@@ -68,16 +69,24 @@ void HttpServer::accept() {
   });
 }
 
-bool HttpServer::evict_one() {
-  for (const auto& session : sessions_) {  // oldest first
-    if (!session->idle()) continue;
-    ++stats_.connections_evicted;
-    const std::shared_ptr<HttpSession> keep = session;
-    keep->close();
-    forget(keep.get());
-    return true;
-  }
-  return false;
+void HttpServer::make_room(const tcp::socket& newcomer) {
+  boost::system::error_code ec;
+  const tcp::endpoint peer = newcomer.remote_endpoint(ec);
+  const std::string address = ec ? std::string() : peer.address().to_string();
+  std::vector<SlotHolder> holders;
+  holders.reserve(sessions_.size());
+  for (const auto& session : sessions_) holders.push_back(session->holder());
+  const auto i = connection_to_evict(holders, address, config_.silent_per_address,
+                                     connections() >= config_.max_connections);
+  if (!i) return;
+  ++stats_.connections_evicted;
+  const std::shared_ptr<HttpSession> keep = sessions_[*i];
+  keep->close();
+  forget(keep.get());
+}
+
+std::size_t HttpServer::websocket_slots() const {
+  return config_.max_connections > kStatusSlots ? config_.max_connections - kStatusSlots : 1;
 }
 
 void HttpServer::shutdown() {

@@ -28,7 +28,7 @@ class WebSocketSession;
 struct HttpStatistics {
   std::uint64_t connections_accepted = 0;
   std::uint64_t connections_refused = 0;  ///< closed at once: every slot taken by busy connections
-  std::uint64_t connections_evicted = 0;  ///< closed to make room: had not sent a byte
+  std::uint64_t connections_evicted = 0;  ///< closed to make room: waiting longest for a request
   std::uint64_t accept_failures = 0;
   std::map<unsigned, std::uint64_t> responses;  ///< by status code
   /// Requests refused before or instead of a route (malformed, header_too_large, ...).
@@ -64,6 +64,10 @@ class HttpServer {
   HttpStatistics& statistics() { return stats_; }
   std::size_t connections() const { return sessions_.size() + websockets_.size(); }
   std::size_t websockets() const { return websockets_.size(); }
+  /// WebSockets at once: max_connections less kStatusSlots (at least 1), so that a
+  /// request such as GET /api/status always finds a connection to replace.
+  std::size_t websocket_slots() const;
+  static constexpr std::size_t kStatusSlots = 2;
   /// Bytes queued for every WebSocket client together.
   std::size_t queued_bytes() const;
   Router& router() { return router_; }
@@ -77,9 +81,8 @@ class HttpServer {
 
  private:
   void accept();
-  /// Every slot is taken: closes the oldest HTTP session that has not sent a byte of its
-  /// request; false when there is none.
-  bool evict_one();
+  /// Before `newcomer` takes a slot: closes the session the slot policy names, if any.
+  void make_room(const boost::asio::ip::tcp::socket& newcomer);
 
   boost::asio::ip::tcp::acceptor acceptor_;
   AcceptGuard accept_guard_;

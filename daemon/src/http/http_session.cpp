@@ -21,7 +21,9 @@ HttpSession::HttpSession(boost::asio::ip::tcp::socket socket, HttpServer& server
     : stream_(std::move(socket)), server_(server), since_(std::chrono::steady_clock::now()) {
   boost::system::error_code ec;
   const auto peer = stream_.socket().remote_endpoint(ec);
-  if (!ec) client_ = config::to_string({peer.address().to_string(), peer.port()});
+  if (ec) return;
+  address_ = peer.address().to_string();
+  client_ = config::to_string({address_, peer.port()});
 }
 
 void HttpSession::start() { read(); }
@@ -74,6 +76,8 @@ void HttpSession::on_read(beast::error_code ec) {
     const std::string_view target(request.target().data(), request.target().size());
     if (target.substr(0, target.find('?')) != "/ws") return refuse(404, "not_found", "only /ws is a WebSocket");
     if (!server_.router().websocket_allowed(request, port)) return refuse(403, "", "foreign Origin");
+    if (server_.websockets() >= server_.websocket_slots())
+      return refuse(503, "websockets_full", "every WebSocket slot is taken");
     stream_.expires_never();
     auto ws = std::make_shared<WebSocketSession>(stream_.release_socket(), server_);
     closed_ = true;  // the socket is the WebSocket's now

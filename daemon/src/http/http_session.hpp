@@ -14,6 +14,8 @@
 #include <boost/beast/http/parser.hpp>
 #include <boost/beast/http/string_body.hpp>
 
+#include "slot_policy.hpp"
+
 namespace kew::daemon::http {
 
 class HttpServer;
@@ -25,9 +27,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void start();
   /// Closes the connection at once (eviction, shutdown).
   void close();
-  /// Waiting for a request of which no byte has arrived (may be evicted when full).
-  bool idle() const { return reading_ && parser_ && !parser_->got_some(); }
-  std::chrono::steady_clock::time_point since() const { return since_; }
+  /// What the slot policy needs to know of it: silent while it waits for a request
+  /// (none of it or part of it has arrived), since the wait began.
+  SlotHolder holder() const { return {address_, reading_ && !closed_, since_}; }
 
  private:
   void read();
@@ -41,7 +43,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   boost::beast::flat_buffer buffer_;
   std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
   std::shared_ptr<boost::beast::http::response<boost::beast::http::string_body>> response_;
-  std::string client_;  ///< "HOST:PORT" of the peer
+  std::string client_;   ///< "HOST:PORT" of the peer
+  std::string address_;  ///< the peer's IP address
   std::chrono::steady_clock::time_point since_;
   bool reading_ = false;
   bool closed_ = false;

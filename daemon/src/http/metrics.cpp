@@ -163,6 +163,8 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
            num(s.subscriber_queued_bytes));
   e.single("kew_subscribers_cut_off_total", "counter", "Subscribers disconnected for falling behind.",
            num(s.subscriber_figures.cut_off));
+  e.single("kew_subscribers_evicted_total", "counter",
+           "Silent alert stream connections closed to make room for a newcomer.", num(s.subscriber_figures.evicted));
   if (s.alert_log_queued_bytes)
     e.single("kew_alert_log_queued_bytes", "gauge", "Bytes of alert events waiting for the alert log.",
              num(*s.alert_log_queued_bytes));

@@ -37,6 +37,7 @@ SubscriberLimits subscriber_limits(const ServiceConfig& service) {
   l.request_timeout = seconds(service.request_timeout_s);
   l.idle_timeout = seconds(service.idle_timeout_s);
   l.write_timeout = seconds(service.write_timeout_s);
+  l.silent_per_address = service.silent_per_address;
   return l;
 }
 
@@ -48,7 +49,12 @@ SubscriberSession::SubscriberSession(tcp::socket socket, SubscriberServer& serve
       request_deadline_(socket_.get_executor()),
       write_deadline_(socket_.get_executor()),
       admin_(admin),
-      id_(server.next_id_++) {}
+      id_(server.next_id_++),
+      silent_since_(std::chrono::steady_clock::now()) {
+  boost::system::error_code ec;
+  const tcp::endpoint peer = socket_.remote_endpoint(ec);
+  if (!ec) address_ = peer.address().to_string();
+}
 
 void SubscriberSession::start() {
   std::string version;
@@ -126,6 +132,14 @@ void SubscriberSession::close_with_error(std::string_view message) {
   if (!writing_) write_next();
 }
 
+void SubscriberSession::evict() {
+  ++server_.figures_.evicted;
+  server_.log_.reject("evicted", fmt::format("subscriber {} ({}): silent while every slot was taken or its address "
+                                             "held {} silent connections; disconnecting it for a newcomer",
+                                             id_, address_, server_.limits().silent_per_address));
+  close_with_error("evicted: silent while another connection needed the slot");
+}
+
 void SubscriberSession::drain_and_close() {
   if (closing_) return;
   closing_ = true;
@@ -165,6 +179,7 @@ void SubscriberSession::read_request() {
                            std::string line(asio::buffers_begin(self->input_.data()),
                                             asio::buffers_begin(self->input_.data()) + static_cast<std::ptrdiff_t>(n));
                            self->input_.consume(n);
+                           self->silent_since_ = std::chrono::steady_clock::now();
                            self->handle_request(line);
                            if (self->closing_) return;
                            self->answered_ = true;
@@ -308,9 +323,10 @@ void SubscriberServer::accept() {
     // Alerts are small lines that must leave at once: no Nagle delay.
     boost::system::error_code ignored;
     socket.set_option(tcp::no_delay(true), ignored);
-    const std::size_t admins = static_cast<std::size_t>(
-        std::count_if(sessions_.begin(), sessions_.end(), [](const auto& s) { return s->admin(); }));
-    const std::size_t subscribers = sessions_.size() - admins;
+    make_room(socket);
+    std::size_t admins = 0, subscribers = 0;
+    for (const auto& s : sessions_)
+      if (!s->closing()) ++(s->admin() ? admins : subscribers);
     const bool admin = subscribers >= limits_.max_subscribers;
     auto session = std::make_shared<SubscriberSession>(std::move(socket), *this, admin);
     sessions_.push_back(session);
@@ -327,6 +343,22 @@ void SubscriberServer::accept() {
     }
     accept();
   });
+}
+
+void SubscriberServer::make_room(const tcp::socket& newcomer) {
+  boost::system::error_code ec;
+  const tcp::endpoint peer = newcomer.remote_endpoint(ec);
+  const std::string address = ec ? std::string() : peer.address().to_string();
+  std::vector<SlotHolder> holders;
+  std::vector<SubscriberSession*> open;
+  for (const auto& s : sessions_) {
+    if (s->closing()) continue;
+    holders.push_back(s->holder());
+    open.push_back(s.get());
+  }
+  const bool every_slot_taken = open.size() >= limits_.max_subscribers + kAdminSlots;
+  if (const auto i = connection_to_evict(holders, address, limits_.silent_per_address, every_slot_taken))
+    open[*i]->evict();
 }
 
 void SubscriberServer::shutdown() {

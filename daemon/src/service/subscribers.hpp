@@ -4,7 +4,8 @@
 // that falls that far behind, or whose write stalls, is sent a final ERROR object and
 // closed, so a slow client never slows ingestion. A connection must complete its request
 // lines in time, so silent sockets cannot hold the slots; a reserved slot beyond
-// max_subscribers answers ?STATS when every slot is taken (design §6.6).
+// max_subscribers answers ?STATS; when every slot is taken, the connection silent longest
+// gives way to a newcomer (slot_policy.hpp, design §6.6).
 // Everything runs on the service's single I/O thread.
 
 #include <chrono>
@@ -22,6 +23,7 @@
 #include <boost/asio/streambuf.hpp>
 
 #include "accept_guard.hpp"
+#include "slot_policy.hpp"
 #include "kew/alert/alert_event.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/encoders/alert_json.hpp"
@@ -42,6 +44,7 @@ struct SubscriberLimits {
   std::chrono::steady_clock::duration request_timeout = std::chrono::seconds(10);
   std::chrono::steady_clock::duration idle_timeout = std::chrono::seconds(60);
   std::chrono::steady_clock::duration write_timeout = std::chrono::seconds(30);
+  std::size_t silent_per_address = 4;
 };
 SubscriberLimits subscriber_limits(const ServiceConfig& service);
 
@@ -56,6 +59,13 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   void close_with_error(std::string_view message);
   /// Writes what is queued, then closes (service shutdown).
   void drain_and_close();
+  /// Closes a silent connection to make room for a newcomer (with an ERROR saying so).
+  void evict();
+
+  /// Being closed: it holds no slot any more.
+  bool closing() const { return closing_; }
+  /// What the slot policy needs to know of it.
+  SlotHolder holder() const { return {address_, !watching(), silent_since_}; }
 
   bool watching() const { return watching_ && !closing_; }
   const protocol::WatchRequest& watch() const { return watch_; }
@@ -96,6 +106,8 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   protocol::WatchRequest watch_;
   std::set<std::string> alerts_sent_;
   std::uint64_t id_;
+  std::string address_;  ///< the peer's IP address
+  std::chrono::steady_clock::time_point silent_since_;  ///< connected, or last complete request line
 };
 
 class SubscriberServer {
@@ -145,6 +157,8 @@ class SubscriberServer {
 
  private:
   void accept();
+  /// Before `newcomer` takes a slot: closes the connection the slot policy names, if any.
+  void make_room(const boost::asio::ip::tcp::socket& newcomer);
   /// After a session with a large backlog closed: hands freed memory back to the system.
   void release_memory(std::size_t backlog_bytes);
 

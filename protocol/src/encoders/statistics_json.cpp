@@ -176,6 +176,7 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
   subscribers.integer("admin", service.subscribers.admin);
   subscribers.integer("cut_off", service.subscribers.cut_off);
   subscribers.integer("timed_out", service.subscribers.timed_out);
+  subscribers.integer("evicted", service.subscribers.evicted);
   subscribers.integer("bad_requests", service.subscribers.bad_requests);
   subscribers.integer("accept_failures", service.subscribers.accept_failures);
   subscribers.integer("backlog_bytes_max", service.subscribers.backlog_bytes_max);

@@ -122,6 +122,8 @@ struct ServiceConfig {
   double request_timeout_s = 10.0;  ///< a connection must complete its first request line in this time
   double idle_timeout_s = 60.0;     ///< a connection not watching must complete a request this often
   double write_timeout_s = 30.0;    ///< a write to a subscriber that takes longer cuts it off
+  /// Silent connections one address may hold; one more from it closes its longest-silent.
+  std::size_t silent_per_address = 4;
   double alive_interval_s = 1.0;
   double tick_interval_s = 1.0;         ///< live clock tick (timeouts, kinetic events)
   LogLevel log_level = LogLevel::Info;
@@ -175,6 +177,9 @@ struct HttpConfig {
   /// Host names (besides localhost and IP literals) a POST /api/ack may name in Host.
   std::vector<std::string> host_names;
   std::size_t max_connections = 64;       ///< HTTP and WebSocket connections at once
+  /// Connections waiting for a request one address may hold; one more from it closes its
+  /// longest-waiting.
+  std::size_t silent_per_address = 4;
   std::size_t max_header_bytes = 8192;    ///< request line and headers; beyond: 431
   std::size_t max_body_bytes = 4096;      ///< request body; beyond: 413
   double request_timeout_s = 10.0;        ///< a request must arrive whole within this

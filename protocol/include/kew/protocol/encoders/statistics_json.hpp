@@ -36,6 +36,7 @@ struct SubscriberStatistics {
   std::uint64_t admin = 0;        ///< accepted into a reserved (?STATS only) slot
   std::uint64_t cut_off = 0;      ///< disconnected for falling behind (bytes, objects) or a stalled write
   std::uint64_t timed_out = 0;    ///< closed for not completing a request line in time
+  std::uint64_t evicted = 0;      ///< closed, silent, to make room for a newcomer (design §6.6)
   std::uint64_t bad_requests = 0;
   std::uint64_t accept_failures = 0;   ///< accept() failed (out of descriptors, ...)
   std::uint64_t backlog_bytes_max = 0; ///< the most bytes one session had queued
