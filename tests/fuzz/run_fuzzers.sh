@@ -6,7 +6,7 @@
 # on two cores. A long run that grows the kept corpus (docs/testing.md):
 #   KEW_FUZZ_KEEP=1 KEW_FUZZ_TARGETS="fuzz_ndjson fuzz_asterix_datagram" \
 #     bash tests/fuzz/run_fuzzers.sh BUILD_DIR/tests/fuzz 3600
-# KEW_FUZZ_TARGETS limits the run to those targets; KEW_FUZZ_KEEP=1 merges what the run
+# KEW_FUZZ_JOBS runs that many at a time (default: the cores). KEW_FUZZ_TARGETS limits the run to those targets; KEW_FUZZ_KEEP=1 merges what the run
 # found into tests/fuzz/corpus/TARGET (libFuzzer -merge=1 keeps only inputs that add
 # coverage), to be committed. Any crash, sanitizer report, leak, timeout
 # or out-of-memory fails the script (exit 1) after printing the end of that target's log;
@@ -17,7 +17,7 @@ bin_dir=$(cd "$1" && pwd)
 seconds=${2:-20}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 data=$here/tests/data
-jobs=$(nproc)
+jobs=${KEW_FUZZ_JOBS:-$(nproc)}
 work=$bin_dir/fuzz-run
 rm -rf "$work"
 mkdir -p "$work" "$bin_dir/artifacts"
@@ -74,6 +74,29 @@ seed() {
     fuzz_modbus_requests)  # shape byte, then a read of the status registers and a coil-0 write
       mkdir -p "$work/seeds/$target"
       printf '\010\000\001\000\000\000\006\001\004\000\000\000\020\000\002\000\000\000\006\001\005\000\000\377\000' >"$work/seeds/$target/read_and_ack" ;;
+    fuzz_config)  # every configuration the project ships or tests with
+      local i=0
+      mkdir -p "$work/seeds/$target"
+      while IFS= read -r -d '' f; do cp "$f" "$work/seeds/$target/seed$((i++)).toml"; done \
+        < <(find "$here/deploy" "$here/tests" -name '*.toml' -print0) ;;
+    fuzz_http_requests)  # each route, keep-alive, a pipelined pair, an acknowledgement, an upgrade
+      mkdir -p "$work/seeds/$target"
+      local s=$work/seeds/$target
+      printf 'GET /api/status HTTP/1.1\r\nHost: localhost\r\n\r\n' >"$s/status"
+      printf 'GET / HTTP/1.1\r\nHost: localhost\r\n\r\nGET /metrics HTTP/1.1\r\nHost: localhost\r\n\r\n' >"$s/pipelined"
+      printf 'HEAD /api/tracks HTTP/1.0\r\n\r\nGET /api/zones?x=1 HTTP/1.1\r\nConnection: close\r\n\r\n' >"$s/head_and_close"
+      printf 'POST /api/ack HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 20\r\n\r\n{"ids":["1","2"]}\n\n\n' >"$s/ack"
+      printf 'POST /api/ack HTTP/1.1\r\nHost: 127.0.0.1\r\nOrigin: http://127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{"all\r\n5\r\n":tru\r\n2\r\ne}\r\n0\r\n\r\n' >"$s/ack_chunked"
+      printf 'GET /leaflet/leaflet.js HTTP/1.1\r\nHost: localhost\r\n\r\nGET /../etc/passwd HTTP/1.1\r\n\r\n' >"$s/files"
+      printf 'GET /ws HTTP/1.1\r\nHost: localhost\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n' >"$s/upgrade" ;;
+    fuzz_websocket_frames)  # masked client frames: text, ping, close, fragments
+      mkdir -p "$work/seeds/$target"
+      local s=$work/seeds/$target
+      printf '\201\205\001\002\003\004idolk' >"$s/text"
+      printf '\211\200\001\002\003\004' >"$s/ping"
+      printf '\210\202\001\002\003\004\002\352' >"$s/close"
+      printf '\001\202\000\000\000\000ab\200\202\000\000\000\000cd' >"$s/fragments"
+      printf '\212\200\000\000\000\000\202\176\000\004\000\000\000\000abcd' >"$s/pong_and_binary" ;;
     *) mkdir -p "$work/seeds/$target" ;;
   esac
 }
@@ -83,7 +106,11 @@ run_one() {  # TARGET: exit status of the fuzzer
   # Text inputs of a few KiB reach every path (lines are short) and run ten times
   # faster than 64 KiB ones; binary framings get room for several blocks.
   local max_len=4096
-  case "$target" in fuzz_asterix*|fuzz_cat004*) max_len=65536 ;; esac
+  case "$target" in
+    fuzz_asterix*|fuzz_cat004*) max_len=65536 ;;
+    fuzz_config) max_len=32768 ;;  # deploy/kew.toml whole
+    fuzz_http*|fuzz_websocket*) max_len=16384 ;;  # what the loopback buffers take at once
+  esac
   mkdir -p "$work/corpus/$target"
   local kept=()
   [ -d "$here/tests/fuzz/corpus/$target" ] && kept=("$here/tests/fuzz/corpus/$target")
