@@ -60,8 +60,8 @@ class E2eCase(unittest.TestCase):
             Subscriber.opened.pop().close()
         self._dir.cleanup()
 
-    def start(self, config, *args):
-        daemon = Kewd(config, self.workdir, args)
+    def start(self, config, *args, env=None):
+        daemon = Kewd(config, self.workdir, args, env=env)
         self.daemons.append(daemon)
         return daemon
 

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <thread>
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -97,6 +99,10 @@ Service::Service(Config config, ServiceOptions options)
       last_alive_(started_) {
   started_unix_s_ = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   pipeline_.set_alert_sink([this](const AlertEvent& e) { on_alert(e); });
+  if (const char* stall = std::getenv("KEWD_TEST_STALL_FILE"); stall && *stall) {
+    stall_file_ = stall;
+    spdlog::warn("KEWD_TEST_STALL_FILE is set (a test hook): the pipeline blocks while {} exists", stall_file_);
+  }
   pipeline_.rejections().set_reporter([](std::string_view reason, std::string_view message) {
     spdlog::warn("record rejected ({}): {}", reason, message);
   });
@@ -230,8 +236,9 @@ int Service::run() {
   schedule_housekeeping();
   if (nats_ && config_.nats.tracks_interval_s > 0) schedule_nats_tracks();
   std::uint64_t watchdog_us = 0;
+  // Three pings per WatchdogSec: one may be withheld for a batch that just arrived.
   if (sd_watchdog_enabled(0, &watchdog_us) > 0 && watchdog_us > 0)
-    schedule_watchdog(std::chrono::microseconds(watchdog_us / 2));
+    schedule_watchdog(std::chrono::microseconds(watchdog_us / 3));
   sd_notifyf(0, "READY=1\nSTATUS=serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
   io_.run();
   if (alert_log_) {
@@ -294,6 +301,11 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
 }
 
 void Service::flush_pipeline() {
+  if (!stall_file_.empty()) {
+    // Test-only: the pipeline stuck, as a worker that never returns would leave it.
+    while (std::filesystem::exists(stall_file_)) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ++flushes_;
   flush_posted_ = false;
   // The record-to-alert latency of a batch counts from its first record's arrival.
   record_arrival_ = batch_arrival_;
@@ -625,8 +637,13 @@ void Service::schedule_watchdog(std::chrono::microseconds period) {
   watchdog_timer_.expires_after(period);
   watchdog_timer_.async_wait([this, period](const boost::system::error_code& ec) {
     if (ec || stopping_) return;
-    // Sent from the I/O thread: a stuck pipeline stops the pings and systemd restarts us.
-    sd_notify(0, "WATCHDOG=1");
+    // The pipeline runs on this thread: a pipeline stuck in a batch stops these pings,
+    // and systemd restarts kewd. A batch that has waited since the last ping with none
+    // run meanwhile is no progress either: no ping then.
+    if (!flush_posted_ || flushes_ != flushes_at_last_ping_) {
+      sd_notify(0, "WATCHDOG=1");
+      flushes_at_last_ping_ = flushes_;
+    }
     schedule_watchdog(period);
   });
 }

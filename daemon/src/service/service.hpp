@@ -165,6 +165,11 @@ class Service {
   // flush of it is posted.
   std::optional<std::chrono::steady_clock::time_point> batch_arrival_;
   bool flush_posted_ = false;
+  /// Batches the pipeline has run, and how many had run at the last watchdog ping.
+  std::uint64_t flushes_ = 0, flushes_at_last_ping_ = 0;
+  /// Test-only (docs/testing.md): while this file exists, a batch blocks the pipeline
+  /// (KEWD_TEST_STALL_FILE), so that the watchdog's reaction can be tested.
+  std::string stall_file_;
   /// Tracks updated since the last tick, for the WebSocket clients (only while any).
   std::vector<track::TrackSlot> ws_tracks_;
   std::vector<bool> ws_track_marked_;
