@@ -301,13 +301,38 @@ class NatsServer:
         self.process = None
 
 
+def _nats_client(port, timeout_s):
+    """(socket, reader) of a connection that has read the server's INFO and sent CONNECT
+    (NATS's text protocol)."""
+    s = socket.create_connection(("127.0.0.1", port), timeout=timeout_s)
+    reader = s.makefile("rb")
+    assert reader.readline().startswith(b"INFO ")
+    s.sendall(b'CONNECT {"verbose":false,"pedantic":false,"headers":true,"no_responders":true,"name":"kew-e2e"}\r\n')
+    return s, reader
+
+
+def _nats_next_payload(s, reader, subject):
+    """The payload (bytes, headers left out) of the next message the connection receives."""
+    while True:
+        line = reader.readline()
+        if not line:
+            raise AssertionError(f"the server closed before a message on {subject}")
+        if line.startswith(b"PING"):
+            s.sendall(b"PONG\r\n")
+        elif line.startswith(b"MSG "):
+            size = int(line.split()[-1])
+            return reader.read(size + 2)[:size]
+        elif line.startswith(b"HMSG "):
+            header_size, size = (int(n) for n in line.split()[-2:])
+            return reader.read(size + 2)[header_size:size]
+
+
 def nats_publish(port, subject, payloads):
     """Publishes each of `payloads` (bytes) as one message through NATS's text protocol,
     then waits for the server's PONG: every message has reached it."""
-    with socket.create_connection(("127.0.0.1", port), timeout=10) as s:
-        reader = s.makefile("rb")
-        assert reader.readline().startswith(b"INFO ")
-        out = [b'CONNECT {"verbose":false,"pedantic":false,"name":"kew-e2e"}\r\n']
+    s, reader = _nats_client(port, 10)
+    with s:
+        out = []
         for payload in payloads:
             out.append(b"PUB %s %d\r\n%s\r\n" % (subject.encode(), len(payload), payload))
         out.append(b"PING\r\n")
@@ -323,16 +348,17 @@ def nats_publish(port, subject, payloads):
 def nats_next_message(port, subject, timeout_s=10.0):
     """Subscribes to `subject` through NATS's text protocol and returns the payload (bytes)
     of the first message published to it, headers left out."""
-    with socket.create_connection(("127.0.0.1", port), timeout=timeout_s) as s:
-        reader = s.makefile("rb")
-        assert reader.readline().startswith(b"INFO ")
-        s.sendall(b'CONNECT {"verbose":false,"name":"kew-e2e"}\r\nSUB %s 1\r\nPING\r\n' % subject.encode())
-        while True:
-            line = reader.readline()
-            if not line:
-                raise AssertionError(f"the server closed before a message on {subject}")
-            if line.startswith(b"PING"):
-                s.sendall(b"PONG\r\n")
-            elif line.startswith(b"MSG "):
-                size = int(line.split()[-1])
-                return reader.read(size + 2)[:size]
+    s, reader = _nats_client(port, timeout_s)
+    with s:
+        s.sendall(b"SUB %s 1\r\nPING\r\n" % subject.encode())
+        return _nats_next_payload(s, reader, subject)
+
+
+def nats_request(port, subject, payload=b"", timeout_s=10.0):
+    """Sends one request (e.g. to JetStream's API, $JS.API.…) and returns the reply's payload."""
+    s, reader = _nats_client(port, timeout_s)
+    with s:
+        inbox = "_INBOX.kew_e2e"
+        s.sendall(b"SUB %s 1\r\nPUB %s %s %d\r\n%s\r\n" % (inbox.encode(), subject.encode(), inbox.encode(),
+                                                            len(payload), payload))
+        return _nats_next_payload(s, reader, inbox)

@@ -16,7 +16,7 @@ import unittest
 import urllib.request
 
 from kewd_harness import (KEW_WATCH, NatsServer, Subscriber, count_lines, generate, nats_next_message,
-                          nats_publish, offline_alerts, replay_to, wait_until)
+                          nats_publish, nats_request, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase
 
 # The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
@@ -218,6 +218,33 @@ class NatsFaults(NatsCase):
         # Nothing after the last event: a retried publication kept twice would be there.
         with self.assertRaises(subprocess.TimeoutExpired):
             watch(self.nats.url, "--since", str(json.loads(expected[-1])["seq"]), "-n", "1", timeout=3)
+
+    def test_a_deleted_stream_is_created_again_and_keeps_every_later_alert(self):
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + UDP_INPUT)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        reader = Subscriber(kewd.alert_port)
+        wait_until(lambda: kewd.stats()["nats"]["connected"], 10, "kewd connected to NATS")
+        feeder = threading.Thread(target=replay_to, args=(
+            f"udp://127.0.0.1:{kewd.input_port('udp')}", self.recording, "--speed", "10"))
+        feeder.start()
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= 10, 30, "the first events published")
+        # An operator deletes the stream while kewd runs (nats stream rm KEW_ALERTS).
+        reply = json.loads(nats_request(self.nats.port, "$JS.API.STREAM.DELETE.KEW_ALERTS"))
+        self.assertTrue(reply.get("success"), reply)
+        deleted_after = len(reader.alert_lines())
+        feeder.join()
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: len(reader.alert_lines()) >= len(expected), 30, "every alert on the stream")
+        wait_until(lambda: kewd.stats()["nats"]["queued"] == 0, 30, "the outbox emptied")
+        self.assertEqual(kewd.stats()["nats"]["dropped"], 0)
+        # The stream again, holding every event from (at the latest) the deletion on, in order.
+        info = json.loads(nats_request(self.nats.port, "$JS.API.STREAM.INFO.KEW_ALERTS"))
+        kept = info["state"]["messages"]
+        self.assertGreaterEqual(kept, len(expected) - deleted_after, info)
+        self.assertLessEqual(kept, len(expected))
+        again = watch(self.nats.url, "--since", "0", "-n", str(kept))
+        self.assertEqual(again, expected[len(expected) - kept:])
+        self.assertIn("no stream takes it: creating the stream again", kewd.log())
 
 
 HOT_STANDBY = """

@@ -122,7 +122,8 @@ void NatsPublisher::run() {
       if (stopping_) return;
       message = outbox_.front();
     }
-    if (send(message)) {
+    const Sent sent = send(message);
+    if (sent == Sent::Taken) {
       ++published_;
       {
         const std::lock_guard lock(mutex_);
@@ -134,6 +135,8 @@ void NatsPublisher::run() {
       continue;
     }
     ++retries_;
+    // Without its stream nothing would ever take the head of the outbox: create it again.
+    if (sent == Sent::NoStream) stream_ready = false;
     if (wait(kRetryPeriod)) return;
   }
 }
@@ -170,7 +173,7 @@ bool NatsPublisher::ensure_stream() {
   return false;
 }
 
-bool NatsPublisher::send(const Message& message) {
+NatsPublisher::Sent NatsPublisher::send(const Message& message) {
   natsStatus s = NATS_OK;
   jsErrCode error = static_cast<jsErrCode>(0);
   try {
@@ -189,11 +192,13 @@ bool NatsPublisher::send(const Message& message) {
   } catch (const nats::NatsError& e) {
     s = e.status();
   }
-  if (s == NATS_OK) return true;
-  failures_.report(fmt::format("{} not taken by the server: {}{} (tried again until it is)", message.subject,
-                               nats::describe(s),
-                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
-  return false;
+  if (s == NATS_OK) return Sent::Taken;
+  const bool no_stream = !config_.stream.empty() && (s == NATS_NO_RESPONDERS || error == JSStreamNotFoundErr);
+  failures_.report(fmt::format("{} not taken by the server: {}{} ({})", message.subject, nats::describe(s),
+                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : "",
+                               no_stream ? "no stream takes it: creating the stream again"
+                                         : "tried again until it is"));
+  return no_stream ? Sent::NoStream : Sent::Refused;
 }
 
 void NatsPublisher::discard_outbox() {

@@ -63,7 +63,11 @@ class NatsPublisher {
   void publish_now(const std::string& subject, std::string_view json, std::uint64_t seq);
   void run();
   bool ensure_stream();
-  bool send(const Message& message);
+  /// What became of one publication.
+  enum class Sent { Taken, Refused, NoStream };
+  /// NoStream: nothing on the server takes the subject (the stream was deleted, or a
+  /// restarted server lost it), so ensure_stream() must run again before a retry.
+  Sent send(const Message& message);
   /// Waits `period` or until stopping; true when stopping.
   bool wait(std::chrono::milliseconds period);
 
