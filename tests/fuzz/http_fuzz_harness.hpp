@@ -21,7 +21,6 @@
 #include <boost/asio/read.hpp>
 #include <boost/asio/read_until.hpp>
 #include <boost/asio/streambuf.hpp>
-#include <boost/asio/write.hpp>
 #include <spdlog/spdlog.h>
 
 #include "http_server.hpp"
@@ -40,9 +39,12 @@ class LoopbackServer {
   /// RFC 6455 §4.1); then sends `bytes`, ends the client's side and reads everything the
   /// server says until it closes. Returns what the server sent.
   std::string exchange(std::string_view handshake, std::string_view bytes) {
+    // The port is a new one each run: "$PORT" in the input stands for it, so that inputs
+    // can name this server in Host and Origin (an acknowledgement needs both right).
+    const std::string input = with_port(bytes);
     using boost::asio::ip::tcp;
     tcp::socket client(io_);
-    client.connect({boost::asio::ip::make_address("127.0.0.1"), server_.port()});
+    connect(client);
     const auto deadline = std::chrono::steady_clock::now() + kLongestExchange;
     boost::asio::streambuf reply;
     bool done = false;
@@ -54,14 +56,14 @@ class LoopbackServer {
       done = false;
     };
     if (!handshake.empty()) {
-      boost::asio::write(client, boost::asio::buffer(handshake));
+      write(client, handshake);
       boost::asio::async_read_until(client, reply, "\r\n\r\n",
                                     [&](const boost::system::error_code&, std::size_t) { done = true; });
       run_until_done();
     }
     // The loopback buffers hold a whole input (the run's max_len is 16 KiB): the write
     // completes before the server reads.
-    boost::asio::write(client, boost::asio::buffer(bytes));
+    write(client, input);
     client.shutdown(tcp::socket::shutdown_send);
     boost::asio::async_read(client, reply, [&](const boost::system::error_code&, std::size_t) { done = true; });
     run_until_done();
@@ -79,6 +81,40 @@ class LoopbackServer {
   // Twice the request time-out and more: a connection the server keeps beyond that is held
   // open by nothing the limits allow.
   static constexpr auto kLongestExchange = std::chrono::seconds(5);
+
+  // libFuzzer's timers interrupt system calls: a call cut short by a signal is made again.
+  void connect(boost::asio::ip::tcp::socket& client) {
+    boost::system::error_code ec;
+    do {
+      if (client.is_open()) client.close();
+      client.connect({boost::asio::ip::make_address("127.0.0.1"), server_.port()}, ec);
+    } while (ec == boost::asio::error::interrupted);
+    if (ec) fail("cannot connect to the server");
+  }
+
+  /// Writes what the server takes: one that has closed already (a refusal) takes no more,
+  /// and what it said is read all the same.
+  static void write(boost::asio::ip::tcp::socket& client, std::string_view bytes) {
+    while (!bytes.empty()) {
+      boost::system::error_code ec;
+      const std::size_t n = client.write_some(boost::asio::buffer(bytes), ec);
+      if (ec && ec != boost::asio::error::interrupted) return;
+      bytes.remove_prefix(n);
+    }
+  }
+
+  std::string with_port(std::string_view bytes) const {
+    static constexpr std::string_view kPort = "$PORT";
+    const std::string port = std::to_string(server_.port());
+    std::string out;
+    for (std::size_t at = 0;;) {
+      const std::size_t found = bytes.find(kPort, at);
+      out.append(bytes.substr(at, found - at));
+      if (found == std::string_view::npos) return out;
+      out.append(port);
+      at = found + kPort.size();
+    }
+  }
 
   [[noreturn]] static void fail(const char* why) {
     std::fprintf(stderr, "http fuzz harness: %s\n", why);

@@ -79,14 +79,14 @@ seed() {
       mkdir -p "$work/seeds/$target"
       while IFS= read -r -d '' f; do cp "$f" "$work/seeds/$target/seed$((i++)).toml"; done \
         < <(find "$here/deploy" "$here/tests" -name '*.toml' -print0) ;;
-    fuzz_http_requests)  # each route, keep-alive, a pipelined pair, an acknowledgement, an upgrade
+    fuzz_http_requests)  # each route, keep-alive, a pipelined pair, acknowledgements, an upgrade ($PORT: the server's)
       mkdir -p "$work/seeds/$target"
       local s=$work/seeds/$target
       printf 'GET /api/status HTTP/1.1\r\nHost: localhost\r\n\r\n' >"$s/status"
       printf 'GET / HTTP/1.1\r\nHost: localhost\r\n\r\nGET /metrics HTTP/1.1\r\nHost: localhost\r\n\r\n' >"$s/pipelined"
       printf 'HEAD /api/tracks HTTP/1.0\r\n\r\nGET /api/zones?x=1 HTTP/1.1\r\nConnection: close\r\n\r\n' >"$s/head_and_close"
-      printf 'POST /api/ack HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 20\r\n\r\n{"ids":["1","2"]}\n\n\n' >"$s/ack"
-      printf 'POST /api/ack HTTP/1.1\r\nHost: 127.0.0.1\r\nOrigin: http://127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{"all\r\n5\r\n":tru\r\n2\r\ne}\r\n0\r\n\r\n' >"$s/ack_chunked"
+      printf 'POST /api/ack HTTP/1.1\r\nHost: localhost:$PORT\r\nContent-Type: application/json\r\nX-Kew-Ack: 1\r\nContent-Length: 10\r\n\r\n{"id":"1"}' >"$s/ack"
+      printf 'POST /api/ack HTTP/1.1\r\nHost: 127.0.0.1:$PORT\r\nOrigin: http://127.0.0.1:$PORT\r\nX-Kew-Ack: 1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{"all\r\n5\r\n":tru\r\n2\r\ne}\r\n0\r\n\r\n' >"$s/ack_chunked"
       printf 'GET /leaflet/leaflet.js HTTP/1.1\r\nHost: localhost\r\n\r\nGET /../etc/passwd HTTP/1.1\r\n\r\n' >"$s/files"
       printf 'GET /ws HTTP/1.1\r\nHost: localhost\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n' >"$s/upgrade" ;;
     fuzz_websocket_frames)  # masked client frames: text, ping, close, fragments
