@@ -470,6 +470,30 @@ class BadInput(HttpCase):
         self.assert_serving(kewd)
 
 
+class BodyLimit(HttpCase):
+    def test_a_body_over_max_body_bytes_gets_413_and_the_connection_closes(self):
+        kewd = self.start("max_body_bytes = 64\n")
+        body = b'{"all":true,"padding":"' + b"x" * 100 + b'"}'
+        with socket.create_connection(("127.0.0.1", kewd.http_port), timeout=10) as s:
+            s.sendall(b"POST /api/ack HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nX-Kew-Ack: 1\r\n"
+                      b"Content-Type: application/json\r\nContent-Length: %d\r\n\r\n%s"
+                      % (kewd.http_port, len(body), body))
+            reply = b""
+            while True:
+                chunk = s.recv(4096)
+                if not chunk:
+                    break  # closed after the refusal
+                reply += chunk
+        self.assertTrue(reply.startswith(b"HTTP/1.1 413 "), reply)
+        self.assertIn(b"request body too large", reply)
+        m = self.metrics(kewd)
+        self.assertEqual(m['kew_http_requests_refused_total{reason="body_too_large"}'], 1)
+        self.assertEqual(m['kew_http_responses_total{code="413"}'], 1)
+        # A body within the limit is read: refused for what it says, not for its size.
+        status, _ = self.ack(kewd, b'{"all":1}')
+        self.assertEqual(status, 400)
+
+
 class StatusUnderLoad(HttpCase):
     def test_websockets_leave_room_for_a_status_request(self):
         kewd = self.start("max_connections = 4\n")
