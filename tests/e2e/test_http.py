@@ -9,6 +9,7 @@ import json
 import os
 import resource
 import shutil
+import signal
 import socket
 import struct
 import subprocess
@@ -492,6 +493,23 @@ class BodyLimit(HttpCase):
         # A body within the limit is read: refused for what it says, not for its size.
         status, _ = self.ack(kewd, b'{"all":1}')
         self.assertEqual(status, 400)
+
+
+class Reload(HttpCase):
+    def test_sighup_applies_the_http_limits(self):
+        kewd = self.start("max_connections = 64\n")
+        with open(kewd.config_path) as f:
+            text = f.read()
+        with open(kewd.config_path, "w") as f:
+            f.write(text.replace("max_connections = 64", "max_connections = 3"))
+        kewd.process.send_signal(signal.SIGHUP)
+        kewd.wait_log("SIGHUP: HTTP limits: 3 connections")
+        first = WebSocket(kewd.http_port)
+        self.assertEqual(first.status, 101)
+        second = WebSocket(kewd.http_port)  # 3 connections leave 1 for WebSockets
+        self.assertEqual(second.status, 503)
+        for ws in (first, second):
+            ws.sock.close()
 
 
 class StatusUnderLoad(HttpCase):

@@ -100,6 +100,18 @@ void HttpServer::shutdown() {
   websockets_.clear();
 }
 
+void HttpServer::set_limits(const HttpConfig& fresh) {
+  config_.max_connections = fresh.max_connections;
+  config_.silent_per_address = fresh.silent_per_address;
+  config_.max_header_bytes = fresh.max_header_bytes;
+  config_.max_body_bytes = fresh.max_body_bytes;
+  config_.request_timeout_s = fresh.request_timeout_s;
+  config_.write_timeout_s = fresh.write_timeout_s;
+  config_.client_queue_bytes = fresh.client_queue_bytes;
+  request_timeout_ = seconds(fresh.request_timeout_s);
+  write_timeout_ = seconds(fresh.write_timeout_s);
+}
+
 void HttpServer::push(std::string_view object) {
   if (websockets_.empty()) return;
   if (!object.empty() && object.back() == '\n') object.remove_suffix(1);

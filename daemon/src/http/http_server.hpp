@@ -47,6 +47,9 @@ class HttpServer {
   void start();
   /// Stops accepting and closes every connection.
   void shutdown();
+  /// Takes the limits of `fresh` (SIGHUP): connections, bytes and time-outs apply to what
+  /// comes next; the listen address, the files served and the host names need a restart.
+  void set_limits(const HttpConfig& fresh);
 
   /// Adds one stream object (a line of the alert stream, '\n' optional) to the batch the
   /// WebSocket clients get at the next flush(). Nothing happens without WebSocket clients.

@@ -683,6 +683,11 @@ void Service::reload() {
     spdlog::info("SIGHUP: reloaded {} (log level {}, {} subscribers of {} queued objects and {} bytes at most)",
                  options_.config_path, to_string(fresh.service.log_level), fresh.service.max_subscribers,
                  fresh.service.subscriber_queue, fresh.service.subscriber_queue_bytes);
+    if (http_) {
+      http_->set_limits(fresh.http);
+      spdlog::info("SIGHUP: HTTP limits: {} connections, {} silent per address, requests within {} s",
+                   fresh.http.max_connections, fresh.http.silent_per_address, fresh.http.request_timeout_s);
+    }
     spdlog::info("SIGHUP: inputs, outputs and pipeline settings apply at the next restart");
   } catch (const std::exception& e) {
     spdlog::error("SIGHUP: {} (configuration kept)", e.what());
