@@ -14,6 +14,7 @@ import socket
 import struct
 import subprocess
 import tempfile
+import threading
 import time
 import unittest
 import urllib.parse
@@ -493,6 +494,53 @@ class BodyLimit(HttpCase):
         # A body within the limit is read: refused for what it says, not for its size.
         status, _ = self.ack(kewd, b'{"all":1}')
         self.assertEqual(status, 400)
+
+
+class SlowReaders(HttpCase):
+    """Clients that stop reading: their kernel buffers are kept small so that kewd's
+    queue, not the kernel, holds what they do not read."""
+
+    def unread_socket(self, kewd):
+        s = socket.socket()
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+        s.connect(("127.0.0.1", kewd.http_port))
+        self.addCleanup(s.close)
+        return s
+
+    def closed_by_kewd(self, s, timeout_s):
+        """Reads (slowly no more) until kewd closes `s`; its elapsed time."""
+        start = time.monotonic()
+        s.settimeout(timeout_s)
+        while s.recv(65536):
+            pass
+        return time.monotonic() - start
+
+    def test_a_websocket_client_that_stops_reading_is_cut_off(self):
+        kewd = self.start("client_queue_bytes = 65536\n")
+        s = self.unread_socket(kewd)
+        s.sendall(b"GET /ws HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                  b"Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"
+                  % kewd.http_port)
+        self.assertTrue(s.recv(12).startswith(b"HTTP/1.1 101"))
+        recording = os.path.join(self.workdir, "airways-cut-off.ndjson")
+        generate(recording, "airways", aircraft=300, duration=150, seed=8)
+        feeder = threading.Thread(target=replay_to, args=(
+            f"127.0.0.1:{kewd.input_port('feed')}", recording, "--speed", "10"), daemon=True)
+        feeder.start()
+        wait_until(lambda: self.metrics(kewd).get('kew_websockets_closed_total{reason="cut_off"}', 0) >= 1, 30,
+                   "the client that does not read to be cut off")
+        self.assertLess(self.closed_by_kewd(s, 10), 10)
+        self.assert_serving(kewd)
+        feeder.join()
+
+    def test_a_reply_that_cannot_be_written_in_time_closes_the_connection(self):
+        kewd = self.start("write_timeout_s = 1.0\n")
+        self.feed(kewd, aircraft=300, duration=30, seed=4)  # GET /api/tracks: ~100 KB
+        s = self.unread_socket(kewd)
+        s.sendall(b"GET /api/tracks HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" * 50)
+        time.sleep(3)  # the write stalls and times out meanwhile
+        self.assertLess(self.closed_by_kewd(s, 10), 10)
+        self.assert_serving(kewd)
 
 
 class Reload(HttpCase):
