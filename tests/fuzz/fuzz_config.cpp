@@ -1,8 +1,8 @@
 // libFuzzer target: any bytes as a kewd configuration file (daemon/include/kew/daemon/
 // config.hpp, the TOML reader of config/). Every input is either read into a Config or
 // refused with a ConfigError that says where and why; any other exception, crash or
-// sanitizer report is a finding. Nothing is checked against the file system (that is
-// --check-config's work, not the reader's).
+// sanitizer report is a finding. Paths are not checked (that is --check-config's work);
+// a [regions] geojson file is opened, relative to the run's working directory.
 
 #include <cstddef>
 #include <cstdint>

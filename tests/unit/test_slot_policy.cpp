@@ -21,10 +21,22 @@ TEST(SlotPolicy, RoomLeftAndFewSilentConnectionsCloseNothing) {
   EXPECT_FALSE(connection_to_evict(holders, "10.0.0.1", 4, false));
 }
 
-TEST(SlotPolicy, EverySlotTakenClosesTheLongestSilentOfAll) {
+TEST(SlotPolicy, EverySlotTakenClosesTheLongestSilentOfAllWhenEachAddressHoldsOne) {
   const std::vector<SlotHolder> holders{
       {"10.0.0.1", true, at(5)}, {"10.0.0.2", true, at(2)}, {"10.0.0.3", false, at(0)}, {"10.0.0.4", true, at(9)}};
   EXPECT_EQ(connection_to_evict(holders, "10.0.0.9", 4, true), 1u);
+}
+
+TEST(SlotPolicy, EverySlotTakenTheAddressHoldingMostSilentOnesPaysFirst) {
+  // 10.0.0.2's lone connection is the oldest, but 10.0.0.7 holds three silent ones.
+  const std::vector<SlotHolder> holders{{"10.0.0.7", true, at(6)},
+                                        {"10.0.0.2", true, at(1)},
+                                        {"10.0.0.7", true, at(4)},
+                                        {"10.0.0.7", true, at(8)},
+                                        {"10.0.0.5", false, at(0)}};
+  EXPECT_EQ(connection_to_evict(holders, "10.0.0.9", 4, true), 2u);
+  // A newcomer from the busiest address itself, under its limit: the same answer.
+  EXPECT_EQ(connection_to_evict(holders, "10.0.0.7", 4, true), 2u);
 }
 
 TEST(SlotPolicy, ServedConnectionsNeverGiveWay) {

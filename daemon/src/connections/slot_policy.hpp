@@ -6,8 +6,9 @@
 // way to a newcomer, the one silent longest first. A connection that is being served
 // (a watching subscriber, a WebSocket) never gives way here: the byte budgets and write
 // time-outs judge it. One source address may hold at most `silent_per_address` silent
-// connections: one more from it closes its own longest-silent one, so a client that
-// keeps opening connections only ever competes with itself.
+// connections: one more from it closes its own longest-silent one. When every slot is
+// taken, the address holding the most silent connections pays first, so a client that
+// keeps opening connections closes its own before anyone else's.
 // Knows nothing of sockets: the servers describe their connections and act on the answer.
 
 #include <chrono>
@@ -28,8 +29,8 @@ struct SlotHolder {
 /// The holder to close before a connection from `address` is accepted, or none: the
 /// longest-silent connection of `address` when that address already holds
 /// `silent_per_address` silent ones (at least 1), else, when `every_slot_taken`, the
-/// longest-silent connection of all (none when no connection is silent). Ties go to
-/// the earlier holder in `holders`.
+/// longest-silent connection of the address that holds the most silent ones (none when
+/// no connection is silent). Ties go to the earlier holder in `holders`.
 std::optional<std::size_t> connection_to_evict(std::span<const SlotHolder> holders, std::string_view address,
                                                std::size_t silent_per_address, bool every_slot_taken);
 

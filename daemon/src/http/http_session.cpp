@@ -36,6 +36,11 @@ void HttpSession::close() {
   stream_.close();
 }
 
+SlotHolder HttpSession::holder() const {
+  const bool stalled = writing_ && std::chrono::steady_clock::now() - since_ >= kStalledWrite;
+  return {address_, !closed_ && (reading_ || stalled), since_};
+}
+
 void HttpSession::read() {
   parser_.emplace();
   parser_->header_limit(static_cast<std::uint32_t>(server_.limits().max_header_bytes));
@@ -110,7 +115,10 @@ void HttpSession::send(const Reply& reply, bool keep_alive, bool head) {
   response_->prepare_payload();
   if (head) response_->content_length(reply.body.size());
   stream_.expires_after(server_.write_timeout());
+  writing_ = true;
+  since_ = std::chrono::steady_clock::now();
   bhttp::async_write(stream_, *response_, [self = shared_from_this(), keep_alive](beast::error_code ec, std::size_t) {
+    self->writing_ = false;
     self->response_.reset();
     if (!ec && keep_alive && !self->closed_) return self->read();
     self->close();

@@ -28,8 +28,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   /// Closes the connection at once (eviction, shutdown).
   void close();
   /// What the slot policy needs to know of it: silent while it waits for a request
-  /// (none of it or part of it has arrived), since the wait began.
-  SlotHolder holder() const { return {address_, reading_ && !closed_, since_}; }
+  /// (none of it or part of it has arrived), since the wait began, and while a reply has
+  /// been waiting kStalledWrite or more for the client to read it, since the write began.
+  SlotHolder holder() const;
+  static constexpr std::chrono::seconds kStalledWrite{1};
 
  private:
   void read();
@@ -47,6 +49,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::string address_;  ///< the peer's IP address
   std::chrono::steady_clock::time_point since_;
   bool reading_ = false;
+  bool writing_ = false;
   bool closed_ = false;
 };
 

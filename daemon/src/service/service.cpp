@@ -301,9 +301,11 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
 }
 
 void Service::flush_pipeline() {
-  if (!stall_file_.empty()) {
+  if (!stall_file_.empty() && std::filesystem::exists(stall_file_)) {
     // Test-only: the pipeline stuck, as a worker that never returns would leave it.
+    spdlog::warn("test hook: the pipeline is stalled while {} exists", stall_file_);
     while (std::filesystem::exists(stall_file_)) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    spdlog::warn("test hook: the pipeline runs again");
   }
   ++flushes_;
   flush_posted_ = false;

@@ -16,7 +16,9 @@ namespace asio = boost::asio;
 using asio::ip::tcp;
 
 namespace {
-constexpr auto kCloseGrace = std::chrono::seconds(5);  // a stuck client gets this long for its ERROR
+// A silent connection closed for a newcomer gets this long for its ERROR: a client that
+// floods connections and reads nothing must not pile up closing sockets.
+constexpr auto kEvictionGrace = std::chrono::seconds(1);
 constexpr std::size_t kMaxLinesPerWrite = 512;          // iovecs per gathered write (IOV_MAX is 1024)
 // Requests are read only while less than this is waiting to be written: a client that
 // repeats ?WATCH without reading gets no second snapshot queued behind the first.
@@ -113,7 +115,7 @@ void SubscriberSession::cut_off(std::string_view why, std::string_view message) 
   close_with_error(message);
 }
 
-void SubscriberSession::close_with_error(std::string_view message) {
+void SubscriberSession::close_with_error(std::string_view message, std::chrono::steady_clock::duration grace) {
   if (closing_) return;
   // What the client has not yet read is dropped; the ERROR goes right after the line
   // being written, if any.
@@ -125,7 +127,7 @@ void SubscriberSession::close_with_error(std::string_view message) {
   protocol::append_error_json(error, message, server_.source().seq());
   queue_.push_back(std::make_shared<const std::string>(std::move(error)));
   closing_ = true;
-  grace_.expires_after(kCloseGrace);
+  grace_.expires_after(grace);
   grace_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
     if (!ec) self->close();
   });
@@ -137,7 +139,7 @@ void SubscriberSession::evict() {
   server_.log_.reject("evicted", fmt::format("subscriber {} ({}): silent while every slot was taken or its address "
                                              "held {} silent connections; disconnecting it for a newcomer",
                                              id_, address_, server_.limits().silent_per_address));
-  close_with_error("evicted: silent while another connection needed the slot");
+  close_with_error("evicted: silent while another connection needed the slot", kEvictionGrace);
 }
 
 void SubscriberSession::drain_and_close() {

@@ -55,8 +55,10 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   void start();
   /// Queues a line; false when the queue was full (the session is then being closed).
   bool enqueue(Line line);
-  /// Sends an ERROR object and closes after it is written (or after a grace period).
-  void close_with_error(std::string_view message);
+  /// Sends an ERROR object and closes after it is written (or after `grace`).
+  void close_with_error(std::string_view message, std::chrono::steady_clock::duration grace = kCloseGrace);
+  /// How long a closing client has to take its ERROR.
+  static constexpr std::chrono::seconds kCloseGrace{5};
   /// Writes what is queued, then closes (service shutdown).
   void drain_and_close();
   /// Closes a silent connection to make room for a newcomer (with an ERROR saying so).

@@ -178,8 +178,8 @@ struct HttpConfig {
   std::vector<std::string> host_names;
   std::size_t max_connections = 64;       ///< HTTP and WebSocket connections at once
   /// Connections waiting for a request one address may hold; one more from it closes its
-  /// longest-waiting.
-  std::size_t silent_per_address = 4;
+  /// longest-waiting. Above a browser's 6 per host, for users behind one proxy or NAT.
+  std::size_t silent_per_address = 16;
   std::size_t max_header_bytes = 8192;    ///< request line and headers; beyond: 431
   std::size_t max_body_bytes = 4096;      ///< request body; beyond: 413
   double request_timeout_s = 10.0;        ///< a request must arrive whole within this
