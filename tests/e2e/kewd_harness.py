@@ -125,7 +125,14 @@ class Kewd:
 
     def stats(self):
         """The daemon's STATS object (the answer to ?STATS)."""
-        with socket.create_connection(("127.0.0.1", self.alert_port), timeout=10) as s:
+        try:
+            s = socket.create_connection(("127.0.0.1", self.alert_port), timeout=10)
+        except ConnectionRefusedError:
+            if self.process.poll() is not None:
+                raise AssertionError("kewd exited with %s; the end of its log:\n%s"
+                                     % (self.process.returncode, "\n".join(self.log().splitlines()[-40:])))
+            raise
+        with s:
             s.sendall(b"?STATS\n")
             reader = s.makefile("r")
             for line in reader:
