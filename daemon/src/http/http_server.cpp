@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "http_session.hpp"
+#include "peer_address.hpp"
 #include "static_files.hpp"
 #include "websocket_session.hpp"
 
@@ -70,9 +71,7 @@ void HttpServer::accept() {
 }
 
 void HttpServer::make_room(const tcp::socket& newcomer) {
-  boost::system::error_code ec;
-  const tcp::endpoint peer = newcomer.remote_endpoint(ec);
-  const std::string address = ec ? std::string() : peer.address().to_string();
+  const std::string address = peer_address(newcomer);
   std::vector<SlotHolder> holders;
   holders.reserve(sessions_.size());
   for (const auto& session : sessions_) holders.push_back(session->holder());

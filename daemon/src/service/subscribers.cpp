@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "peer_address.hpp"
+
 namespace kew::daemon {
 
 namespace asio = boost::asio;
@@ -52,11 +54,8 @@ SubscriberSession::SubscriberSession(tcp::socket socket, SubscriberServer& serve
       write_deadline_(socket_.get_executor()),
       admin_(admin),
       id_(server.next_id_++),
-      silent_since_(std::chrono::steady_clock::now()) {
-  boost::system::error_code ec;
-  const tcp::endpoint peer = socket_.remote_endpoint(ec);
-  if (!ec) address_ = peer.address().to_string();
-}
+      address_(peer_address(socket_)),
+      silent_since_(std::chrono::steady_clock::now()) {}
 
 void SubscriberSession::start() {
   std::string version;
@@ -348,9 +347,7 @@ void SubscriberServer::accept() {
 }
 
 void SubscriberServer::make_room(const tcp::socket& newcomer) {
-  boost::system::error_code ec;
-  const tcp::endpoint peer = newcomer.remote_endpoint(ec);
-  const std::string address = ec ? std::string() : peer.address().to_string();
+  const std::string address = peer_address(newcomer);
   std::vector<SlotHolder> holders;
   std::vector<SubscriberSession*> open;
   for (const auto& s : sessions_) {
