@@ -33,7 +33,14 @@ void ProximitySearch::within(const kinetic::KineticDelaunay& kdt, PointId center
 void ProximitySearch::within_around(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 target,
                                     double radius_m, std::vector<PointId>& out) {
   const double reach2 = begin_search(kdt, radius_m);
-  search_from(kdt, nearest_to(kdt, center, target), center, target, reach2, out);
+  // From any vertex in the disk a greedy walk towards `target` stays in the disk and ends
+  // at the vertex nearest it, so the vertices in the disk are joined to one another
+  // within it: the search may spread from any of them. The predicted position is
+  // usually within the search radius of the track's own (|v|·T < R), so the walk is
+  // needed only when it is not.
+  const geometry::Vector2 d = kdt.position_now(center) - target;
+  const PointId start = geometry::dot(d, d) <= reach2 ? center : nearest_to(kdt, center, target);
+  search_from(kdt, start, center, target, reach2, out);
 }
 
 void ProximitySearch::search_from(const kinetic::KineticDelaunay& kdt, PointId start, PointId center,

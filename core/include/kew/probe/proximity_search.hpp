@@ -43,8 +43,9 @@ class ProximitySearch {
 
   /// The same for a disk around any point `target` of the plane (m), which need not hold
   /// `center`: every point other than `center` whose model position at kdt.now() is
-  /// within `radius_m` of `target`, plus possibly twins slightly farther. The search walks
-  /// greedily from center's vertex to the vertex nearest `target` and spreads from there.
+  /// within `radius_m` of `target`, plus possibly twins slightly farther. The search spreads
+  /// from center's vertex when it lies in the disk, otherwise from the vertex nearest
+  /// `target`, reached by a greedy walk.
   void within_around(const kinetic::KineticDelaunay& kdt, PointId center, geometry::Point2 target, double radius_m,
                      std::vector<PointId>& out);
 
