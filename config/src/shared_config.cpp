@@ -24,6 +24,7 @@ void read_pipeline(TableReader& r, PipelineConfig& p) {
   r.integer("threads", threads, 0, 256);
   p.threads = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
   r.integer("batch_records", p.batch_records, 1, 1'000'000);
+  r.integer("prompt_records", p.prompt_records, 0, 1'000'000);
 }
 
 void read_projection(TableReader& r, PipelineConfig& p) {
@@ -147,10 +148,12 @@ void read_radar(TableReader& r, protocol::RadarSite& site) {
 }  // namespace
 
 SharedConfig::SharedConfig() {
-  // The tools' defaults, not the library's: every core, and batches long enough for the
-  // zones of one to work in parallel (design §3.3).
+  // The tools' defaults, not the library's: every core, batches long enough for the
+  // zones of one to work in parallel, and the first records after each flush judged at
+  // once (design §3.3).
   pipeline.threads = std::max(1u, std::thread::hardware_concurrency());
   pipeline.batch_records = kDefaultBatchRecords;
+  pipeline.prompt_records = kDefaultPromptRecords;
 }
 
 SharedConfig read_shared_config(const Document& document) {

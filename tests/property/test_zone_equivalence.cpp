@@ -102,11 +102,19 @@ namespace kew {
 namespace {
 
 // Zones in parallel (design §3.3): the same records give the same events, byte for byte,
-// whatever the number of threads and the size of a batch.
-std::vector<std::string> events_with(const std::vector<TrackReport>& records, std::size_t threads, std::size_t batch) {
+// whatever the number of threads, the size of a batch, and the records judged one by one
+// after each flush of a live daemon's reads.
+struct Batching {
+  std::size_t threads = 1, batch = 1;
+  std::size_t prompt = 0;  // PipelineConfig::prompt_records
+  std::size_t read = 0;    // a flush() after every this many records (0: none)
+};
+
+std::vector<std::string> events_with(const std::vector<TrackReport>& records, Batching b) {
   PipelineConfig config;
-  config.threads = threads;
-  config.batch_records = batch;
+  config.threads = b.threads;
+  config.batch_records = b.batch;
+  config.prompt_records = b.prompt;
   config.renumber_every_s = 20.0;
   Pipeline pipeline(config);
   std::vector<std::string> out;
@@ -115,7 +123,10 @@ std::vector<std::string> events_with(const std::vector<TrackReport>& records, st
                   std::to_string(e.t) + " " + std::to_string(e.t_los_s) + " " + std::to_string(e.cpa_h_m) + " " +
                   std::to_string(e.sep_h_m) + " " + e.a.id + " " + e.b.id + " " + std::to_string(e.a.lat_deg));
   });
-  for (const TrackReport& r : records) pipeline.process(r);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    pipeline.process(records[i]);
+    if (b.read > 0 && (i + 1) % b.read == 0) pipeline.flush();
+  }
   pipeline.end_of_input();
   pipeline.drop_all();
   return out;
@@ -141,11 +152,12 @@ TEST(ZonesInParallel, ThreadsAndBatchesChangeNoByte) {
     }
   }
   std::stable_sort(records.begin(), records.end(), [](const TrackReport& a, const TrackReport& b) { return a.t < b.t; });
-  const std::vector<std::string> serial = events_with(records, 1, 1);
+  const std::vector<std::string> serial = events_with(records, {});
   ASSERT_GE(serial.size(), 20u) << "the traffic must alert";
-  for (const auto& [threads, batch] : {std::pair<std::size_t, std::size_t>{1, 700}, {2, 1}, {2, 64}, {4, 5000}}) {
-    SCOPED_TRACE("threads " + std::to_string(threads) + ", batch " + std::to_string(batch));
-    EXPECT_EQ(events_with(records, threads, batch), serial);
+  for (const Batching b : {Batching{1, 700}, Batching{2, 1}, Batching{2, 64}, Batching{4, 5000}, Batching{2, 5000, 7, 30}}) {
+    SCOPED_TRACE("threads " + std::to_string(b.threads) + ", batch " + std::to_string(b.batch) + ", prompt " +
+                 std::to_string(b.prompt) + ", read " + std::to_string(b.read));
+    EXPECT_EQ(events_with(records, b), serial);
   }
 }
 

@@ -70,6 +70,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.coverage_radius_m, d.coverage_radius_m);
   EXPECT_EQ(p.threads, d.threads);  // [pipeline] threads = 0: one per core, as the default
   EXPECT_EQ(p.batch_records, d.batch_records);
+  EXPECT_EQ(p.prompt_records, d.prompt_records);
   EXPECT_EQ(p.tracks.track_timeout_s, d.tracks.track_timeout_s);
   EXPECT_EQ(p.tracks.max_ground_speed_kt, d.tracks.max_ground_speed_kt);
   EXPECT_EQ(p.tracks.max_vertical_rate_fpm, d.tracks.max_vertical_rate_fpm);
@@ -162,16 +163,19 @@ TEST(Config, ZonesThreadsAndCoverage) {
   EXPECT_FALSE(defaults.pipeline.coverage_radius_m.has_value());
   EXPECT_EQ(defaults.pipeline.threads, std::max(1u, std::thread::hardware_concurrency()));
   EXPECT_EQ(defaults.pipeline.batch_records, config::kDefaultBatchRecords);
+  EXPECT_EQ(defaults.pipeline.prompt_records, config::kDefaultPromptRecords);
   const Config c = parse_config(R"(
 [pipeline]
 threads = 3
 batch_records = 1
+prompt_records = 0
 [projection]
 zones = "single"
 coverage_radius_km = 2500
 )");
   EXPECT_EQ(c.pipeline.threads, 3u);
   EXPECT_EQ(c.pipeline.batch_records, 1u);
+  EXPECT_EQ(c.pipeline.prompt_records, 0u);
   EXPECT_EQ(c.pipeline.zone_mode, ZoneMode::Single);
   EXPECT_EQ(c.pipeline.coverage_radius_m, 2.5e6);
   // Worldwide, a limit may reach the antipode; one plane reaches 3,000 km at most.
@@ -185,6 +189,7 @@ coverage_radius_km = 2500
   EXPECT_EQ(parse_config("[service]\nsilent_per_address = 2\n[http]\nsilent_per_address = 9\n").http.silent_per_address,
             9u);
   EXPECT_THROW(parse_config("[pipeline]\nbatch_records = 0\n"), ConfigError);
+  EXPECT_THROW(parse_config("[pipeline]\nprompt_records = -1\n"), ConfigError);
 }
 
 TEST(Config, ReadsEverySection) {

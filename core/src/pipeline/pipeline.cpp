@@ -121,6 +121,7 @@ Pipeline::Pipeline(const PipelineConfig& config)
     work_.resize(1);
   }
   if (config_.threads > 1) pool_ = std::make_unique<util::WorkerPool>(config_.threads);
+  prompt_left_ = config_.prompt_records;
 }
 
 Pipeline::~Pipeline() = default;
@@ -184,7 +185,12 @@ void Pipeline::process(const TrackReport& report) {
   }
   process_plausible(report);
   if (young_refused_.size() >= kYoungRun) restart_young_run();
-  if (steps_.size() >= config_.batch_records) flush();
+  if (prompt_left_ > 0) {
+    --prompt_left_;
+    run_batch();
+  } else if (steps_.size() >= config_.batch_records) {
+    run_batch();
+  }
 }
 
 void Pipeline::restart_young_run() {
@@ -522,6 +528,11 @@ void Pipeline::apply(track::TrackSlot slot) {
 // The batch: zones in parallel, then the alert stage in record order.
 
 void Pipeline::flush() {
+  run_batch();
+  prompt_left_ = config_.prompt_records;
+}
+
+void Pipeline::run_batch() {
   if (touched_.empty() && steps_.empty()) return;
   const auto run_one = [&](std::size_t i) { run_zone(work_[touched_[i]]); };
   std::size_t ops = 0;

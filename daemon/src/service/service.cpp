@@ -276,12 +276,14 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
   figures.last_record_unix_s = wall;
   const std::uint64_t accepted = pipeline_.statistics().accepted;
   const std::uint64_t refused = pipeline_.rejections().total();
-  // Events come out when the batch runs: when this record fills it, or right after the
-  // handler that delivered the records (a datagram, a read, a replay step) returns.
+  // Events come out when the batch runs: at once for the first records after a batch
+  // (prompt_records), when this record fills it, or right after the handler that
+  // delivered the records (a datagram, a read, a replay step) returns.
   if (!batch_arrival_) batch_arrival_ = arrival;
   record_arrival_ = batch_arrival_;
   pipeline_.process(report);
   record_arrival_.reset();
+  if (!pipeline_.batch_waiting()) batch_arrival_.reset();
   if (!flush_posted_) {
     flush_posted_ = true;
     boost::asio::post(io_, [this] { flush_pipeline(); });

@@ -22,8 +22,14 @@ class Document;
 /// Records in a batch when [pipeline] batch_records is not set (PipelineConfig).
 inline constexpr std::size_t kDefaultBatchRecords = 512;
 
+/// Records judged one by one after each flush when [pipeline] prompt_records is not set:
+/// a live read of up to this many records sends each one's alerts as soon as it is
+/// judged; the zones of a batch work in parallel only from about 24 records (design §3.3).
+inline constexpr std::size_t kDefaultPromptRecords = 16;
+
 struct SharedConfig {
-  /// The service's defaults: PipelineConfig's, with every core and kDefaultBatchRecords.
+  /// The service's defaults: PipelineConfig's, with every core, kDefaultBatchRecords and
+  /// kDefaultPromptRecords.
   SharedConfig();
   PipelineConfig pipeline;  ///< regions: the [[region]] tables, then [regions] geojson's
   protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits

@@ -90,6 +90,12 @@ struct PipelineConfig {
   /// record's events from process() itself; more lets the zones of a batch work in
   /// parallel, and events come out of flush() (or the process() that fills a batch).
   std::size_t batch_records = 1;
+  /// Records judged each on its own, events delivered from its process(), after every
+  /// flush() (≥ 0): a live feed's read of a few records then sends each record's alerts
+  /// as soon as it is judged, not when the last record of the read is; the records after
+  /// them wait for flush() or batch_records, and a batch's zones work in parallel. 0:
+  /// every record waits (the batch's zones alone decide when it runs).
+  std::size_t prompt_records = 0;
   /// Time the three parts of the work on updates (Pipeline::phase_times); off except in
   /// benchmarks (two reads of the thread's CPU clock per part and update, about 1 µs).
   bool time_phases = false;
@@ -183,9 +189,11 @@ class Pipeline {
   void end_of_input();
 
   /// Runs the zones and the alert stage over the records taken so far, delivering their
-  /// events. Readers of the pipeline's state (tracks, alerts, statistics) call it first
-  /// when batch_records > 1.
+  /// events; the next prompt_records records are then judged one by one. Readers of the
+  /// pipeline's state (tracks, alerts, statistics) call it first when batch_records > 1.
   void flush();
+  /// Records taken that wait for their batch to run (none: every event is delivered).
+  bool batch_waiting() const { return !steps_.empty() || !touched_.empty(); }
 
   /// Moves the clock to t (UTC s) without a record — live mode's periodic tick: drops
   /// tracks that timed out and executes kinetic events up to t. Ignored if t ≤ now().
@@ -324,6 +332,8 @@ class Pipeline {
     std::vector<kinetic::PointId> candidates;
   };
   void touch(zone::ZoneKey key);
+  /// The zones, then the alert stage, over the batch taken so far.
+  void run_batch();
   void run_zone(ZoneWork& work);
   /// The candidates of the track's point `self` in `zone` (design §2.1).
   void collect_candidates(ZoneWork& work, kinetic::PointId self);
@@ -436,6 +446,7 @@ class Pipeline {
   std::vector<AlertStep> steps_;
   std::vector<zone::ZoneKey> step_zones_;
   std::vector<zone::ZoneKey> touched_;  // zones with work in the batch, or created in it
+  std::size_t prompt_left_ = 0;         // records still to judge one by one (prompt_records)
   std::unique_ptr<util::WorkerPool> pool_;
   // The alert stage's state.
   std::vector<Snapshot> view_;  // by slot: each track as of the step being judged
