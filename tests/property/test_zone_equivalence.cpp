@@ -129,6 +129,11 @@ std::vector<std::string> events_with(const std::vector<TrackReport>& records, Ba
   }
   pipeline.end_of_input();
   pipeline.drop_all();
+  // The engines' figures, which ?STATS and --stats-json report, are the batching's too.
+  const kinetic::KineticStatistics k = pipeline.kinetic_statistics();
+  out.push_back("queue_mean " + std::to_string(k.queue_mean()) + ", events " + std::to_string(k.events_executed) +
+                ", solved " + std::to_string(k.certificates_solved) + ", updates " + std::to_string(k.updates) +
+                ", reinsertions " + std::to_string(k.reinsertions));
   return out;
 }
 

@@ -355,6 +355,18 @@ void KineticDelaunay::set_now(double t) {
 }
 
 void KineticDelaunay::advance(double t) {
+  run_events_until(t);
+}
+
+void KineticDelaunay::advance_sampled(double t) {
+  run_events_until(t);
+  // Sampled here, by the points' operations, and not by advance(): how often a caller
+  // advances the clock between them (a batch's end, a tick) must not move the mean.
+  stats_.queue_sum += static_cast<double>(stats_.queue_now);
+  ++stats_.queue_samples;
+}
+
+void KineticDelaunay::run_events_until(double t) {
   assert(!(t < now_) && "the engine's clock only moves forward");
   if (t < now_) t = now_;
   do {
@@ -368,8 +380,6 @@ void KineticDelaunay::advance(double t) {
     set_now(t);
     // Flips of degenerate edges may schedule failures already due at t: loop.
   } while (flip_degenerate_edges());
-  stats_.queue_sum += static_cast<double>(stats_.queue_now);
-  ++stats_.queue_samples;
   queue_.compact(stats_.queue_now + stats_.renewals_queued + stats_.drifts_queued,
                  [this](const Entry& e) { return is_live(e); });
 }
@@ -483,7 +493,7 @@ void KineticDelaunay::repair_quadrilateral(FaceIndex f, int i) {
 // Points
 
 PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
-  advance(t);
+  advance_sampled(t);
   const PointId id = dt_.create_vertex(Trajectory{p, v, t});
   if (id >= live_.size()) live_.resize(id + 1, false);
   live_[id] = true;
@@ -495,25 +505,25 @@ PointId KineticDelaunay::insert(double t, Point2 p, Vector2 v) {
   ++live_points_;
   ++stats_.insertions;
   attach_point(id);
-  advance(now_);  // failures found already due at now are executed before returning
+  advance_sampled(now_);  // failures found already due at now are executed before returning
   return id;
 }
 
 void KineticDelaunay::remove(PointId id, double t) {
   assert(contains(id));
-  advance(t);
+  advance_sampled(t);
   ++stats_.removals;
   cancel_drift(id);
   detach_point(id);
   live_[id] = false;
   --live_points_;
   dt_.destroy_vertex(id);
-  advance(now_);
+  advance_sampled(now_);
 }
 
 UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
   assert(contains(id));
-  advance(t);
+  advance_sampled(t);
   ++stats_.updates;
   const Point2 predicted = dt_.position(id);
   const double deviation = geometry::norm(p - predicted);
@@ -535,12 +545,12 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
       for (const PointId w : twins_.twins_of(id)) schedule_twin_release(w);
     }
     schedule_dirty_faces();
-    advance(now_);
+    advance_sampled(now_);
     return UpdateKind::VelocityOnly;
   }
   ++stats_.reinsertions;
   reinsert(id, Trajectory{p, v, now_});
-  advance(now_);
+  advance_sampled(now_);
   return UpdateKind::Reinserted;
 }
 

@@ -106,7 +106,7 @@ struct KineticStatistics {
   std::size_t queue_max = 0;
   std::size_t renewals_queued = 0;        ///< renewal entries scheduled now
   std::size_t drifts_queued = 0;          ///< Drift deadlines scheduled now
-  double queue_sum = 0.0;                 ///< Σ queue_now over samples (one per advance)
+  double queue_sum = 0.0;                 ///< Σ queue_now over samples (before and after each insert, update, removal)
   std::uint64_t queue_samples = 0;
   double queue_mean() const { return queue_samples ? queue_sum / static_cast<double>(queue_samples) : 0.0; }
 };
@@ -253,6 +253,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void reschedule_star(PointId vertex);
   /// Removes id and attaches it again on trajectory `to` (at now).
   void reinsert(PointId id, const triangulation::Trajectory& to);
+  /// advance() for the points' own operations, which sample the queue for queue_mean.
+  void advance_sampled(double t);
+  void run_events_until(double t);
   /// Keeps id's model if the report (p, v) at now stays within `allowed` of it for
   /// keep_model_s; then schedules the Drift deadline and returns true.
   bool keep_model(PointId id, Point2 p, Vector2 v, double deviation, double allowed);
