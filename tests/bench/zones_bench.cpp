@@ -4,11 +4,14 @@
 //  - throughput: every record as fast as the pipeline takes them (batches of 512), wall
 //    records/s and CPU s of the process;
 //  - live latency: the records paced at their own data times (real time, 1×), each poll
-//    taking what has arrived and flushing it, as kewd does after each read: the wall time
-//    from a record's due time to the end of the batch that judged it, p50/p99/max. A
-//    pipeline that cannot keep up shows as a latency that grows without bound; each
-//    batch's wall time, and the CPU time all threads spent in it, tell the work from the
-//    waits for a CPU;
+//    taking what has arrived as kewd takes a read (the first 16 judged one by one, the
+//    rest as a batch by the flush that follows): the wall time from a record's due time
+//    to the moment its events were out, p50/p99/max. A pipeline that cannot keep up shows
+//    as a latency that grows without bound; each poll's wall time, and the CPU time all
+//    threads spent in it, tell the work from the waits for a CPU;
+//  - the machine's floor: the same records at the same times, each judged by a fixed
+//    spin of the pipeline's mean CPU time per record: the latency the machine alone gives
+//    to work of that cost (the waits for a CPU of a virtual machine);
 //  - memory per live track: heap in use (mallinfo2) with the fleet loaded, minus before,
 //    over the live tracks;
 //  - decoding alone: the same records as NDJSON, records/s of the decoder (the serial
@@ -96,16 +99,19 @@ std::vector<kew::TrackReport> global_traffic(std::size_t aircraft, double second
   return records;
 }
 
-double process_cpu_s() {
+double cpu_clock_s(clockid_t clock) {
   timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  clock_gettime(clock, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+double process_cpu_s() { return cpu_clock_s(CLOCK_PROCESS_CPUTIME_ID); }
+double thread_cpu_s() { return cpu_clock_s(CLOCK_THREAD_CPUTIME_ID); }
 
 kew::PipelineConfig configured(std::size_t threads) {
   kew::PipelineConfig c;  // worldwide zones, the defaults
   c.threads = threads;
   c.batch_records = 512;
+  c.prompt_records = 16;  // as kewd (config::kDefaultPromptRecords)
   return c;
 }
 
@@ -118,9 +124,11 @@ struct Result {
   // Paced run.
   std::uint64_t live_records = 0;
   double p50_us = NAN, p99_us = NAN, max_us = NAN;
-  std::uint64_t flushes = 0;  // batches judged in the paced run
-  double flush_p50_us = NAN, flush_p99_us = NAN;  // wall time of one flush()
-  double flush_cpu_p99_us = NAN;  // CPU time of the process during one flush(), every thread
+  std::uint64_t reads = 0;  // polls that took records in the paced run
+  double read_p50_us = NAN, read_p99_us = NAN;  // wall time to judge one poll's records
+  double read_cpu_p99_us = NAN;  // CPU time of the process during one, every thread
+  double cpu_per_record_us = NAN;  // mean, every thread
+  double floor_p50_us = NAN, floor_p99_us = NAN;  // a fixed spin of that mean per record
   double records_per_s() const { return static_cast<double>(records) / wall_s; }
 };
 
@@ -147,41 +155,90 @@ void throughput(const std::vector<kew::TrackReport>& records, Result& r) {
       static_cast<double>(mallinfo2().uordblks - heap_before) / static_cast<double>(std::max<std::size_t>(1, r.live_tracks));
 }
 
+// Busy for `cpu_s` seconds of this thread's CPU time: work of a fixed cost that a wait for
+// the CPU does not shorten.
+void spin_cpu(double cpu_s) {
+  const double until = thread_cpu_s() + cpu_s;
+  while (thread_cpu_s() < until) {
+  }
+}
+
+// Records paced at their own data times from `from` (real time, 1×): each poll takes the
+// records that have fallen due, as kewd takes a read, and hands them to `take`, which
+// returns, for each, the wall time (s since `wall0`) its events were out.
+template <class Take>
+std::vector<double> paced(const std::vector<kew::TrackReport>& records, std::size_t from, double seconds, Take&& take) {
+  std::vector<double> latency_s, done_s;
+  const double paced_from = records[from].t;
+  const auto wall0 = Clock::now();
+  for (std::size_t next = from; next < records.size() && records[next].t < paced_from + seconds;) {
+    const double now = std::chrono::duration<double>(Clock::now() - wall0).count();
+    const std::size_t first = next;
+    while (next < records.size() && records[next].t - paced_from <= now) ++next;
+    if (next == first) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      continue;
+    }
+    done_s.clear();
+    take(first, next, wall0, done_s);
+    for (std::size_t i = first; i < next; ++i) latency_s.push_back(done_s[i - first] - (records[i].t - paced_from));
+  }
+  return latency_s;
+}
+
 void live(const std::vector<kew::TrackReport>& records, double seconds, Result& r) {
   if (seconds <= 0.0 || records.empty()) return;
   kew::Pipeline pipeline(configured(r.threads));
   const double t0 = records.front().t;
   // The records of the first 10 s fill the picture unpaced; the paced part follows.
-  std::size_t next = 0;
-  while (next < records.size() && records[next].t < t0 + 10.0) pipeline.process(records[next++]);
+  std::size_t from = 0;
+  while (from < records.size() && records[from].t < t0 + 10.0) pipeline.process(records[from++]);
   pipeline.flush();
-  const double paced_from = next < records.size() ? records[next].t : t0;
-  std::vector<double> latency_s, flush_s, flush_cpu_s;
-  const auto wall0 = Clock::now();
-  while (next < records.size() && records[next].t < paced_from + seconds) {
-    const double now = std::chrono::duration<double>(Clock::now() - wall0).count();
-    const std::size_t first = next;
-    while (next < records.size() && records[next].t - paced_from <= now) pipeline.process(records[next++]);
-    if (next == first) {
-      std::this_thread::sleep_for(std::chrono::microseconds(20));
-      continue;
-    }
-    const auto flush_start = Clock::now();
-    const double cpu_start = process_cpu_s();
-    pipeline.flush();
-    flush_cpu_s.push_back(process_cpu_s() - cpu_start);
-    flush_s.push_back(std::chrono::duration<double>(Clock::now() - flush_start).count());
-    const double done = std::chrono::duration<double>(Clock::now() - wall0).count();
-    for (std::size_t i = first; i < next; ++i) latency_s.push_back(done - (records[i].t - paced_from));
-  }
+  if (from == records.size()) return;
+  std::vector<double> read_s, read_cpu_s;
+  double cpu_total_s = 0.0;
+  std::vector<bool> waiting;
+  std::vector<double> latency_s =
+      paced(records, from, seconds, [&](std::size_t first, std::size_t end, Clock::time_point wall0, std::vector<double>& done) {
+        const auto started = Clock::now();
+        const double cpu_start = process_cpu_s();
+        waiting.clear();
+        for (std::size_t i = first; i < end; ++i) {
+          pipeline.process(records[i]);
+          // Judged at once (prompt_records) unless the record waits for the flush.
+          waiting.push_back(pipeline.batch_waiting());
+          done.push_back(std::chrono::duration<double>(Clock::now() - wall0).count());
+        }
+        pipeline.flush();
+        const double flushed = std::chrono::duration<double>(Clock::now() - wall0).count();
+        for (std::size_t i = 0; i < done.size(); ++i)
+          if (waiting[i]) done[i] = flushed;
+        const double cpu = process_cpu_s() - cpu_start;
+        cpu_total_s += cpu;
+        read_cpu_s.push_back(cpu);
+        read_s.push_back(std::chrono::duration<double>(Clock::now() - started).count());
+      });
   r.live_records = latency_s.size();
-  r.flushes = flush_s.size();
-  r.flush_p50_us = 1e6 * percentile(flush_s, 0.50);
-  r.flush_p99_us = 1e6 * percentile(flush_s, 0.99);
-  r.flush_cpu_p99_us = 1e6 * percentile(flush_cpu_s, 0.99);
+  r.reads = read_s.size();
+  r.read_p50_us = 1e6 * percentile(read_s, 0.50);
+  r.read_p99_us = 1e6 * percentile(read_s, 0.99);
+  r.read_cpu_p99_us = 1e6 * percentile(read_cpu_s, 0.99);
   r.p50_us = 1e6 * percentile(latency_s, 0.50);
   r.p99_us = 1e6 * percentile(latency_s, 0.99);
   r.max_us = latency_s.empty() ? NAN : 1e6 * *std::max_element(latency_s.begin(), latency_s.end());
+  // The machine's own share: the same records at the same times, each one judged by a
+  // fixed spin of the pipeline's mean CPU time per record, delivered at once.
+  r.cpu_per_record_us = 1e6 * cpu_total_s / static_cast<double>(std::max<std::size_t>(1, latency_s.size()));
+  const double spin_s = 1e-6 * r.cpu_per_record_us;
+  std::vector<double> floor_s =
+      paced(records, from, seconds, [&](std::size_t first, std::size_t end, Clock::time_point wall0, std::vector<double>& done) {
+        for (std::size_t i = first; i < end; ++i) {
+          spin_cpu(spin_s);
+          done.push_back(std::chrono::duration<double>(Clock::now() - wall0).count());
+        }
+      });
+  r.floor_p50_us = 1e6 * percentile(floor_s, 0.50);
+  r.floor_p99_us = 1e6 * percentile(floor_s, 0.99);
 }
 
 double decode_records_per_s(const std::vector<kew::TrackReport>& records) {
@@ -235,11 +292,12 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(r.alerts_new));
   }
   for (const Result& r : results)
-    std::printf("paced, %zu aircraft, %zu thread(s): %llu batches of %.1f records, flush p50 %.0f µs, p99 %.0f µs "
-                "(CPU of every thread p99 %.0f µs)\n",
-                r.aircraft, r.threads, static_cast<unsigned long long>(r.flushes),
-                static_cast<double>(r.live_records) / static_cast<double>(std::max<std::uint64_t>(1, r.flushes)),
-                r.flush_p50_us, r.flush_p99_us, r.flush_cpu_p99_us);
+    std::printf("paced, %zu aircraft, %zu thread(s): %llu polls of %.1f records, each judged in p50 %.0f µs, p99 %.0f µs "
+                "(CPU of every thread p99 %.0f µs); %.1f µs CPU per record; a fixed spin of that per record: "
+                "p50 %.0f µs, p99 %.0f µs\n",
+                r.aircraft, r.threads, static_cast<unsigned long long>(r.reads),
+                static_cast<double>(r.live_records) / static_cast<double>(std::max<std::uint64_t>(1, r.reads)),
+                r.read_p50_us, r.read_p99_us, r.read_cpu_p99_us, r.cpu_per_record_us, r.floor_p50_us, r.floor_p99_us);
   for (std::size_t i = 0; i < prm.fleets.size(); ++i)
     std::printf("NDJSON decoding alone, %zu aircraft: %.0f records/s\n", prm.fleets[i], decode_rates[i]);
   if (!prm.json_path.empty()) {
@@ -264,10 +322,13 @@ int main(int argc, char** argv) {
       j.key("live_p50_us").value(r.p50_us);
       j.key("live_p99_us").value(r.p99_us);
       j.key("live_max_us").value(r.max_us);
-      j.key("live_flushes").value(r.flushes);
-      j.key("live_flush_p50_us").value(r.flush_p50_us);
-      j.key("live_flush_p99_us").value(r.flush_p99_us);
-      j.key("live_flush_cpu_p99_us").value(r.flush_cpu_p99_us);
+      j.key("live_reads").value(r.reads);
+      j.key("live_read_p50_us").value(r.read_p50_us);
+      j.key("live_read_p99_us").value(r.read_p99_us);
+      j.key("live_read_cpu_p99_us").value(r.read_cpu_p99_us);
+      j.key("live_cpu_per_record_us").value(r.cpu_per_record_us);
+      j.key("floor_p50_us").value(r.floor_p50_us);
+      j.key("floor_p99_us").value(r.floor_p99_us);
       j.key("heap_bytes_per_track").value(r.heap_bytes_per_track);
       j.key("alerts_new").value(r.alerts_new);
       j.end_object();
