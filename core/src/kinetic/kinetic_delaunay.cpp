@@ -354,19 +354,15 @@ void KineticDelaunay::set_now(double t) {
   dt_.set_time(t);
 }
 
-void KineticDelaunay::advance(double t) {
-  run_events_until(t);
-}
-
 void KineticDelaunay::advance_sampled(double t) {
-  run_events_until(t);
+  advance(t);
   // Sampled here, by the points' operations, and not by advance(): how often a caller
   // advances the clock between them (a batch's end, a tick) must not move the mean.
   stats_.queue_sum += static_cast<double>(stats_.queue_now);
   ++stats_.queue_samples;
 }
 
-void KineticDelaunay::run_events_until(double t) {
+void KineticDelaunay::advance(double t) {
   assert(!(t < now_) && "the engine's clock only moves forward");
   if (t < now_) t = now_;
   do {

@@ -255,7 +255,6 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void reinsert(PointId id, const triangulation::Trajectory& to);
   /// advance() for the points' own operations, which sample the queue for queue_mean.
   void advance_sampled(double t);
-  void run_events_until(double t);
   /// Keeps id's model if the report (p, v) at now stays within `allowed` of it for
   /// keep_model_s; then schedules the Drift deadline and returns true.
   bool keep_model(PointId id, Point2 p, Vector2 v, double deviation, double allowed);
