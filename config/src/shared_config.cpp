@@ -125,6 +125,7 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
   r.boolean("exclude_coasting", e.exclude_coasting);
   r.number("max_position_age_s", e.max_position_age_s, 0.1, 3600.0);
   r.number("level_rate_fpm", e.level_rate_fpm, 0.0, 5000.0);
+  r.boolean("adjacent_level_off", e.adjacent_level_off);
   r.number("same_code_distance_nm", e.same_code_distance_nm, 0.0, 20.0);
   r.number("same_code_altitude_ft", e.same_code_altitude_ft, 0.0, 5000.0);
 }

@@ -125,6 +125,7 @@ kew::config::SharedConfig without_eligibility(kew::config::SharedConfig config) 
   e.exclude_coasting = false;
   e.max_position_age_s = infinity;
   e.level_rate_fpm = 0.0;
+  e.adjacent_level_off = false;
   e.same_code_distance_nm = 0.0;
   return config;
 }

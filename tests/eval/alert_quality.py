@@ -47,7 +47,8 @@ CASES = [
 # One rule off at a time, on top of the default configuration.
 RULES_OFF = [
     ("one aircraft by discrete code (the address rule cannot be switched off)", "[eligibility]\nsame_code_distance_nm = 0\nsame_code_altitude_ft = 0\n"),
-    ("level pairs", "[eligibility]\nlevel_rate_fpm = 0\n"),
+    ("level pairs (and with them the adjacent level-off)", "[eligibility]\nlevel_rate_fpm = 0\n"),
+    ("adjacent level-off", "[eligibility]\nadjacent_level_off = false\n"),
     ("speed floor 50 kt", "[eligibility]\nmin_ground_speed_kt = 0\n"),
     ("altitude band", "[eligibility]\nmin_altitude_ft = -5000\nmax_altitude_ft = 200000\n"),
     ("lower limit (1,500 ft, and 1,000 ft above the nearest aerodrome)",
@@ -165,7 +166,7 @@ def peers(options):
 
 
 STAGES = ["record_refused", "no_track", "awaiting_velocity", "not_candidate", "probe_clear",
-          "one_aircraft_address", "one_aircraft_code", "level_pair", "inhibited", "excluded",
+          "one_aircraft_address", "one_aircraft_code", "level_pair", "adjacent_level_off", "inhibited", "excluded",
           "confirm_pending", "alerting"]
 
 

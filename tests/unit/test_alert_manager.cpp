@@ -98,6 +98,26 @@ TEST_F(Lifecycle, OpensOnlyAfterConfirmConsecutiveConflicts) {
   EXPECT_EQ(manager.counters().opened, 1u);
 }
 
+TEST_F(Lifecycle, EvaluationsAtOneDataTimeCountOnce) {
+  // jade-cat062-ff 14:46:02Z: both tracks of a CAT062 frame carry the frame's time, so
+  // their two records gave two conflicting evaluations at one instant and confirm = 2
+  // opened an alert on a single picture (of a track its source ended in that frame).
+  evaluate(1, 2, 100.0, true);
+  evaluate(2, 1, 100.0, true);
+  EXPECT_TRUE(events.empty()) << "one picture is not a confirmation";
+  evaluate(1, 2, 105.0, true);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].opened_t, 105.0);
+  // Clearing counts instants too: two clear evaluations at 110 are one.
+  evaluate(1, 2, 110.0, false);
+  evaluate(2, 1, 110.0, false);
+  EXPECT_EQ(events.size(), 1u);
+  evaluate(1, 2, 115.0, false);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[1].state, AlertState::End);
+  EXPECT_EQ(events[1].t, 115.0);
+}
+
 TEST_F(Lifecycle, ResumeContinuesSeqAndNumberFromTheGivenValues) {
   // kewd after a restart (design §4.7): the last run's numbering goes on.
   manager.resume(41, 65535);

@@ -410,6 +410,73 @@ TEST(Eligibility, OneStepEveryScanTheSameWayIsADescentNotLevel) {
   EXPECT_FALSE(rules.level_pair(a, b));
 }
 
+struct AdjacentLevelCase {
+  const char* name;
+  double mover_alt_ft, mover_vr_fpm;
+  double level_alt_ft, level_vr_fpm;
+  bool expected;
+  double mover_age_s = 0.0;  // the mover's last record this long before the evaluation
+};
+
+TEST(Eligibility, AdjacentLevelOffFollowsDesign4_5) {
+  // Level traffic at FL360 (or FL350); stopping distances at 0.05 g: 110 ft at 1,088
+  // ft/min, 80 ft at 960, 497 ft at 2,400 (design §4.5).
+  const AdjacentLevelCase cases[] = {
+      {"can stop at FL350 (switzerland 06:13:30Z)", 34750.0, 1088.0, 36000.0, 0.0, true},
+      {"too close to stop short of FL350", 34925.0, 960.0, 36000.0, 0.0, false},
+      {"2,400 ft/min 200 ft below FL350 (jade 14:51:36Z)", 34800.0, 2400.0, 36000.0, 0.0, false},
+      {"descending to FL370 above FL360", 37250.0, -1152.0, 36000.0, 0.0, true},
+      {"moving away from the level one", 34750.0, -1088.0, 36000.0, 0.0, false},
+      {"neither level", 34750.0, 1088.0, 36000.0, -1000.0, false},
+      {"both level: the level-pair rule's", 34750.0, 100.0, 36000.0, 0.0, false},
+      {"the mover's last record 10 s old: now 181 ft higher", 34750.0, 1088.0, 36000.0, 0.0, false, 10.0},
+      {"the level one drifts 290 ft/min down: still 995 ft after T_v", 34750.0, 1088.0, 36000.0, -290.0, true},
+      {"1,500 ft/min 2,000 ft below: can stop at FL350", 34000.0, 1500.0, 36000.0, 0.0, true},
+      {"1,600 ft/min: faster than ICAO's 1,500 near traffic", 34000.0, 1600.0, 36000.0, 0.0, false},
+  };
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  const double now = 1000.0;
+  for (const AdjacentLevelCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    track::Track mover, level;
+    mover.alt_ft = c.mover_alt_ft;
+    mover.vr_fpm = c.mover_vr_fpm;
+    mover.t = now - c.mover_age_s;
+    level.alt_ft = c.level_alt_ft;
+    level.vr_fpm = c.level_vr_fpm;
+    level.t = now;
+    mover.vertical_rate_known = level.vertical_rate_known = true;
+    EXPECT_EQ(rules.adjacent_level_off(mover, level, now), c.expected);
+    EXPECT_EQ(rules.adjacent_level_off(level, mover, now), c.expected) << "either order";
+  }
+}
+
+TEST(Eligibility, AdjacentLevelOffNeedsAKnownRateNoSelectionAndTheRuleOn) {
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  track::Track mover, level;
+  mover.alt_ft = 34750.0;
+  mover.vr_fpm = 1088.0;
+  level.alt_ft = 36000.0;
+  mover.vertical_rate_known = level.vertical_rate_known = true;
+  ASSERT_TRUE(rules.adjacent_level_off(mover, level, 0.0));
+  // The mover's own selection decides where it stops (the probe's intent, design §4.4).
+  mover.intent.sel_ft = 36000.0;
+  EXPECT_FALSE(rules.adjacent_level_off(mover, level, 0.0));
+  mover.intent.sel_ft.reset();
+  level.vertical_rate_known = false;
+  EXPECT_FALSE(rules.adjacent_level_off(mover, level, 0.0)) << "0 ft/min that nothing reported is not level";
+  level.vertical_rate_known = true;
+  eligibility::EligibilityConfig off;
+  off.adjacent_level_off = false;
+  EXPECT_FALSE(eligibility::Rules(off, probe::SeparationMinima{}).adjacent_level_off(mover, level, 0.0));
+  // A long vertical look-ahead lets the level one's drift of 290 ft/min bring it within
+  // S_v less the tolerance: 1,140 − 580 = 560 ft after 120 s.
+  probe::SeparationMinima long_look;
+  long_look.vertical_lookahead_s = 120.0;
+  level.vr_fpm = -290.0;
+  EXPECT_FALSE(eligibility::Rules({}, long_look).adjacent_level_off(mover, level, 0.0));
+}
+
 TEST(Eligibility, ARefusedLastRecordStillEndsTheTrack) {
   Flight a{"1234", "cat062/25.100"};
   Pipeline pipeline;

@@ -107,8 +107,38 @@ std::vector<Flight> climb_below_traffic(bool with_selection) {
 TEST(VerticalIntent, AClimbToTheLevelBelowTrafficRaisesNoAlertWithItsSelection) {
   const auto with = fly(climb_below_traffic(true), 100.0);
   EXPECT_EQ(with.opened(), 0u);
-  const auto without = fly(climb_below_traffic(false), 100.0);
+  // Without a selection the adjacent-level presumption (design §4.5) would keep it quiet
+  // too; switched off, the prediction is linear.
+  PipelineConfig linear;
+  linear.eligibility.adjacent_level_off = false;
+  const auto without = fly(climb_below_traffic(false), 100.0, linear);
   EXPECT_EQ(without.opened(), 1u) << "the same climb predicted linearly";
+}
+
+TEST(AdjacentLevelOff, AClimbToTheLevelBelowTrafficWithoutASelectionRaisesNoAlert) {
+  // opensky switzerland, jade-cat062-ff: feeds without selected altitudes, where climbs
+  // and descents to the level next to traffic were half of the nuisance alerts.
+  const auto run = fly(climb_below_traffic(false), 100.0);
+  EXPECT_EQ(run.opened(), 0u);
+  EXPECT_GT(run.pipeline->suppressed().count("adjacent_level_off"), 0u);
+}
+
+TEST(AdjacentLevelOff, AClimbThroughTheLevelBelowTrafficAlertsTwentySecondsAhead) {
+  // The same climber without a selection climbs on at 1,500 ft/min through FL340 into
+  // the traffic at FL350: 800 ft apart at 64 s, 5 NM apart at 76 s, the loss. It can
+  // stop at FL340 (194 ft at 0.05 g) until 33,806 ft, 48 s; then the test is linear.
+  std::vector<Flight> flights = climb_below_traffic(false);
+  flights[0].vr_fpm = 1500.0;
+  flights[0].edit = {};
+  const auto run = fly(flights, 100.0);
+  ASSERT_EQ(run.opened(), 1u);
+  const double loss_t = kT0 + 76.0;
+  EXPECT_LE(run.first_opened_t(), loss_t - 20.0);
+  PipelineConfig linear;
+  linear.eligibility.adjacent_level_off = false;
+  const auto without = fly(flights, 100.0, linear);
+  ASSERT_EQ(without.opened(), 1u);
+  EXPECT_LT(without.first_opened_t(), run.first_opened_t()) << "the presumption costs warning time, and only so much";
 }
 
 TEST(VerticalIntent, ABustOfTheSelectionStillAlerts) {

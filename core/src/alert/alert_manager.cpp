@@ -90,7 +90,8 @@ void AlertManager::record_clear(Pairs::iterator it, double t, int clear, std::ve
     forget(it);
     return;
   }
-  if (++s.clears_in_row < clear) return;
+  if (counts(s, t)) ++s.clears_in_row;
+  if (s.clears_in_row < clear) return;
   end(s, t, AlertEndReason::Cleared, out);
   forget(it);
 }

@@ -12,6 +12,8 @@ constexpr double kNauticalMile_m = 1852.0;
 // second or two (750 ft/min and more, ADS-B) may well be a climb.
 constexpr double kAltitudeQuantum_ft = 25.0;
 constexpr double kQuantumRate_fpm = 400.0;
+constexpr double kFoot_m = 0.3048;
+constexpr double kStandardGravity = 9.80665;  // m/s²
 }
 
 bool may_exclude_mode3a(std::uint16_t code) { return code != 07500 && code != 07600 && code != 07700; }
@@ -33,6 +35,7 @@ bool is_discrete_mode3a(std::uint16_t code) {
 Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima)
     : config_(config),
       adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / 0.3048),
+      separation_ft_(minima.vertical_m / 0.3048),
       vertical_lookahead_s_(minima.vertical_lookahead_s) {
   // An emergency code must alert whatever the list says (the configuration refuses
   // them too; this keeps the rule true for programs that build the config themselves).
@@ -86,19 +89,18 @@ bool Rules::one_aircraft_by_code(const track::Track& a, const track::Track& b, d
   return coincide(a, b, distance_m, config_);
 }
 
+std::optional<double> Rules::level_rate(const track::Track& t) const {
+  // A first record without a vertical rate reads 0 ft/min: that is not "level".
+  if (!t.vertical_rate_known) return std::nullopt;
+  if (std::abs(t.vr_fpm) < config_.level_rate_fpm) return t.vr_fpm;
+  if (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft && std::abs(t.vr_fpm) <= kQuantumRate_fpm &&
+      !t.altitude_moving_one_way)
+    return 0.0;
+  return std::nullopt;
+}
+
 bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   if (config_.level_rate_fpm <= 0.0) return false;
-  // A first record without a vertical rate reads 0 ft/min: that is not "level".
-  if (!a.vertical_rate_known || !b.vertical_rate_known) return false;
-  // The rate a level track is taken to have: its own below level_rate_fpm, 0 for one
-  // quantum step, none (not level) otherwise.
-  const auto level_rate = [&](const track::Track& t) -> std::optional<double> {
-    if (std::abs(t.vr_fpm) < config_.level_rate_fpm) return t.vr_fpm;
-    if (t.vertical_rate_derived && t.altitude_step_ft <= kAltitudeQuantum_ft && std::abs(t.vr_fpm) <= kQuantumRate_fpm &&
-        !t.altitude_moving_one_way)
-      return 0.0;
-    return std::nullopt;
-  };
   const std::optional<double> rate_a = level_rate(a), rate_b = level_rate(b);
   if (!rate_a || !rate_b) return false;
   // "Level" tolerates a few hundred ft/min each: the pair must still be at adjacent levels
@@ -108,6 +110,31 @@ bool Rules::level_pair(const track::Track& a, const track::Track& b) const {
   const double later_ft = dz_ft + (*rate_b - *rate_a) / 60.0 * vertical_lookahead_s_;
   return std::abs(dz_ft) >= adjacent_level_ft_ && std::abs(later_ft) >= adjacent_level_ft_ &&
          (dz_ft > 0.0) == (later_ft > 0.0);
+}
+
+bool Rules::adjacent_level_off(const track::Track& a, const track::Track& b, double now) const {
+  if (!config_.adjacent_level_off || config_.level_rate_fpm <= 0.0) return false;
+  const auto levels_off_beside = [&](const track::Track& mover, const track::Track& level) {
+    const std::optional<double> rate_level = level_rate(level);
+    if (!rate_level || !mover.vertical_rate_known || level_rate(mover)) return false;
+    // A selection, believed or not, is the mover's own word on where it stops: the
+    // probe's intent model (design §4.4) has already judged it.
+    if (mover.intent.sel_ft) return false;
+    const double z_mover = mover.alt_ft + mover.vr_fpm / 60.0 * std::max(0.0, now - mover.t);
+    const double z_level = level.alt_ft + *rate_level / 60.0 * std::max(0.0, now - level.t);
+    const double towards = z_level > z_mover ? 1.0 : -1.0;  // the mover's way to the level one
+    if (mover.vr_fpm * towards <= 0.0) return false;
+    // Faster than ICAO's recommended rate near traffic at the adjacent level: not
+    // behaving as an aircraft about to stop next to it.
+    if (std::abs(mover.vr_fpm) > kLevelOffMaxRate_fpm) return false;
+    const double rate_mps = mover.vr_fpm / 60.0 * kFoot_m;
+    const double stop_ft = rate_mps * rate_mps / (2.0 * kLevelOffDeceleration_g * kStandardGravity) / kFoot_m;
+    // Where the mover can stop, and where the level one is after T_v.
+    const double gap_stopped_ft = (z_level - z_mover) * towards - stop_ft;
+    const double gap_later_ft = gap_stopped_ft + *rate_level / 60.0 * vertical_lookahead_s_ * towards;
+    return gap_stopped_ft >= separation_ft_ && gap_later_ft >= adjacent_level_ft_;
+  };
+  return levels_off_beside(a, b) || levels_off_beside(b, a);
 }
 
 }  // namespace kew::eligibility

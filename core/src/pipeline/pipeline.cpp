@@ -892,6 +892,12 @@ Pipeline::RuleVerdict Pipeline::rule_verdict(const PairKinematics& pair) const {
     return v;
   }
   if (alerts_.is_active(pair.p, pair.q)) return v;
+  // A presumption, not a fact: it keeps an alert from opening, never ends one, so a
+  // level bust that opened one keeps it until the conflict test clears.
+  if (rules_.adjacent_level_off(tp, tq, judged_at_)) {
+    v.rule = PairStage::AdjacentLevelOff;
+    return v;
+  }
   if (pair.parameters.inhibited) {
     v.rule = PairStage::Inhibited;
     return v;
@@ -925,7 +931,7 @@ bool Pipeline::suppressed_by_rules(const PairKinematics& pair) {
       suppressed_.reject(eligibility::kExclusionNames.name(v.exclusion));
       break;
     default:
-      suppressed_.reject(kPairStageNames.name(*v.rule));  // level_pair, inhibited
+      suppressed_.reject(kPairStageNames.name(*v.rule));  // level_pair, adjacent_level_off, inhibited
       break;
   }
   return true;

@@ -83,7 +83,7 @@ class AlertManager {
     if (it == pairs_.end()) it = create(key);
     PairState& s = it->second;
     s.clears_in_row = 0;
-    if (s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
+    if (counts(s, t) && s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
     if (!s.active && s.conflicts_in_row < (e.confirm > 0 ? e.confirm : config_.confirm)) return;
     if (s.active && !changed(s, e, t)) return;
     AlertEvent event;
@@ -175,6 +175,9 @@ class AlertManager {
     Slot lo = 0, hi = 0;
     int conflicts_in_row = 0;
     int clears_in_row = 0;
+    /// Data time of the pair's last counted evaluation: evaluations at one data time
+    /// (both parties' records of one radar scan or system-track frame) count once.
+    double counted_t = -1e300;
     bool active = false;
     std::uint64_t opened_seq = 0;
     LastEvent last;  // while active
@@ -185,6 +188,13 @@ class AlertManager {
   static std::uint64_t pair_key(Slot p, Slot q) {
     const Slot lo = p < q ? p : q, hi = p < q ? q : p;
     return (std::uint64_t{lo} << 32) | hi;
+  }
+  /// Whether an evaluation at data time t counts towards confirm or clear: the first at
+  /// each data time does (design §4.7); it is remembered.
+  static bool counts(PairState& s, double t) {
+    if (t <= s.counted_t) return false;
+    s.counted_t = t;
+    return true;
   }
   Pairs::iterator create(std::uint64_t key);
   void forget(Pairs::iterator it);

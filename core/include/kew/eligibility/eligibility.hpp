@@ -52,6 +52,10 @@ struct EligibilityConfig {
   double max_position_age_s = 20.0;
   /// Level pairs: |vertical rate| below this is level (ft/min, ≥ 0; 0 disables the rule).
   double level_rate_fpm = 300.0;
+  /// Levelling off beside a level aircraft: a climb or descent without a selected
+  /// altitude towards a level aircraft is presumed to stop at the level S_v short of it
+  /// while it can still stop there gently (design §4.5). Needs level_rate_fpm > 0.
+  bool adjacent_level_off = true;
   /// One aircraft without addresses: the same discrete Mode 3/A code on two tracks within
   /// this distance (NM) and altitude difference (ft) of each other.
   double same_code_distance_nm = 1.0;
@@ -118,11 +122,30 @@ class Rules {
   /// Track::vertical_rate_known) and reported at adjacent levels (|Δaltitude| ≥ S_v −
   /// the altimetry tolerance), still so at the end of T_v with their rates.
   bool level_pair(const track::Track& a, const track::Track& b) const;
+  /// Whether one track is level (as level_pair reads it) and the other climbs or
+  /// descends towards it without a selected altitude (Track::intent), at no more than
+  /// kLevelOffMaxRate_fpm, and can still stop at kLevelOffDeceleration_g before it is S_v
+  /// from the level one, which is then still S_v − the altimetry tolerance away after T_v
+  /// at its own rate: the mover is presumed to level off at the adjacent level, as air
+  /// traffic control clears it to (design §4.5). Altitudes at data time `now` (UTC s),
+  /// extrapolated from the last records.
+  bool adjacent_level_off(const track::Track& a, const track::Track& b, double now) const;
+  /// ICAO Doc 8168 (PANS-OPS) asks for less than 1,500 ft/min over the last 1,000 ft to a
+  /// level when traffic is at or near the adjacent level, to spare ACAS nuisance
+  /// advisories: a faster mover is not presumed to stop (ft/min).
+  static constexpr double kLevelOffMaxRate_fpm = 1500.0;
+  /// The gentle vertical deceleration of a capture (g), as track::IntentConfig's.
+  static constexpr double kLevelOffDeceleration_g = 0.05;
 
 
  private:
+  /// The rate (ft/min) a level track is taken to have: its own below level_rate_fpm, 0
+  /// for one altitude quantum between two records; none when it is not level.
+  std::optional<double> level_rate(const track::Track& t) const;
+
   EligibilityConfig config_;
   double adjacent_level_ft_;     // S_v − the altimetry tolerance
+  double separation_ft_;         // S_v
   double vertical_lookahead_s_;  // T_v
 };
 

@@ -33,12 +33,13 @@ enum class PairStage : std::uint8_t {
   SameAddress,       ///< one aircraft: both tracks carry one 24-bit address
   SameCode,          ///< one aircraft: one discrete code on coinciding tracks (design §4.5)
   LevelPair,         ///< two level aircraft at adjacent levels
+  AdjacentLevelOff,  ///< a climb or descent presumed to level off beside a level aircraft
   Inhibited,         ///< a party in an inhibition volume
   Excluded,          ///< a party may not open an alert (the rule and its value)
   ConfirmPending,    ///< in conflict, fewer than `confirm` evaluations in a row yet
   Alerting,          ///< the pair's alert is open
 };
-inline constexpr util::NameTable<PairStage, 12> kPairStageNames({{
+inline constexpr util::NameTable<PairStage, 13> kPairStageNames({{
     {PairStage::RecordRefused, "record_refused"},
     {PairStage::NoTrack, "no_track"},
     {PairStage::AwaitingVelocity, "awaiting_velocity"},
@@ -47,6 +48,7 @@ inline constexpr util::NameTable<PairStage, 12> kPairStageNames({{
     {PairStage::SameAddress, "one_aircraft_address"},
     {PairStage::SameCode, "one_aircraft_code"},
     {PairStage::LevelPair, "level_pair"},
+    {PairStage::AdjacentLevelOff, "adjacent_level_off"},
     {PairStage::Inhibited, "inhibited"},
     {PairStage::Excluded, "excluded"},
     {PairStage::ConfirmPending, "confirm_pending"},

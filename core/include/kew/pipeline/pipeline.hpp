@@ -225,7 +225,8 @@ class Pipeline {
   const Rejections& dropped_fields() const { return tracks_.dropped_fields(); }
   Rejections& dropped_fields() { return tracks_.dropped_fields(); }
   /// Conflicting evaluations the rules of design §4.5 turned clear, by rule:
-  /// "same_aircraft", "level_pair", or the exclusion of the first excluded party.
+  /// "same_aircraft", "level_pair", "adjacent_level_off", "inhibited", or the exclusion of
+  /// the first excluded party.
   const Rejections& suppressed() const { return suppressed_; }
   const track::TrackTable& tracks() const { return tracks_; }
   /// Tracks in the kinetic engines (accepted with a velocity), each counted once.
