@@ -124,8 +124,10 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
       r.fail(nullptr, fmt::format("excluded_mode3a: {:04o} is an emergency code and always alerts", code));
   r.boolean("exclude_coasting", e.exclude_coasting);
   r.number("max_position_age_s", e.max_position_age_s, 0.1, 3600.0);
+  r.integer("min_records", e.min_records, 1, 10);
   r.number("level_rate_fpm", e.level_rate_fpm, 0.0, 5000.0);
   r.boolean("adjacent_level_off", e.adjacent_level_off);
+  r.number("adjacent_level_off_above_ft", e.adjacent_level_off_above_ft, -5000.0, 200000.0);
   r.number("same_code_distance_nm", e.same_code_distance_nm, 0.0, 20.0);
   r.number("same_code_altitude_ft", e.same_code_altitude_ft, 0.0, 5000.0);
 }

@@ -124,6 +124,7 @@ kew::config::SharedConfig without_eligibility(kew::config::SharedConfig config) 
   e.excluded_mode3a.clear();
   e.exclude_coasting = false;
   e.max_position_age_s = infinity;
+  e.min_records = 1;
   e.level_rate_fpm = 0.0;
   e.adjacent_level_off = false;
   e.same_code_distance_nm = 0.0;

@@ -323,11 +323,13 @@ class KewEval(unittest.TestCase):
         # Then, in the loss, the conflict awaits its confirmation; the late alert ends the notes.
         self.assertEqual([s["stage"] for s in m["spans"][-2:]], ["probe_clear", "confirm_pending"])
         self.assertGreaterEqual(m["spans"][-1]["from_t"], m["start_t"] - 2)  # from B's turn on
-        # UB's first record came 4.5 NM from UA, already in conflict.
+        # UB's first record came 4.5 NM from UA, already in conflict; without an address it
+        # opens no alert before its second (min_records, design §4.5).
         u = explained["U"]
-        self.assertEqual((u["outcome"], u["stage"]), ("unwarnable", "no_track"))
-        self.assertIn("eval:UB has no track: no record of it yet", u["reason"])
-        self.assertEqual(run["census"], {"no_track": {"missed": 0, "late": 0, "unwarnable": 1},
+        self.assertEqual((u["outcome"], u["stage"]), ("unwarnable", "excluded"))
+        self.assertIn("first_records: eval:UB seen in 1 record(s), fewer than 2", u["reason"])
+        self.assertEqual([s["stage"] for s in u["spans"][:2]], ["no_track", "excluded"])
+        self.assertEqual(run["census"], {"excluded": {"missed": 0, "late": 0, "unwarnable": 1},
                                          "probe_clear": {"missed": 1, "late": 0, "unwarnable": 0}})
         # The text form says the same, and explaining changes no figure.
         text = self.run_eval("--explain", self.recording).decode()

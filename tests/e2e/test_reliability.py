@@ -13,6 +13,7 @@ import threading
 import time
 import unittest
 import urllib.request
+import zlib
 
 from kewd_harness import (Subscriber, count_lines, generate, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase, MODBUS_CLIENT, pymodbus_python
@@ -39,6 +40,13 @@ def head_on(aircraft, t, t0):
     lon = 8.0 + east_m / (111320.0 * math.cos(math.radians(50.0)))
     return {"t": round(t, 3), "id": aircraft, "src": "e2e", "lat": 50.0, "lon": round(lon, 7), "alt_ft": 35000,
             "gs_kt": 450, "trk_deg": 90.0 if sign > 0 else 270.0, "vr_fpm": 0}
+
+
+def address_of(name):
+    """A 24-bit address for a synthetic aircraft: aircraft reports with addresses open an
+    alert at the second look (a track without one waits for its second record first,
+    design §4.5)."""
+    return f"{zlib.crc32(name.encode()) & 0xFFFFFF:06X}"
 
 
 def lines(records):
@@ -172,7 +180,8 @@ def parked_pairs(count, t):
         lat = 40.0 + (i // 40) * 0.5
         lon = 0.0 + (i % 40) * 0.5
         for side in (-1, 1):
-            records.append({"t": t, "id": f"P{i}{'AB'[side > 0]}", "src": "e2e", "lat": lat,
+            name = f"P{i}{'AB'[side > 0]}"
+            records.append({"t": t, "id": name, "addr": address_of(name), "src": "e2e", "lat": lat,
                             "lon": round(lon + side * 3 * 1852.0 / (111320.0 * math.cos(math.radians(lat))), 7),
                             "alt_ft": 30000 + 10 * (i % 50), "gs_kt": 450, "trk_deg": 270.0 if side > 0 else 90.0,
                             "vr_fpm": 0})
@@ -440,6 +449,7 @@ def pair_records(k, t, t0):
     for aircraft in "AB":
         record = head_on(aircraft, t, t0)
         record["id"] = f"{aircraft}{k}"
+        record["addr"] = address_of(record["id"])
         record["lat"] = 50.0 + 0.5 * k
         out.append(record)
     return out

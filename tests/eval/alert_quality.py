@@ -56,6 +56,7 @@ RULES_OFF = [
     ("code 7777", "[eligibility]\nexcluded_mode3a = []\n"),
     ("coasting", "[eligibility]\nexclude_coasting = false\n"),
     ("stale position 20 s", "[eligibility]\nmax_position_age_s = 3600\n"),
+    ("first record of a track without an address", "[eligibility]\nmin_records = 1\n"),
     ("vertical look-ahead 30 s + tolerance (T_v = T, tolerance 0)", "[probe]\nvertical_lookahead_s = 120\naltimetry_tolerance_ft = 0\n"),
     ("clear = 4 (2 instead)", "[alerts]\nclear = 2\n"),
     ("vertical intent (selected altitude)", "[probe]\nvertical_intent = false\n"),

@@ -118,6 +118,22 @@ TEST_F(Lifecycle, EvaluationsAtOneDataTimeCountOnce) {
   EXPECT_EQ(events[1].t, 115.0);
 }
 
+TEST_F(Lifecycle, LateRecordsJudgedAtTheClockAreLooksOfTheirOwnTimes) {
+  // Records 8 and 4 s late are extrapolated to the clock (116) and judged there: two
+  // observations, two looks; one record's two evaluations stay one.
+  Evaluation e{true, Severity::Caution, 90.0, 1000.0, 0.0};
+  const auto look = [&](double observed_t) {
+    e.observed_t = observed_t;
+    manager.evaluate(1, 2, e, 116.0, [](AlertEvent& event) { event.a.id = "x", event.b.id = "y"; }, events);
+  };
+  look(108.0);
+  look(108.0);
+  EXPECT_TRUE(events.empty());
+  look(112.0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].t, 116.0);
+}
+
 TEST_F(Lifecycle, ResumeContinuesSeqAndNumberFromTheGivenValues) {
   // kewd after a restart (design §4.7): the last run's numbering goes on.
   manager.resume(41, 65535);

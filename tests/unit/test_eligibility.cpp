@@ -79,7 +79,8 @@ TEST(Eligibility, TheLowerLimitStandsAboveTheNearestAerodrome) {
   ASSERT_EQ(terminal.opened(), 1u);
   ASSERT_EQ(high.opened(), 1u);
   EXPECT_EQ(terminal.first_opened_t(), high.first_opened_t());
-  EXPECT_EQ(terminal.first_opened_t(), kT0 + 4.0);  // the second evaluation with both seen
+  // The second look once both were seen twice (no addresses: first_records, design §4.5).
+  EXPECT_EQ(terminal.first_opened_t(), kT0 + 8.0);
   // 3,000 ft there is 700 ft above the runway, in the circuit: no alert, though it is
   // 1,500 ft above the sea.
   const Outcome circuit = fly(over_granada(3000.0), 60.0);
@@ -433,6 +434,8 @@ TEST(Eligibility, AdjacentLevelOffFollowsDesign4_5) {
       {"the level one drifts 290 ft/min down: still 995 ft after T_v", 34750.0, 1088.0, 36000.0, -290.0, true},
       {"1,500 ft/min 2,000 ft below: can stop at FL350", 34000.0, 1500.0, 36000.0, 0.0, true},
       {"1,600 ft/min: faster than ICAO's 1,500 near traffic", 34000.0, 1600.0, 36000.0, 0.0, false},
+      {"traffic at 5,000 ft, below FL100: visual rules, no clearance", 3750.0, 1088.0, 5000.0, 0.0, false},
+      {"traffic at FL100", 8750.0, 1088.0, 10000.0, 0.0, true},
   };
   eligibility::Rules rules({}, probe::SeparationMinima{});
   const double now = 1000.0;
@@ -477,6 +480,56 @@ TEST(Eligibility, AdjacentLevelOffNeedsAKnownRateNoSelectionAndTheRuleOn) {
   EXPECT_FALSE(eligibility::Rules({}, long_look).adjacent_level_off(mover, level, 0.0));
 }
 
+TEST(Eligibility, ATrackWithoutAnAddressOpensNoAlertOnItsFirstRecord) {
+  eligibility::Rules rules({}, probe::SeparationMinima{});
+  track::Track t;
+  t.alt_ft = 36000.0;
+  t.gs_kt = 440.0;
+  t.records = 1;
+  EXPECT_EQ(rules.exclusion(t, 0.0), eligibility::Exclusion::FirstRecords);
+  t.records = 2;
+  EXPECT_EQ(rules.exclusion(t, 0.0), eligibility::Exclusion::None);
+  // An address is the aircraft's own report: one record of it is an aircraft.
+  t.records = 1;
+  t.address = 0x4CA1B2;
+  EXPECT_EQ(rules.exclusion(t, 0.0), eligibility::Exclusion::None);
+  t.address.reset();
+  eligibility::EligibilityConfig once;
+  once.min_records = 1;
+  EXPECT_EQ(eligibility::Rules(once, probe::SeparationMinima{}).exclusion(t, 0.0), eligibility::Exclusion::None);
+}
+
+// jade-cat062-ff 14:46Z: a CAT062 duplicate of track 286 (same code, 4 NM away, one level)
+// lived for one record; the next frame's record of 286 confirmed a loss against its
+// extrapolation, and the source's end of the duplicate, one frame later, ended it.
+std::vector<AlertEvent> duplicate_for_one_record(const PipelineConfig& config) {
+  Flight real{"286", "cat062/70.16"};
+  real.trk_deg = 270.0;
+  Flight duplicate{"890", "cat062/70.16"};
+  duplicate.trk_deg = 267.0;
+  duplicate.north_m = 4.0 * 1852.0;
+  for (Flight* f : {&real, &duplicate}) f->edit = [](TrackReport& r) { r.mode3a = 06010; };
+  std::vector<AlertEvent> events;
+  Pipeline pipeline(config);
+  pipeline.set_alert_sink([&events](const AlertEvent& e) { events.push_back(e); });
+  pipeline.process(real.at(kT0 - 5.0));
+  pipeline.process(real.at(kT0));
+  pipeline.process(duplicate.at(kT0));
+  pipeline.process(real.at(kT0 + 5.0));
+  TrackReport end = duplicate.at(kT0);
+  end.track_end = true;
+  pipeline.process(end);
+  pipeline.set_alert_sink({});
+  return events;
+}
+
+TEST(Eligibility, ATrackersDuplicateForOneRecordOpensNoAlert) {
+  EXPECT_TRUE(duplicate_for_one_record({}).empty());
+  PipelineConfig once;
+  once.eligibility.min_records = 1;
+  EXPECT_FALSE(duplicate_for_one_record(once).empty()) << "without the rule it alerts";
+}
+
 TEST(Eligibility, ARefusedLastRecordStillEndsTheTrack) {
   Flight a{"1234", "cat062/25.100"};
   Pipeline pipeline;
@@ -511,6 +564,7 @@ TEST(Eligibility, ARefusedRecordWithAnotherAddressKeepsTheOldTrack) {
 TEST(Eligibility, RulesOnTheirOwn) {
   eligibility::Rules rules({}, probe::SeparationMinima{});
   track::Track t;
+  t.records = 2;  // seen twice: first_records has its own test
   t.alt_ft = 35000.0;
   t.gs_kt = 450.0;
   t.t = 100.0;

@@ -83,14 +83,14 @@ void AlertManager::forget(Pairs::iterator it) {
   pairs_.erase(it);
 }
 
-void AlertManager::record_clear(Pairs::iterator it, double t, int clear, std::vector<AlertEvent>& out) {
+void AlertManager::record_clear(Pairs::iterator it, double t, double look_t, int clear, std::vector<AlertEvent>& out) {
   PairState& s = it->second;
   s.conflicts_in_row = 0;
   if (!s.active) {
     forget(it);
     return;
   }
-  if (counts(s, t)) ++s.clears_in_row;
+  if (counts(s, look_t)) ++s.clears_in_row;
   if (s.clears_in_row < clear) return;
   end(s, t, AlertEndReason::Cleared, out);
   forget(it);

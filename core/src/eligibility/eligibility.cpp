@@ -64,6 +64,7 @@ Exclusion Rules::exclusion(const track::Track& t, double now) const {
     return Exclusion::ExcludedCode;
   if (config_.exclude_coasting && t.coasting) return Exclusion::Coasting;
   if (now - t.t > config_.max_position_age_s) return Exclusion::PositionStale;
+  if (!t.address && t.records < static_cast<std::uint32_t>(config_.min_records)) return Exclusion::FirstRecords;
   return Exclusion::None;
 }
 
@@ -127,6 +128,9 @@ bool Rules::adjacent_level_off(const track::Track& a, const track::Track& b, dou
     // Faster than ICAO's recommended rate near traffic at the adjacent level: not
     // behaving as an aircraft about to stop next to it.
     if (std::abs(mover.vr_fpm) > kLevelOffMaxRate_fpm) return false;
+    // Below it much traffic flies under visual rules, climbing without a clearance to a
+    // level beside anyone.
+    if (level.alt_ft < config_.adjacent_level_off_above_ft) return false;
     const double rate_mps = mover.vr_fpm / 60.0 * kFoot_m;
     const double stop_ft = rate_mps * rate_mps / (2.0 * kLevelOffDeceleration_g * kStandardGravity) / kFoot_m;
     // Where the mover can stop, and where the level one is after T_v.

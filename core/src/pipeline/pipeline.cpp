@@ -838,6 +838,7 @@ void Pipeline::evaluate_pairs(track::TrackSlot slot) {
       const PairParameters parameters = pair_parameters(view_[slot].base.region, view_[other].base.region);
       e.confirm = parameters.confirm;
       e.clear = parameters.clear;
+      e.observed_t = view_[slot].track.t;
       alerts_.evaluate(std::min(slot, other), std::max(slot, other), e, now, [](AlertEvent&) {}, pending_events_);
       continue;
     }
@@ -856,6 +857,7 @@ void Pipeline::evaluate_pairs(track::TrackSlot slot) {
       }
     }
     e.in_conflict = g.in_conflict;
+    e.observed_t = view_[slot].track.t;
     e.confirm = pair.parameters.confirm;
     e.clear = pair.parameters.clear;
     if (g.in_conflict) {
@@ -991,6 +993,8 @@ std::string exclusion_detail(eligibility::Exclusion why, const track::Track& t, 
       return fmt::format("{} coasting (its source extrapolates it)", who);
     case eligibility::Exclusion::PositionStale:
       return fmt::format("{} last record {:.0f} s old, over {:.0f} s", who, now - t.t, c.max_position_age_s);
+    case eligibility::Exclusion::FirstRecords:
+      return fmt::format("{} seen in {} record(s), fewer than {}", who, t.records, c.min_records);
     case eligibility::Exclusion::None:
       break;
   }

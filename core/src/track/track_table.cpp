@@ -1,6 +1,7 @@
 #include "kew/track/track_table.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
 #include <utility>
 
@@ -179,6 +180,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   }
   Track& track = tracks_[slot];
   track.t = r.t;
+  track.records = result.velocity_reset ? 1 : std::min(track.records + 1, std::numeric_limits<std::uint32_t>::max() - 1);
   track.lat_deg = r.lat_deg;
   track.lon_deg = r.lon_deg;
   track.alt_ft = r.alt_ft;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -46,6 +47,10 @@ struct Evaluation {
   /// manager's configuration.
   int confirm = 0;
   int clear = 0;
+  /// Data time of the record behind this evaluation (UTC s): its own time, also when it
+  /// came late and is judged at the clock. Evaluations of one observed time are one look
+  /// at the pair and count once towards confirm and clear; NaN: the evaluation's time.
+  double observed_t = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How the track in a slot is named: the `source` and `id` of its AlertParty. Views stay
@@ -77,13 +82,13 @@ class AlertManager {
     const std::uint64_t key = pair_key(p, q);
     auto it = pairs_.find(key);
     if (!e.in_conflict) {
-      if (it != pairs_.end()) record_clear(it, t, e.clear > 0 ? e.clear : config_.clear, out);
+      if (it != pairs_.end()) record_clear(it, t, look_time(e, t), e.clear > 0 ? e.clear : config_.clear, out);
       return;
     }
     if (it == pairs_.end()) it = create(key);
     PairState& s = it->second;
     s.clears_in_row = 0;
-    if (counts(s, t) && s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
+    if (counts(s, look_time(e, t)) && s.conflicts_in_row < 0x7fffffff) ++s.conflicts_in_row;
     if (!s.active && s.conflicts_in_row < (e.confirm > 0 ? e.confirm : config_.confirm)) return;
     if (s.active && !changed(s, e, t)) return;
     AlertEvent event;
@@ -175,8 +180,8 @@ class AlertManager {
     Slot lo = 0, hi = 0;
     int conflicts_in_row = 0;
     int clears_in_row = 0;
-    /// Data time of the pair's last counted evaluation: evaluations at one data time
-    /// (both parties' records of one radar scan or system-track frame) count once.
+    /// Observed time of the pair's last counted evaluation: evaluations of one observed
+    /// time (both parties' records of one radar scan or system-track frame) count once.
     double counted_t = -1e300;
     bool active = false;
     std::uint64_t opened_seq = 0;
@@ -189,8 +194,10 @@ class AlertManager {
     const Slot lo = p < q ? p : q, hi = p < q ? q : p;
     return (std::uint64_t{lo} << 32) | hi;
   }
-  /// Whether an evaluation at data time t counts towards confirm or clear: the first at
-  /// each data time does (design §4.7); it is remembered.
+  /// The observed time an evaluation counts under (Evaluation::observed_t, else t).
+  static double look_time(const Evaluation& e, double t) { return e.observed_t == e.observed_t ? e.observed_t : t; }
+  /// Whether an evaluation of observed time t counts towards confirm or clear: the first
+  /// of each observed time does (design §4.7); it is remembered.
   static bool counts(PairState& s, double t) {
     if (t <= s.counted_t) return false;
     s.counted_t = t;
@@ -198,7 +205,7 @@ class AlertManager {
   }
   Pairs::iterator create(std::uint64_t key);
   void forget(Pairs::iterator it);
-  void record_clear(Pairs::iterator it, double t, int clear, std::vector<AlertEvent>& out);
+  void record_clear(Pairs::iterator it, double t, double look_t, int clear, std::vector<AlertEvent>& out);
   bool changed(const PairState& s, const Evaluation& e, double t) const;
   void open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
   void update(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);

@@ -50,12 +50,18 @@ struct EligibilityConfig {
   /// A track whose last record is older than this at the evaluation opens no alert (s, > 0):
   /// the prediction is then an extrapolation of an extrapolation.
   double max_position_age_s = 20.0;
+  /// A track opens no alert before its min_records-th record (≥ 1; 1 disables): one
+  /// record is one look, and a tracker's duplicate may live for just one (design §4.5).
+  int min_records = 2;
   /// Level pairs: |vertical rate| below this is level (ft/min, ≥ 0; 0 disables the rule).
   double level_rate_fpm = 300.0;
   /// Levelling off beside a level aircraft: a climb or descent without a selected
   /// altitude towards a level aircraft is presumed to stop at the level S_v short of it
   /// while it can still stop there gently (design §4.5). Needs level_rate_fpm > 0.
   bool adjacent_level_off = true;
+  /// ... where the level aircraft is at or above this (ft; FL100 by default: below it
+  /// much traffic flies under visual rules, without clearances to levels).
+  double adjacent_level_off_above_ft = 10000.0;
   /// One aircraft without addresses: the same discrete Mode 3/A code on two tracks within
   /// this distance (NM) and altitude difference (ft) of each other.
   double same_code_distance_nm = 1.0;
@@ -71,8 +77,9 @@ enum class Exclusion : std::uint8_t {
   ExcludedCode,     ///< Mode 3/A in excluded_mode3a
   Coasting,         ///< the source extrapolates the track
   PositionStale,    ///< no record for max_position_age_s
+  FirstRecords,     ///< fewer than min_records records yet
 };
-inline constexpr util::NameTable<Exclusion, 7> kExclusionNames({{
+inline constexpr util::NameTable<Exclusion, 8> kExclusionNames({{
     {Exclusion::None, "none"},
     {Exclusion::Slow, "slow"},
     {Exclusion::AltitudeBand, "altitude_band"},
@@ -80,6 +87,7 @@ inline constexpr util::NameTable<Exclusion, 7> kExclusionNames({{
     {Exclusion::ExcludedCode, "excluded_code"},
     {Exclusion::Coasting, "coasting"},
     {Exclusion::PositionStale, "position_stale"},
+    {Exclusion::FirstRecords, "first_records"},
 }});
 
 /// The codes that are never identity (conspicuity codes shared by many aircraft), and
@@ -124,7 +132,8 @@ class Rules {
   bool level_pair(const track::Track& a, const track::Track& b) const;
   /// Whether one track is level (as level_pair reads it) and the other climbs or
   /// descends towards it without a selected altitude (Track::intent), at no more than
-  /// kLevelOffMaxRate_fpm, and can still stop at kLevelOffDeceleration_g before it is S_v
+  /// kLevelOffMaxRate_fpm, the level one at or above adjacent_level_off_above_ft, and can
+  /// still stop at kLevelOffDeceleration_g before it is S_v
   /// from the level one, which is then still S_v − the altimetry tolerance away after T_v
   /// at its own rate: the mover is presumed to level off at the adjacent level, as air
   /// traffic control clears it to (design §4.5). Altitudes at data time `now` (UTC s),

@@ -86,6 +86,9 @@ struct Track {
   double altitude_change_ft = 0.0;
   bool altitude_moving_one_way = false;
   bool in_use = false;
+  /// Records accepted since the track began, or since its last velocity reset
+  /// (saturates): a track seen once may be a tracker's duplicate (design §4.5).
+  std::uint32_t records = 0;
 
   double t = 0.0;            ///< data time of the last accepted record (UTC s)
   double lat_deg = 0.0, lon_deg = 0.0, alt_ft = 0.0;
