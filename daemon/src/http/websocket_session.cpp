@@ -88,11 +88,12 @@ void WebSocketSession::end(std::string_view reason, std::string_view message) {
   server_.statistics().websocket_closed.reject(reason, message);
   queue_.clear();
   queued_bytes_ = 0;
-  if (writing_ || !open_) return finish();
-  const websocket::close_reason why(reason == "client_message" || reason == "protocol_error"
-                                        ? websocket::close_code::policy_error
-                                        : websocket::close_code::try_again_later,
-                                    std::string(reason));
+  // A client that fell behind or answers no ping is not reading: a close frame would
+  // wait behind its full socket for the closing handshake's timeout (request_timeout_s),
+  // holding the connection that long after it was cut off.
+  if (writing_ || !open_ || reason == "cut_off" || reason == "timeout") return finish();
+  // What is left is the client's own fault: a message, or a broken frame.
+  const websocket::close_reason why(websocket::close_code::policy_error, std::string(reason));
   ws_.async_close(why, [self = shared_from_this()](beast::error_code) { self->finish(); });
 }
 
