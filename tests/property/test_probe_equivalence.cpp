@@ -200,7 +200,8 @@ TEST(ProbeEquivalence, ExactEqualsBruteWithEveryRuleOn) {
   EXPECT_GE(opened, 5u) << "the scenario must exercise the probe";
   // Every rule has turned conflicts clear, so the equivalence covers each.
   for (const char* rule :
-       {"same_aircraft", "level_pair", "adjacent_level_off", "slow", "excluded_code", "coasting", "below_lower_limit"})
+       {"same_aircraft", "level_pair", "adjacent_level_off", "slow", "excluded_code", "coasting", "below_lower_limit",
+        "first_records"})
     EXPECT_GT(exact.suppressed.count(rule) ? exact.suppressed.at(rule) : 0u, 0u) << rule;
   EXPECT_GT(exact.fields_dropped, 0u);
   EXPECT_EQ(exact.audit_violations, 0u);
