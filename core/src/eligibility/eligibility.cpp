@@ -13,7 +13,6 @@ constexpr double kNauticalMile_m = 1852.0;
 constexpr double kAltitudeQuantum_ft = 25.0;
 constexpr double kQuantumRate_fpm = 400.0;
 constexpr double kFoot_m = 0.3048;
-constexpr double kStandardGravity = 9.80665;  // m/s²
 }
 
 bool may_exclude_mode3a(std::uint16_t code) { return code != 07500 && code != 07600 && code != 07700; }
@@ -34,8 +33,8 @@ bool is_discrete_mode3a(std::uint16_t code) {
 
 Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima)
     : config_(config),
-      adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / 0.3048),
-      separation_ft_(minima.vertical_m / 0.3048),
+      adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / kFoot_m),
+      separation_ft_(minima.vertical_m / kFoot_m),
       vertical_lookahead_s_(minima.vertical_lookahead_s) {
   // An emergency code must alert whatever the list says (the configuration refuses
   // them too; this keeps the rule true for programs that build the config themselves).
@@ -131,8 +130,7 @@ bool Rules::adjacent_level_off(const track::Track& a, const track::Track& b, dou
     // Below it much traffic flies under visual rules, climbing without a clearance to a
     // level beside anyone.
     if (level.alt_ft < config_.adjacent_level_off_above_ft) return false;
-    const double rate_mps = mover.vr_fpm / 60.0 * kFoot_m;
-    const double stop_ft = rate_mps * rate_mps / (2.0 * kLevelOffDeceleration_g * kStandardGravity) / kFoot_m;
+    const double stop_ft = track::stopping_distance_ft(mover.vr_fpm, track::kCaptureDeceleration_g);
     // Where the mover can stop, and where the level one is after T_v.
     const double gap_stopped_ft = (z_level - z_mover) * towards - stop_ft;
     const double gap_later_ft = gap_stopped_ft + *rate_level / 60.0 * vertical_lookahead_s_ * towards;

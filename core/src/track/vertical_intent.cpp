@@ -10,6 +10,11 @@ constexpr double kFpmToMps = kFootToMetre / 60.0;
 constexpr double kStandardGravity = 9.80665;  // m/s²
 }  // namespace
 
+double stopping_distance_ft(double vr_fpm, double deceleration_g) {
+  const double rate_mps = vr_fpm * kFpmToMps;
+  return rate_mps * rate_mps / (2.0 * deceleration_g * kStandardGravity) / kFootToMetre;
+}
+
 std::optional<double> update_intent(IntentState& state, const IntentConfig& config, double t,
                                     const std::optional<double>& sel_ft, SelectedAltitudeSource sel_src,
                                     double alt_ft, double vr_fpm) {
@@ -38,10 +43,7 @@ std::optional<double> update_intent(IntentState& state, const IntentConfig& conf
   }
   if (!state.band_entry_rate_fpm) state.band_entry_rate_fpm = rate_fpm;
   const bool falling = rate_fpm < config.fallen_fraction * *state.band_entry_rate_fpm;
-  const double rate_mps = rate_fpm * kFpmToMps;
-  const double stopping_ft =
-      rate_mps * rate_mps / (2.0 * config.capture_deceleration_g * kStandardGravity) / kFootToMetre;
-  if (!falling && distance_ft < stopping_ft) return std::nullopt;
+  if (!falling && distance_ft < stopping_distance_ft(rate_fpm, config.capture_deceleration_g)) return std::nullopt;
   return state.sel_ft;
 }
 

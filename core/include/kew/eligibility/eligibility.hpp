@@ -133,7 +133,7 @@ class Rules {
   /// Whether one track is level (as level_pair reads it) and the other climbs or
   /// descends towards it without a selected altitude (Track::intent), at no more than
   /// kLevelOffMaxRate_fpm, the level one at or above adjacent_level_off_above_ft, and can
-  /// still stop at kLevelOffDeceleration_g before it is S_v
+  /// still stop at track::kCaptureDeceleration_g before it is S_v
   /// from the level one, which is then still S_v − the altimetry tolerance away after T_v
   /// at its own rate: the mover is presumed to level off at the adjacent level, as air
   /// traffic control clears it to (design §4.5). Altitudes at data time `now` (UTC s),
@@ -143,8 +143,6 @@ class Rules {
   /// level when traffic is at or near the adjacent level, to spare ACAS nuisance
   /// advisories: a faster mover is not presumed to stop (ft/min).
   static constexpr double kLevelOffMaxRate_fpm = 1500.0;
-  /// The gentle vertical deceleration of a capture (g), as track::IntentConfig's.
-  static constexpr double kLevelOffDeceleration_g = 0.05;
 
 
  private:

@@ -10,6 +10,14 @@
 
 namespace kew::track {
 
+/// The gentle vertical deceleration of a capture (g): what the intent model and the
+/// adjacent level-off (design §4.4, §4.5) assume an aircraft levels off with.
+inline constexpr double kCaptureDeceleration_g = 0.05;
+
+/// The height (ft, ≥ 0) an aircraft at vertical rate `vr_fpm` (ft/min, either sign)
+/// needs to stop at `deceleration_g` (> 0): w²/2a.
+double stopping_distance_ft(double vr_fpm, double deceleration_g);
+
 struct IntentConfig {
   /// Use selected altitudes at all (false: every vertical prediction is linear).
   bool enabled = true;
@@ -22,7 +30,7 @@ struct IntentConfig {
   double capture_band_ft = 1000.0;
   /// ... by the distance it needs to stop at this vertical deceleration (g): closer
   /// than that with its rate not yet falling, it is not levelling off.
-  double capture_deceleration_g = 0.05;
+  double capture_deceleration_g = kCaptureDeceleration_g;
   /// "Falling": |rate| below this fraction of the |rate| it had on entering the band
   /// (one 64 ft/min ADS-B step is noise at 1,000 ft/min and more).
   double fallen_fraction = 0.9;
