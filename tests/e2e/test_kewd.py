@@ -505,7 +505,7 @@ class Operations(E2eCase):
                                           stdout=subprocess.DEVNULL).returncode != 0, 10, "the daemon to stop")
 
 
-MODBUS_CLIENT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "integration",
+MODBUS_CLIENT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "daemon",
                              "modbus_client.py")
 SEVERITY_CODE = {"caution": 1, "warning": 2, "loss": 3}
 

@@ -27,7 +27,7 @@
 //
 // Straight-line prediction only: the turn hypothesis of design §4.4 is not covered.
 // A prototype for measurement (tests/bench/peers_bench.cpp, method kew-lookahead) and
-// the property test that proves it exact (tests/property/test_lookahead_pairs.cpp).
+// the property test that proves it exact (tests/core/property/test_lookahead_pairs.cpp).
 
 #include <cstdint>
 #include <map>

@@ -80,7 +80,7 @@ struct SeparationStandard {
 /// prime-vertical radii of curvature there. Within 20 NM it differs from the geodesic
 /// (GeographicLib) by less than 0.005 % up to 80° of latitude and 0.02 % at 85°, far
 /// inside the 0.5 % the evaluation allows, at a tenth of a geodesic's cost;
-/// tests/unit/test_evaluation.cpp checks it. Longitudes are compared across ±180°. Not
+/// tests/replay/test_evaluation.cpp checks it. Longitudes are compared across ±180°. Not
 /// for long lines.
 double local_distance_m(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 

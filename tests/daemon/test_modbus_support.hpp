@@ -89,7 +89,7 @@ bool wait_for(const std::function<bool()>& condition);
 std::optional<std::string> python_with_pymodbus();
 bool have_mbpoll();
 
-/// Runs tests/integration/modbus_client.py with `arguments` against `port`.
+/// Runs tests/daemon/modbus_client.py with `arguments` against `port`.
 CommandResult modbus_client(const std::string& python, std::uint16_t port, const std::string& arguments);
 /// The "values" array of the client's JSON output (empty when absent).
 std::vector<long> json_values(const std::string& output);
