@@ -40,39 +40,61 @@ export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
 export CCACHE_BASEDIR=$here
 export CCACHE_NOHASHDIR=true
 
-configure_and_build() {  # [CMAKE_ARGS...]
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+# The one build tree of both commands, configured alike, so that the test command after
+# the run command (or the other way round) builds nothing again. Warnings are errors in
+# both: the compilers bootstrap installs (Debian 12's g++ 12 and clang 14) are the ones
+# CI builds with, and a build by hand keeps the default (KEW_WERROR=OFF).
+configure_and_build() {
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKEW_WERROR=ON >/dev/null
   cmake --build "$build" -j "$jobs"
 }
 
-# A Release tree with the defaults (and -Werror), built only: a build type other than the
-# suite's must keep building with every warning on (README "Building and testing").
-build_release() {
-  cmake -S "$here" -B "$build-release" -DCMAKE_BUILD_TYPE=Release -DKEW_WERROR=ON >/dev/null
-  cmake --build "$build-release" -j "$jobs"
+# The second build, with clang, ASan + UBSan and libFuzzer: the decoder and encoder unit
+# tests under the sanitizers, then a short smoke run of every fuzz target (tests/fuzz).
+# Only the targets needed are built; benchmarks are off. The build runs at the lowest CPU
+# priority beside the test suite (whose end-to-end tests leave the cores idle much of the
+# time), so that it takes only what the tests leave. KEW_FUZZ_SECONDS sets the run per
+# target (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
+sanitize_build="$build-sanitize"
+sanitize_build() {
+  CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF -DKEW_WERROR=ON >/dev/null
+  # kew_decoder_tests: the tests of kew_protocol (tests/protocol/sources.cmake), without
+  # the other libraries' tests (tests/fuzz/CMakeLists.txt).
+  nice -n 19 cmake --build "$sanitize_build" -j "$jobs" --target kew_decoder_tests kew_fuzzers
 }
 
-# Second build with clang, ASan + UBSan and libFuzzer: the decoder and encoder unit tests
-# under the sanitizers, then a short smoke run of every fuzz target (tests/fuzz). Only the
-# targets needed are built; benchmarks are off. KEW_FUZZ_SECONDS sets the run per target
-# (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
+# In a process group of its own (job control on while it starts), so that the whole build
+# stops when the command fails before it has been waited for.
+sanitize_pid=
+start_sanitize_build() {
+  if [ "${KEW_SKIP_SANITIZE:-0}" != 1 ]; then
+    set -m
+    sanitize_build </dev/null >"$sanitize_build.log" 2>&1 &
+    sanitize_pid=$!
+    set +m
+    trap 'kill -- -"$sanitize_pid" 2>/dev/null || true' EXIT
+  fi
+}
+
 sanitize_and_fuzz() {
   if [ "${KEW_SKIP_SANITIZE:-0}" = 1 ]; then
     echo "bootstrap: sanitizer and fuzz stage skipped (KEW_SKIP_SANITIZE=1)"
     return 0
   fi
-  local sanitize_build="$build-sanitize"
-  CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF -DKEW_WERROR=ON >/dev/null
-  # kew_decoder_tests: the decoder and encoder unit tests of kew_unit_tests, without the
-  # core tests and their CGAL oracle (tests/fuzz/CMakeLists.txt).
-  cmake --build "$sanitize_build" -j "$jobs" --target kew_decoder_tests kew_fuzzers
+  if ! wait "$sanitize_pid"; then
+    tail -40 "$sanitize_build.log"
+    echo "bootstrap: the sanitizer build failed (its log: $sanitize_build.log)" >&2
+    return 1
+  fi
+  trap - EXIT
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$sanitize_build/tests/fuzz/kew_decoder_tests" --gtest_brief=1
   bash "$here/tests/fuzz/run_fuzzers.sh" "$sanitize_build/tests/fuzz" "${KEW_FUZZ_SECONDS:-15}"
 }
 
-# The Debian package: built and linted; installed, checked and purged only when CI=true
+# The Debian package: built with warnings as errors (the second build type, dpkg-buildflags'
+# -O2 and hardening), linted; installed, checked and purged only when CI=true
 # (tests/package/test_deb.sh). KEW_SKIP_PACKAGE=1 skips the stage.
 package() {
   if [ "${KEW_SKIP_PACKAGE:-0}" = 1 ]; then
@@ -91,9 +113,8 @@ run_demo() {
 install_dependencies
 case "$mode" in
   test)
-    # Warnings are errors in CI only: a user's compiler may warn where this one does not.
-    configure_and_build -DKEW_WERROR=ON
-    build_release
+    configure_and_build
+    start_sanitize_build
     # Tests that take hours are not registered here (KEW_LONG_TESTS, docs/testing.md).
     ctest --test-dir "$build" --output-on-failure -j "$jobs"
     package

@@ -27,10 +27,18 @@ mkdir -p "$work/kew"
 revision=$(git -C "$here" rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
 [ -z "$(git -C "$here" status --porcelain --untracked-files=no 2>/dev/null)" ] || revision="$revision-dirty"
 
+# With warnings as errors: the package's build type (dpkg-buildflags: -O2, hardening) is
+# the second one the test command builds. Through ccache (CMake finds it; dpkg-buildpackage
+# and debhelper pass these through): paths below the copy hashed relative to it.
 echo "test_deb: dpkg-buildpackage in $work/kew (revision $revision)"
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
-(cd "$work/kew" && KEW_REVISION=$revision DEB_BUILD_OPTIONS="parallel=$(nproc)" \
+export CCACHE_BASEDIR=$work/kew
+export CCACHE_NOHASHDIR=true
+(cd "$work/kew" && KEW_REVISION=$revision KEW_WERROR=ON DEB_BUILD_OPTIONS="parallel=$(nproc)" \
    dpkg-buildpackage -b -us -uc >"$work/build.log" 2>&1) || { tail -40 "$work/build.log"; fail "dpkg-buildpackage"; }
+! command -v ccache >/dev/null || grep -q "ccache .*-c .*\.cpp" "$work/build.log" ||
+  fail "the package was not compiled through ccache (see $work/build.log)"
+grep -Eq -- "-Werror( |$)" "$work/build.log" || fail "the package was not built with warnings as errors"
 [ -f "$deb" ] || fail "$deb was not built (found: $(ls "$work"))"
 echo "test_deb: built $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
 
