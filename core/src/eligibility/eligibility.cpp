@@ -139,4 +139,29 @@ bool Rules::adjacent_level_off(const track::Track& a, const track::Track& b, dou
   return levels_off_beside(a, b) || levels_off_beside(b, a);
 }
 
+PairVerdict Rules::verdict(const track::Track& a, const track::Track& b, const PairContext& context) const {
+  PairVerdict v;
+  if (same_address(a, b)) {
+    v.rule = PairRule::SameAddress;
+  } else if (level_pair(a, b)) {
+    v.rule = PairRule::LevelPair;
+  } else if (context.alert_open) {
+    return v;
+  } else if (adjacent_level_off(a, b, context.now)) {
+    v.rule = PairRule::AdjacentLevelOff;
+  } else if (context.inhibited) {
+    v.rule = PairRule::Inhibited;
+  } else if (one_aircraft_by_code(a, b, context.distance_m)) {
+    v.rule = PairRule::SameCode;
+  } else {
+    v.exclusion = exclusion(a, context.now);
+    if (v.exclusion == Exclusion::None) {
+      v.exclusion = exclusion(b, context.now);
+      v.second_excluded = true;
+    }
+    if (v.exclusion != Exclusion::None) v.rule = PairRule::Excluded;
+  }
+  return v;
+}
+
 }  // namespace kew::eligibility

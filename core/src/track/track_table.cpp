@@ -17,15 +17,15 @@ constexpr double kFpmToMps = kFootToMetre / 60.0;
 /// aircraft the tables carry turns ten times as fast (design §4.3).
 constexpr double kMaxTrackAngleRateDps = 30.0;
 
-std::string_view projection_reason(geo::ProjectionError e) {
+Refusal projection_refusal(geo::ProjectionError e) {
   switch (e) {
-    case geo::ProjectionError::NotFinite: return "position_not_finite";
-    case geo::ProjectionError::LatitudeRange: return "latitude_out_of_range";
-    case geo::ProjectionError::LongitudeRange: return "longitude_out_of_range";
-    case geo::ProjectionError::OutsideCoverage: return "outside_coverage";
+    case geo::ProjectionError::NotFinite: return Refusal::PositionNotFinite;
+    case geo::ProjectionError::LatitudeRange: return Refusal::LatitudeOutOfRange;
+    case geo::ProjectionError::LongitudeRange: return Refusal::LongitudeOutOfRange;
+    case geo::ProjectionError::OutsideCoverage: return Refusal::OutsideCoverage;
     case geo::ProjectionError::None: break;
   }
-  return {};
+  return Refusal::None;
 }
 
 std::uint16_t track_number_of(TrackSlot slot) { return static_cast<std::uint16_t>(slot % 65535u + 1u); }
@@ -33,18 +33,18 @@ std::uint16_t track_number_of(TrackSlot slot) { return static_cast<std::uint16_t
 
 TrackTable::TrackTable(const TrackTableConfig& config) : config_(config) {}
 
-std::string_view TrackTable::plausibility_problem(const TrackReport& r) const {
-  if (r.id.empty()) return "empty_id";
-  if (r.id.size() > config_.max_id_bytes || r.source.size() > config_.max_id_bytes) return "id_too_long";
-  if (!std::isfinite(r.t)) return "time_not_finite";
-  if (!std::isfinite(r.lat_deg) || !std::isfinite(r.lon_deg)) return "position_not_finite";
-  if (std::abs(r.lat_deg) > 90.0) return "latitude_out_of_range";
-  if (std::abs(r.lon_deg) > 180.0) return "longitude_out_of_range";
-  if (std::isnan(r.alt_ft)) return "altitude_missing";
-  if (!std::isfinite(r.alt_ft)) return "altitude_not_finite";
-  if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return "altitude_out_of_range";
-  if (r.on_ground && config_.exclude_on_ground) return "on_ground";
-  return {};
+Refusal TrackTable::plausibility_problem(const TrackReport& r) const {
+  if (r.id.empty()) return Refusal::EmptyId;
+  if (r.id.size() > config_.max_id_bytes || r.source.size() > config_.max_id_bytes) return Refusal::IdTooLong;
+  if (!std::isfinite(r.t)) return Refusal::TimeNotFinite;
+  if (!std::isfinite(r.lat_deg) || !std::isfinite(r.lon_deg)) return Refusal::PositionNotFinite;
+  if (std::abs(r.lat_deg) > 90.0) return Refusal::LatitudeOutOfRange;
+  if (std::abs(r.lon_deg) > 180.0) return Refusal::LongitudeOutOfRange;
+  if (std::isnan(r.alt_ft)) return Refusal::AltitudeMissing;
+  if (!std::isfinite(r.alt_ft)) return Refusal::AltitudeNotFinite;
+  if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return Refusal::AltitudeOutOfRange;
+  if (r.on_ground && config_.exclude_on_ground) return Refusal::OnGround;
+  return Refusal::None;
 }
 
 unsigned TrackTable::implausible_optional_fields(const TrackReport& r) const {
@@ -82,34 +82,34 @@ void TrackTable::drop_optional_fields(TrackReport& r, unsigned bits) {
 }
 
 AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection,
-                               std::uint32_t plane_key) {
+                               std::uint32_t plane_key, const ProjectedPosition* projected) {
   AdmitResult result;
-  const auto reject = [&](std::string_view reason) {
-    rejections_.reject(reason, r.id);
+  const auto reject = [&](Refusal reason) {
+    rejections_.reject(kRefusalNames.name(reason), r.id);
     result.refusal = reason;
     return result;
   };
-  if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);
+  if (const Refusal reason = plausibility_problem(r); reason != Refusal::None) return reject(reason);
   if (const unsigned bad_fields = implausible_optional_fields(r); bad_fields != 0) {
     // Rare: only a record with a field to drop pays for the copy.
     TrackReport cleaned = r;
     drop_optional_fields(cleaned, bad_fields);
-    return admit(cleaned, now, projection, plane_key);
+    return admit(cleaned, now, projection, plane_key, projected);
   }
-  if (r.t < now - config_.max_lateness_s) return reject("too_late");
+  if (r.t < now - config_.max_lateness_s) return reject(Refusal::TooLate);
 
   const TrackSlot existing = find(r.source, r.id);
   if (existing != kNoTrack) {
     const Track& previous = tracks_[existing];
-    if (r.t < previous.t) return reject("out_of_order");
-    if (r.t == previous.t) return reject("duplicate_time");
+    if (r.t < previous.t) return reject(Refusal::OutOfOrder);
+    if (r.t == previous.t) return reject(Refusal::DuplicateTime);
   } else if (in_use_ >= config_.max_tracks) {
-    return reject("track_limit");
+    return reject(Refusal::TrackLimit);
   }
 
-  geo::ProjectionError error = geo::ProjectionError::None;
-  const geo::PlanePosition plane = projection.project({r.lat_deg, r.lon_deg}, error);
-  if (error != geo::ProjectionError::None) return reject(projection_reason(error));
+  geo::ProjectionError error = projected ? projected->error : geo::ProjectionError::None;
+  const geo::PlanePosition plane = projected ? projected->at : projection.project({r.lat_deg, r.lon_deg}, error);
+  if (error != geo::ProjectionError::None) return reject(projection_refusal(error));
 
   const Track* previous = existing != kNoTrack ? &tracks_[existing] : nullptr;
   const double gap = previous ? r.t - previous->t : 0.0;
