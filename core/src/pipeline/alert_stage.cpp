@@ -5,12 +5,11 @@
 
 #include "kew/util/gentle_growth.hpp"
 #include "zone_probe.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::pipeline {
 
 namespace {
-constexpr double kFootToMetre = 0.3048;
-constexpr double kKnotToMps = 1852.0 / 3600.0;
 // ProbeMode::Brute in worldwide mode evaluates every pair whose last reports are within
 // twice the distance at which two aircraft can still come into conflict, plus this (m).
 constexpr double kBruteSlack_m = 50e3;
@@ -51,7 +50,7 @@ AlertStage::AlertStage(const PipelineConfig& config, const PairJudge& judge, Zon
               }),
       rules_(config.eligibility, config.minima) {
   if (zones_.tiling()) {
-    const double fastest_mps = config.tracks.max_ground_speed_kt * kKnotToMps;
+    const double fastest_mps = config.tracks.max_ground_speed_kt * units::kMpsPerKnot;
     brute_reach_m_ = 2.0 * (judge.largest_horizontal_m() +
                             2.0 * fastest_mps * (judge.largest_lookahead_s() + config.tracks.track_timeout_s)) +
                      kBruteSlack_m;
@@ -181,7 +180,7 @@ void AlertStage::evaluate_pairs(track::TrackSlot slot) {
       e.severity = alerts_.classify(g.lost_now, g.t_los_s, pair.parameters.warning_s);
       e.t_los_s = g.t_los_s;
       e.cpa_h_m = g.cpa_h_m / pair.scale;
-      e.cpa_v_ft = g.cpa_v_m / kFootToMetre;
+      e.cpa_v_ft = g.cpa_v_m / units::kMetresPerFoot;
     }
     alerts_.evaluate(
         pair.p, pair.q, e, now,
@@ -237,8 +236,8 @@ void AlertStage::fill_event(AlertEvent& event, const geo::Projection& projection
   event.b = party_of(p_first ? tq : tp);
   event.t_los_s = g.t_los_s;
   event.t_cpa_s = g.t_cpa_s;
-  event.cpa_v_ft = g.cpa_v_m / kFootToMetre;
-  event.sep_v_ft = g.sep_v_m / kFootToMetre;
+  event.cpa_v_ft = g.cpa_v_m / units::kMetresPerFoot;
+  event.sep_v_ft = g.sep_v_m / units::kMetresPerFoot;
   // Horizontal figures on the ellipsoid: the plane overstates lengths by the scale k.
   const auto geodesic = [&](geometry::Point2 x, geometry::Point2 y) {
     return geo::Projection::geodesic_distance_m(projection.unproject(x), projection.unproject(y));

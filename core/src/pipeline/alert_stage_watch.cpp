@@ -5,11 +5,11 @@
 
 #include "alert_stage.hpp"
 #include "zone_probe.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::pipeline {
 
 namespace {
-constexpr double kFootToMetre = 0.3048;
 
 PairStage stage_of(eligibility::PairRule rule) {
   switch (rule) {
@@ -98,7 +98,7 @@ PairNote AlertStage::watched_pair_note(track::TrackSlot slot, std::string_view p
   const double apart_m = geo::Projection::geodesic_distance_m({self.lat_deg, self.lon_deg}, {them.lat_deg, them.lon_deg});
   if (!zones_.holds_both(owner, self, them)) {
     note.stage = PairStage::NotCandidate;
-    note.detail = fmt::format("no zone holds both: {:.1f} NM apart", apart_m / 1852.0);
+    note.detail = fmt::format("no zone holds both: {:.1f} NM apart", apart_m / units::kMetresPerNauticalMile);
     return note;
   }
   const zone::ProbeState state = state_in(owner, slot);
@@ -109,7 +109,7 @@ PairNote AlertStage::watched_pair_note(track::TrackSlot slot, std::string_view p
   const std::string figures = fmt::format(
       "{:.2f} NM and {:.0f} ft apart; CPA {:.2f} NM in {:.0f} s, {:.0f} ft there; {} {:.0f} ft {:+.0f} fpm, "
       "{} {:.0f} ft {:+.0f} fpm",
-      apart_m / 1852.0, g.sep_v_m / kFootToMetre, g.cpa_h_m / pair.scale / 1852.0, g.t_cpa_s, g.cpa_v_m / kFootToMetre,
+      apart_m / units::kMetresPerNauticalMile, g.sep_v_m / units::kMetresPerFoot, g.cpa_h_m / pair.scale / units::kMetresPerNauticalMile, g.t_cpa_s, g.cpa_v_m / units::kMetresPerFoot,
       party_label(tp.source, tp.id), tp.alt_ft, tp.vr_fpm, party_label(tq.source, tq.id), tq.alt_ft, tq.vr_fpm);
   if (!judge_.in_conflict(pair.kp, pair.kq, pair.minima)) {
     note.stage = PairStage::ProbeClear;

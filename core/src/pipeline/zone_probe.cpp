@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "phase_timer.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::pipeline {
 
@@ -11,7 +12,6 @@ namespace {
 // Widens R_i so that rounding in positions and speeds can never drop a pair whose CPA
 // test is positive (metres; far below any separation minimum).
 constexpr double kSearchSlack_m = 1.0;
-constexpr double kKnotToMps = 1852.0 / 3600.0;
 
 /// The track's kinematics and point scale in `key`'s plane, at the track's last record:
 /// its own when that plane is the one it was admitted in, else projected there.
@@ -27,7 +27,7 @@ probe::Kinematics kinematics_in(const geo::Projection& plane, zone::ZoneKey key,
   const geo::PlanePosition at = plane.project({track.lat_deg, track.lon_deg}, ignored);
   probe::Kinematics k = track.kinematics;
   k.position = at.p;
-  k.velocity = plane.velocity_to_plane(at, track.gs_kt * kKnotToMps, track.trk_deg);
+  k.velocity = plane.velocity_to_plane(at, track.gs_kt * units::kMpsPerKnot, track.trk_deg);
   scale = at.scale;
   return k;
 }

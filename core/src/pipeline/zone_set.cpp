@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "kew/util/gentle_growth.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::pipeline {
 
@@ -11,7 +12,6 @@ namespace {
 // and the zone margin's own slack (m).
 constexpr double kScaleBound = 1.05;
 constexpr double kMarginSlack_m = 1000.0;
-constexpr double kKnotToMps = 1852.0 / 3600.0;
 // A batch with fewer zone operations than this runs on the calling thread alone.
 constexpr std::size_t kParallelOps = 48;
 
@@ -22,7 +22,7 @@ std::optional<zone::ZoneTiling> make_tiling(const PipelineConfig& config, const 
   // timeout old and every speed at most max_ground_speed_kt (faster reports lose the
   // speed, faster derived ones reset the track, design §4.3). The midpoint of such a
   // pair is within D/2 of both, so a margin of D/2 holds both in the midpoint's zone.
-  const double fastest_mps = config.tracks.max_ground_speed_kt * kKnotToMps;
+  const double fastest_mps = config.tracks.max_ground_speed_kt * units::kMpsPerKnot;
   return zone::ZoneTiling(0.5 * judge.largest_horizontal_m() * kScaleBound +
                           fastest_mps * (judge.largest_lookahead_s() + config.tracks.track_timeout_s) +
                           kMarginSlack_m);

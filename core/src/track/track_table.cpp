@@ -6,13 +6,11 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include "kew/util/units.hpp"
 
 namespace kew::track {
 
 namespace {
-constexpr double kKnotToMps = 1852.0 / 3600.0;
-constexpr double kFootToMetre = 0.3048;
-constexpr double kFpmToMps = kFootToMetre / 60.0;
 /// The largest |track angle rate| kept (deg/s): a rate-one turn is 3 deg/s, and no
 /// aircraft the tables carry turns ten times as fast (design §4.3).
 constexpr double kMaxTrackAngleRateDps = 30.0;
@@ -120,7 +118,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   bool derived = false;
   geometry::Vector2 velocity{};
   if (r.gs_kt && r.trk_deg) {
-    velocity = projection.velocity_to_plane(plane, *r.gs_kt * kKnotToMps, *r.trk_deg);
+    velocity = projection.velocity_to_plane(plane, *r.gs_kt * units::kMpsPerKnot, *r.trk_deg);
     has_velocity = true;
   } else if (can_derive) {
     // The previous position in this record's plane: a track that crossed into another
@@ -133,7 +131,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     velocity = (1.0 / gap) * (plane.p - before);
     has_velocity = true;
     derived = true;
-    if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * kKnotToMps) {
+    if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * units::kMpsPerKnot) {
       // A jump no aircraft can fly: the previous position is not this aircraft's (a
       // reused track number, a bad fix). Start the velocity afresh from this record.
       has_velocity = false;
@@ -143,7 +141,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   } else if (previous && previous->has_velocity) {
     velocity = previous->plane == plane_key
                    ? previous->kinematics.velocity
-                   : projection.velocity_to_plane(plane, previous->gs_kt * kKnotToMps, previous->trk_deg);
+                   : projection.velocity_to_plane(plane, previous->gs_kt * units::kMpsPerKnot, previous->trk_deg);
     has_velocity = true;
   }
 
@@ -156,13 +154,13 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   const bool altitude_moving_one_way =
       can_derive && altitude_change_ft != 0.0 && previous->altitude_change_ft * altitude_change_ft > 0.0;
   if (r.vr_fpm) {
-    vertical_rate_mps = *r.vr_fpm * kFpmToMps;
+    vertical_rate_mps = *r.vr_fpm * units::kMpsPerFpm;
     vertical_rate_known = true;
   } else if (can_derive) {
-    vertical_rate_mps = (r.alt_ft - previous->alt_ft) * kFootToMetre / gap;
+    vertical_rate_mps = (r.alt_ft - previous->alt_ft) * units::kMetresPerFoot / gap;
     vertical_rate_known = vertical_rate_derived = true;
     altitude_step_ft = std::abs(r.alt_ft - previous->alt_ft);
-    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) {
+    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * units::kMpsPerFpm) {
       vertical_rate_mps = 0.0;
       vertical_rate_known = vertical_rate_derived = false;
     }
@@ -201,7 +199,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.plane = plane_key;
   track.kinematics.position = plane.p;
   track.kinematics.velocity = velocity;
-  track.kinematics.altitude_m = r.alt_ft * kFootToMetre;
+  track.kinematics.altitude_m = r.alt_ft * units::kMetresPerFoot;
   track.kinematics.vertical_rate_mps = vertical_rate_mps;
   track.has_velocity = has_velocity;
   track.vertical_rate_known = vertical_rate_known;
@@ -209,18 +207,18 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.altitude_step_ft = altitude_step_ft;
   track.altitude_change_ft = altitude_change_ft;
   track.altitude_moving_one_way = altitude_moving_one_way;
-  track.vr_fpm = vertical_rate_mps / kFpmToMps;
+  track.vr_fpm = vertical_rate_mps / units::kMpsPerFpm;
   if (r.gs_kt && r.trk_deg) {
     track.gs_kt = *r.gs_kt;
     track.trk_deg = *r.trk_deg;
   } else if (has_velocity) {
     double speed = 0.0;
     projection.velocity_from_plane(plane, velocity, speed, track.trk_deg);
-    track.gs_kt = speed / kKnotToMps;
+    track.gs_kt = speed / units::kMpsPerKnot;
   }
   track.level_off_ft = update_intent(track.intent, config_.intent, r.t, r.sel_ft, r.sel_src, r.alt_ft, track.vr_fpm);
   track.kinematics.level_off_m =
-      track.level_off_ft ? *track.level_off_ft * kFootToMetre : std::numeric_limits<double>::quiet_NaN();
+      track.level_off_ft ? *track.level_off_ft * units::kMetresPerFoot : std::numeric_limits<double>::quiet_NaN();
   update_turn_rate(track, r, has_velocity);
   if (derived) ++velocities_derived_;
   if (result.velocity_reset) ++velocity_resets_;
