@@ -4,11 +4,12 @@
 // accepts exactly what [probe] horizontal_nm does. Internal to kew_config.
 
 #include <cstdint>
+#include "kew/util/units.hpp"
 
 namespace kew::config::ranges {
 
-inline constexpr double kNauticalMile = 1852.0;  ///< m
-inline constexpr double kFoot = 0.3048;          ///< m
+inline constexpr double kNauticalMile = units::kMetresPerNauticalMile;  ///< m
+inline constexpr double kFoot = units::kMetresPerFoot;                  ///< m
 
 struct Range {
   double lo, hi;

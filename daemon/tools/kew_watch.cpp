@@ -23,6 +23,7 @@
 #include "nats_connection.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
+#include "kew/util/units.hpp"
 
 namespace {
 
@@ -32,7 +33,7 @@ using kew::protocol::StreamObjectClass;
 
 constexpr int kUsageError = 64;
 constexpr int kConnectionFailed = 1;
-constexpr double kMetresPerNm = 1852.0;
+using kew::units::kMetresPerNauticalMile;
 
 struct Flags {
   std::string address = "127.0.0.1:4747";
@@ -72,7 +73,7 @@ void print_alert(const kew::AlertEvent& e, const char* state) {
   std::string line = fmt::format("{} {:<6} {:<7} {} x {}", utc(e.t), state, kew::to_string(e.severity), party(e.a),
                                  party(e.b));
   if (e.state != kew::AlertState::End) {
-    line += fmt::format("  t_los {:>3.0f} s  cpa {:.1f} NM {:.0f} ft in {:.0f} s", e.t_los_s, e.cpa_h_m / kMetresPerNm,
+    line += fmt::format("  t_los {:>3.0f} s  cpa {:.1f} NM {:.0f} ft in {:.0f} s", e.t_los_s, e.cpa_h_m / kMetresPerNauticalMile,
                         e.cpa_v_ft, e.t_cpa_s);
     line += fmt::format("  by {}", kew::to_string(e.hypothesis));
   }

@@ -21,6 +21,7 @@
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/version.hpp"
+#include "kew/util/units.hpp"
 
 namespace {
 
@@ -30,7 +31,7 @@ constexpr const char* kSystemConfig = KEW_SYSTEM_CONFIG;  // set by CMake from t
 
 /// One line of --check-config per region (design §4.8): its shape, band and effect.
 std::string describe(const kew::region::Region& r) {
-  std::string text = r.polygon.empty() ? fmt::format("circle of {} NM", r.radius_m / 1852.0)
+  std::string text = r.polygon.empty() ? fmt::format("circle of {} NM", r.radius_m / kew::units::kMetresPerNauticalMile)
                                        : fmt::format("polygon of {} vertices", r.polygon.size());
   const kew::region::Region unbounded;
   if (r.floor_ft != unbounded.floor_ft) text += fmt::format(", from {} ft", r.floor_ft);
@@ -38,8 +39,8 @@ std::string describe(const kew::region::Region& r) {
   if (r.inhibit) return text + ", inhibits alerts";
   const kew::region::RegionParameters& p = r.parameters;
   std::vector<std::string> set;
-  if (p.horizontal_m) set.push_back(fmt::format("horizontal {} NM", *p.horizontal_m / 1852.0));
-  if (p.vertical_m) set.push_back(fmt::format("vertical {} ft", *p.vertical_m / 0.3048));
+  if (p.horizontal_m) set.push_back(fmt::format("horizontal {} NM", *p.horizontal_m / kew::units::kMetresPerNauticalMile));
+  if (p.vertical_m) set.push_back(fmt::format("vertical {} ft", *p.vertical_m / kew::units::kMetresPerFoot));
   if (p.lookahead_s) set.push_back(fmt::format("look-ahead {} s", *p.lookahead_s));
   if (p.warning_s) set.push_back(fmt::format("warning {} s", *p.warning_s));
   if (p.confirm) set.push_back(fmt::format("confirm {}", *p.confirm));

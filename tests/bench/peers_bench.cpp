@@ -81,6 +81,7 @@
 #include "bench_report.hpp"
 #include "lookahead_pairs.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
+#include "kew/pipeline/instrumentation.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/probe/proximity_search.hpp"
 #include "kew/replay/recording_reader.hpp"
@@ -328,7 +329,7 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
       w.period_first_step.push_back(w.steps.size());
       ++period;
     }
-    if (!table.plausibility_problem(r).empty()) {
+    if (table.plausibility_problem(r) != kew::track::Refusal::None) {
       ++w.rejected;
       continue;
     }
@@ -430,7 +431,8 @@ std::string variant_name(KewVariant variant) { return std::string(kKewVariantNam
 MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = KewVariant::Default,
                      bool time_phases = false) {
   kew::PipelineConfig config = w.config;
-  config.time_phases = time_phases;
+  kew::PipelineInstrumentation instruments;
+  instruments.time_phases = time_phases;
   MethodResult result{variant_name(variant), "", 1, {}, 0, 0};
   switch (variant) {
     case KewVariant::Default:
@@ -438,7 +440,7 @@ MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = 
       break;
     case KewVariant::Centred:
       result.label = "kew with the earlier query: BFS around p, radius S_h + T(|v| + v_max)";
-      config.search_ahead = false;
+      instruments.search_ahead = false;
       break;
     case KewVariant::Eager:
       result.label = "kew with every certificate solved over the whole horizon";
@@ -458,9 +460,10 @@ MethodResult run_kew(const Params& prm, const Workload& w, KewVariant variant = 
   kew::Pipeline pipeline(config);
   std::uint32_t current = 0;
   std::vector<Conflict>* sink = nullptr;
-  pipeline.set_conflict_tap([&](Slot p, Slot q) {
+  instruments.conflict_tap = [&](Slot p, Slot q) {
     if (sink) sink->push_back({current, p, q});
-  });
+  };
+  pipeline.instrument(instruments);
   for (std::size_t period = 0; period < prm.warmup + prm.periods; ++period) {
     const bool measured = period >= prm.warmup;
     PeriodResult out;
@@ -562,7 +565,7 @@ bool in_conflict(const World& world, Slot slot, const Kinematics& k_self, Slot o
 // How much of kew-index's work one run does. Three runs (maintenance alone, with the
 // search, everything) split its time by their differences, without reading a clock
 // around each part of each update: a clock read costs microseconds on virtual machines
-// whose clock source is not the TSC, which is what distorts PipelineConfig::time_phases.
+// whose clock source is not the TSC, which is what distorts PipelineInstrumentation::time_phases.
 enum class IndexWork { Maintenance, Search, All };
 
 // What kinetic detection (design §2.7) would have to keep, counted on
@@ -1264,7 +1267,7 @@ void print_table(const Params& prm, const std::vector<FleetResult>& fleets) {
   }
 }
 
-// kew's time per period split by part (PipelineConfig::time_phases; "other" is the track
+// kew's time per period split by part (PipelineInstrumentation::time_phases; "other" is the track
 // table, projection and what the parts do not cover).
 void print_split(const Params& prm, const std::vector<FleetResult>& fleets) {
   std::cout << "\n| aircraft | method | maintenance ms (%) | search ms (%) | CPA tests ms (%) | other ms (%) |\n"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kew/pipeline/instrumentation.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/triangulation/delaunay.hpp"
@@ -103,7 +104,9 @@ struct TappedPipeline {
   std::vector<std::pair<track::TrackSlot, track::TrackSlot>> taps;
   std::vector<AlertEvent> events;
   TappedPipeline() {
-    pipeline.set_conflict_tap([this](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); });
+    PipelineInstrumentation instruments;
+    instruments.conflict_tap = [this](track::TrackSlot p, track::TrackSlot q) { taps.emplace_back(p, q); };
+    pipeline.instrument(instruments);
     pipeline.set_alert_sink([this](const AlertEvent& e) { events.push_back(e); });
   }
   TappedPipeline(const TappedPipeline&) = delete;

@@ -153,7 +153,7 @@ TEST(BadOptionalFields, SelectedAltitudeAndTrackAngleRateInRangeAreKept) {
     TrackReport r = report("GOOD01", t, 50.0, 8.0);
     r.sel_ft = sel_ft;
     r.tar_dps = tar_dps;
-    EXPECT_EQ(table.admit(r, t, projection).refusal, "");
+    EXPECT_EQ(table.admit(r, t, projection).refusal, track::Refusal::None);
     t += 4.0;
   }
   EXPECT_EQ(table.dropped_fields().total(), 0u);

@@ -2,17 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include "kew/util/units.hpp"
 
 namespace kew::eligibility {
 
 namespace {
-constexpr double kNauticalMile_m = 1852.0;
 // Mode S and ASTERIX altitudes come in 25 ft steps: a rate derived from one step between
 // two radar records (375 ft/min at 4 s) is quantisation, not a climb. One step in a
 // second or two (750 ft/min and more, ADS-B) may well be a climb.
 constexpr double kAltitudeQuantum_ft = 25.0;
 constexpr double kQuantumRate_fpm = 400.0;
-constexpr double kFoot_m = 0.3048;
 }
 
 bool may_exclude_mode3a(std::uint16_t code) { return code != 07500 && code != 07600 && code != 07700; }
@@ -33,8 +32,8 @@ bool is_discrete_mode3a(std::uint16_t code) {
 
 Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima)
     : config_(config),
-      adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / kFoot_m),
-      separation_ft_(minima.vertical_m / kFoot_m),
+      adjacent_level_ft_((minima.vertical_m - minima.altimetry_tolerance_m) / units::kMetresPerFoot),
+      separation_ft_(minima.vertical_m / units::kMetresPerFoot),
       vertical_lookahead_s_(minima.vertical_lookahead_s) {
   // An emergency code must alert whatever the list says (the configuration refuses
   // them too; this keeps the rule true for programs that build the config themselves).
@@ -46,7 +45,7 @@ double Rules::lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** a
   double limit = config_.lower_limit_ft;
   if (config_.aerodrome_height_ft <= 0.0) return limit;
   const Aerodrome* near =
-      AerodromeIndex::bundled().nearest(lat_deg, lon_deg, config_.aerodrome_radius_nm * kNauticalMile_m);
+      AerodromeIndex::bundled().nearest(lat_deg, lon_deg, config_.aerodrome_radius_nm * units::kMetresPerNauticalMile);
   if (near && near->elevation_ft + config_.aerodrome_height_ft > limit) {
     limit = near->elevation_ft + config_.aerodrome_height_ft;
     if (aerodrome) *aerodrome = near;
@@ -74,7 +73,7 @@ bool Rules::same_address(const track::Track& a, const track::Track& b) const {
 namespace {
 /// Positions within the configured distance and altitude, velocities alike.
 bool coincide(const track::Track& a, const track::Track& b, double distance_m, const EligibilityConfig& c) {
-  if (distance_m > c.same_code_distance_nm * kNauticalMile_m || std::abs(a.alt_ft - b.alt_ft) > c.same_code_altitude_ft)
+  if (distance_m > c.same_code_distance_nm * units::kMetresPerNauticalMile || std::abs(a.alt_ft - b.alt_ft) > c.same_code_altitude_ft)
     return false;
   if (!a.has_velocity || !b.has_velocity) return false;
   if (std::abs(a.gs_kt - b.gs_kt) > Rules::kCoincidentSpeed_kt) return false;
@@ -137,6 +136,31 @@ bool Rules::adjacent_level_off(const track::Track& a, const track::Track& b, dou
     return gap_stopped_ft >= separation_ft_ && gap_later_ft >= adjacent_level_ft_;
   };
   return levels_off_beside(a, b) || levels_off_beside(b, a);
+}
+
+PairVerdict Rules::verdict(const track::Track& a, const track::Track& b, const PairContext& context) const {
+  PairVerdict v;
+  if (same_address(a, b)) {
+    v.rule = PairRule::SameAddress;
+  } else if (level_pair(a, b)) {
+    v.rule = PairRule::LevelPair;
+  } else if (context.alert_open) {
+    return v;
+  } else if (adjacent_level_off(a, b, context.now)) {
+    v.rule = PairRule::AdjacentLevelOff;
+  } else if (context.inhibited) {
+    v.rule = PairRule::Inhibited;
+  } else if (one_aircraft_by_code(a, b, context.distance_m)) {
+    v.rule = PairRule::SameCode;
+  } else {
+    v.exclusion = exclusion(a, context.now);
+    if (v.exclusion == Exclusion::None) {
+      v.exclusion = exclusion(b, context.now);
+      v.second_excluded = true;
+    }
+    if (v.exclusion != Exclusion::None) v.rule = PairRule::Excluded;
+  }
+  return v;
 }
 
 }  // namespace kew::eligibility

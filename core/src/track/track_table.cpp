@@ -6,26 +6,24 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include "kew/util/units.hpp"
 
 namespace kew::track {
 
 namespace {
-constexpr double kKnotToMps = 1852.0 / 3600.0;
-constexpr double kFootToMetre = 0.3048;
-constexpr double kFpmToMps = kFootToMetre / 60.0;
 /// The largest |track angle rate| kept (deg/s): a rate-one turn is 3 deg/s, and no
 /// aircraft the tables carry turns ten times as fast (design §4.3).
 constexpr double kMaxTrackAngleRateDps = 30.0;
 
-std::string_view projection_reason(geo::ProjectionError e) {
+Refusal projection_refusal(geo::ProjectionError e) {
   switch (e) {
-    case geo::ProjectionError::NotFinite: return "position_not_finite";
-    case geo::ProjectionError::LatitudeRange: return "latitude_out_of_range";
-    case geo::ProjectionError::LongitudeRange: return "longitude_out_of_range";
-    case geo::ProjectionError::OutsideCoverage: return "outside_coverage";
+    case geo::ProjectionError::NotFinite: return Refusal::PositionNotFinite;
+    case geo::ProjectionError::LatitudeRange: return Refusal::LatitudeOutOfRange;
+    case geo::ProjectionError::LongitudeRange: return Refusal::LongitudeOutOfRange;
+    case geo::ProjectionError::OutsideCoverage: return Refusal::OutsideCoverage;
     case geo::ProjectionError::None: break;
   }
-  return {};
+  return Refusal::None;
 }
 
 std::uint16_t track_number_of(TrackSlot slot) { return static_cast<std::uint16_t>(slot % 65535u + 1u); }
@@ -33,18 +31,18 @@ std::uint16_t track_number_of(TrackSlot slot) { return static_cast<std::uint16_t
 
 TrackTable::TrackTable(const TrackTableConfig& config) : config_(config) {}
 
-std::string_view TrackTable::plausibility_problem(const TrackReport& r) const {
-  if (r.id.empty()) return "empty_id";
-  if (r.id.size() > config_.max_id_bytes || r.source.size() > config_.max_id_bytes) return "id_too_long";
-  if (!std::isfinite(r.t)) return "time_not_finite";
-  if (!std::isfinite(r.lat_deg) || !std::isfinite(r.lon_deg)) return "position_not_finite";
-  if (std::abs(r.lat_deg) > 90.0) return "latitude_out_of_range";
-  if (std::abs(r.lon_deg) > 180.0) return "longitude_out_of_range";
-  if (std::isnan(r.alt_ft)) return "altitude_missing";
-  if (!std::isfinite(r.alt_ft)) return "altitude_not_finite";
-  if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return "altitude_out_of_range";
-  if (r.on_ground && config_.exclude_on_ground) return "on_ground";
-  return {};
+Refusal TrackTable::plausibility_problem(const TrackReport& r) const {
+  if (r.id.empty()) return Refusal::EmptyId;
+  if (r.id.size() > config_.max_id_bytes || r.source.size() > config_.max_id_bytes) return Refusal::IdTooLong;
+  if (!std::isfinite(r.t)) return Refusal::TimeNotFinite;
+  if (!std::isfinite(r.lat_deg) || !std::isfinite(r.lon_deg)) return Refusal::PositionNotFinite;
+  if (std::abs(r.lat_deg) > 90.0) return Refusal::LatitudeOutOfRange;
+  if (std::abs(r.lon_deg) > 180.0) return Refusal::LongitudeOutOfRange;
+  if (std::isnan(r.alt_ft)) return Refusal::AltitudeMissing;
+  if (!std::isfinite(r.alt_ft)) return Refusal::AltitudeNotFinite;
+  if (r.alt_ft < config_.min_altitude_ft || r.alt_ft > config_.max_altitude_ft) return Refusal::AltitudeOutOfRange;
+  if (r.on_ground && config_.exclude_on_ground) return Refusal::OnGround;
+  return Refusal::None;
 }
 
 unsigned TrackTable::implausible_optional_fields(const TrackReport& r) const {
@@ -82,34 +80,34 @@ void TrackTable::drop_optional_fields(TrackReport& r, unsigned bits) {
 }
 
 AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Projection& projection,
-                               std::uint32_t plane_key) {
+                               std::uint32_t plane_key, const ProjectedPosition* projected) {
   AdmitResult result;
-  const auto reject = [&](std::string_view reason) {
-    rejections_.reject(reason, r.id);
+  const auto reject = [&](Refusal reason) {
+    rejections_.reject(kRefusalNames.name(reason), r.id);
     result.refusal = reason;
     return result;
   };
-  if (const std::string_view reason = plausibility_problem(r); !reason.empty()) return reject(reason);
+  if (const Refusal reason = plausibility_problem(r); reason != Refusal::None) return reject(reason);
   if (const unsigned bad_fields = implausible_optional_fields(r); bad_fields != 0) {
     // Rare: only a record with a field to drop pays for the copy.
     TrackReport cleaned = r;
     drop_optional_fields(cleaned, bad_fields);
-    return admit(cleaned, now, projection, plane_key);
+    return admit(cleaned, now, projection, plane_key, projected);
   }
-  if (r.t < now - config_.max_lateness_s) return reject("too_late");
+  if (r.t < now - config_.max_lateness_s) return reject(Refusal::TooLate);
 
   const TrackSlot existing = find(r.source, r.id);
   if (existing != kNoTrack) {
     const Track& previous = tracks_[existing];
-    if (r.t < previous.t) return reject("out_of_order");
-    if (r.t == previous.t) return reject("duplicate_time");
+    if (r.t < previous.t) return reject(Refusal::OutOfOrder);
+    if (r.t == previous.t) return reject(Refusal::DuplicateTime);
   } else if (in_use_ >= config_.max_tracks) {
-    return reject("track_limit");
+    return reject(Refusal::TrackLimit);
   }
 
-  geo::ProjectionError error = geo::ProjectionError::None;
-  const geo::PlanePosition plane = projection.project({r.lat_deg, r.lon_deg}, error);
-  if (error != geo::ProjectionError::None) return reject(projection_reason(error));
+  geo::ProjectionError error = projected ? projected->error : geo::ProjectionError::None;
+  const geo::PlanePosition plane = projected ? projected->at : projection.project({r.lat_deg, r.lon_deg}, error);
+  if (error != geo::ProjectionError::None) return reject(projection_refusal(error));
 
   const Track* previous = existing != kNoTrack ? &tracks_[existing] : nullptr;
   const double gap = previous ? r.t - previous->t : 0.0;
@@ -120,7 +118,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   bool derived = false;
   geometry::Vector2 velocity{};
   if (r.gs_kt && r.trk_deg) {
-    velocity = projection.velocity_to_plane(plane, *r.gs_kt * kKnotToMps, *r.trk_deg);
+    velocity = projection.velocity_to_plane(plane, *r.gs_kt * units::kMpsPerKnot, *r.trk_deg);
     has_velocity = true;
   } else if (can_derive) {
     // The previous position in this record's plane: a track that crossed into another
@@ -133,7 +131,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
     velocity = (1.0 / gap) * (plane.p - before);
     has_velocity = true;
     derived = true;
-    if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * kKnotToMps) {
+    if (geometry::norm(velocity) / plane.scale > config_.max_ground_speed_kt * units::kMpsPerKnot) {
       // A jump no aircraft can fly: the previous position is not this aircraft's (a
       // reused track number, a bad fix). Start the velocity afresh from this record.
       has_velocity = false;
@@ -143,7 +141,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   } else if (previous && previous->has_velocity) {
     velocity = previous->plane == plane_key
                    ? previous->kinematics.velocity
-                   : projection.velocity_to_plane(plane, previous->gs_kt * kKnotToMps, previous->trk_deg);
+                   : projection.velocity_to_plane(plane, previous->gs_kt * units::kMpsPerKnot, previous->trk_deg);
     has_velocity = true;
   }
 
@@ -156,13 +154,13 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   const bool altitude_moving_one_way =
       can_derive && altitude_change_ft != 0.0 && previous->altitude_change_ft * altitude_change_ft > 0.0;
   if (r.vr_fpm) {
-    vertical_rate_mps = *r.vr_fpm * kFpmToMps;
+    vertical_rate_mps = *r.vr_fpm * units::kMpsPerFpm;
     vertical_rate_known = true;
   } else if (can_derive) {
-    vertical_rate_mps = (r.alt_ft - previous->alt_ft) * kFootToMetre / gap;
+    vertical_rate_mps = (r.alt_ft - previous->alt_ft) * units::kMetresPerFoot / gap;
     vertical_rate_known = vertical_rate_derived = true;
     altitude_step_ft = std::abs(r.alt_ft - previous->alt_ft);
-    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * kFpmToMps) {
+    if (std::abs(vertical_rate_mps) > config_.max_vertical_rate_fpm * units::kMpsPerFpm) {
       vertical_rate_mps = 0.0;
       vertical_rate_known = vertical_rate_derived = false;
     }
@@ -201,7 +199,7 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.plane = plane_key;
   track.kinematics.position = plane.p;
   track.kinematics.velocity = velocity;
-  track.kinematics.altitude_m = r.alt_ft * kFootToMetre;
+  track.kinematics.altitude_m = r.alt_ft * units::kMetresPerFoot;
   track.kinematics.vertical_rate_mps = vertical_rate_mps;
   track.has_velocity = has_velocity;
   track.vertical_rate_known = vertical_rate_known;
@@ -209,18 +207,18 @@ AdmitResult TrackTable::admit(const TrackReport& r, double now, const geo::Proje
   track.altitude_step_ft = altitude_step_ft;
   track.altitude_change_ft = altitude_change_ft;
   track.altitude_moving_one_way = altitude_moving_one_way;
-  track.vr_fpm = vertical_rate_mps / kFpmToMps;
+  track.vr_fpm = vertical_rate_mps / units::kMpsPerFpm;
   if (r.gs_kt && r.trk_deg) {
     track.gs_kt = *r.gs_kt;
     track.trk_deg = *r.trk_deg;
   } else if (has_velocity) {
     double speed = 0.0;
     projection.velocity_from_plane(plane, velocity, speed, track.trk_deg);
-    track.gs_kt = speed / kKnotToMps;
+    track.gs_kt = speed / units::kMpsPerKnot;
   }
   track.level_off_ft = update_intent(track.intent, config_.intent, r.t, r.sel_ft, r.sel_src, r.alt_ft, track.vr_fpm);
   track.kinematics.level_off_m =
-      track.level_off_ft ? *track.level_off_ft * kFootToMetre : std::numeric_limits<double>::quiet_NaN();
+      track.level_off_ft ? *track.level_off_ft * units::kMetresPerFoot : std::numeric_limits<double>::quiet_NaN();
   update_turn_rate(track, r, has_velocity);
   if (derived) ++velocities_derived_;
   if (result.velocity_reset) ++velocity_resets_;

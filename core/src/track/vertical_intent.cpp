@@ -1,18 +1,17 @@
 #include "kew/track/vertical_intent.hpp"
 
 #include <cmath>
+#include "kew/util/units.hpp"
 
 namespace kew::track {
 
 namespace {
-constexpr double kFootToMetre = 0.3048;
-constexpr double kFpmToMps = kFootToMetre / 60.0;
 constexpr double kStandardGravity = 9.80665;  // m/s²
 }  // namespace
 
 double stopping_distance_ft(double vr_fpm, double deceleration_g) {
-  const double rate_mps = vr_fpm * kFpmToMps;
-  return rate_mps * rate_mps / (2.0 * deceleration_g * kStandardGravity) / kFootToMetre;
+  const double rate_mps = vr_fpm * units::kMpsPerFpm;
+  return rate_mps * rate_mps / (2.0 * deceleration_g * kStandardGravity) / units::kMetresPerFoot;
 }
 
 std::optional<double> update_intent(IntentState& state, const IntentConfig& config, double t,

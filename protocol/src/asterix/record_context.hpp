@@ -12,13 +12,14 @@
 #include "kew/protocol/asterix/record_walker.hpp"
 #include "kew/track/track_report.hpp"
 #include "kew/util/rejections.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::protocol::asterix {
 
-inline constexpr double kKnotsPerMetrePerSecond = 3600.0 / 1852.0;
-inline constexpr double kMetresPerNauticalMile = 1852.0;
-inline constexpr double kMetresPerFoot = 0.3048;
-inline constexpr double kFeetPerFlightLevel = 100.0;
+inline constexpr double kKnotsPerMetrePerSecond = units::kKnotsPerMps;
+using units::kFeetPerFlightLevel;
+using units::kMetresPerFoot;
+using units::kMetresPerNauticalMile;
 
 struct RecordContext {
   Rejections& rejections;

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "kew/track/track_report.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::protocol::text {
 
@@ -27,9 +28,9 @@ inline LineProblem problem(std::string_view reason, std::string detail) {
 
 // Unit conversions by their defining constants (1 ft = 0.3048 m, 1 NM = 1852 m), in the
 // order of operations a reader would write, so independent checks get the same bits.
-inline double metres_to_feet(double metres) { return metres / 0.3048; }
-inline double metres_per_second_to_knots(double mps) { return mps * 3600.0 / 1852.0; }
-inline double metres_per_second_to_feet_per_minute(double mps) { return mps * 60.0 / 0.3048; }
+inline double metres_to_feet(double metres) { return metres / units::kMetresPerFoot; }
+inline double metres_per_second_to_knots(double mps) { return mps * units::kSecondsPerHour / units::kMetresPerNauticalMile; }
+inline double metres_per_second_to_feet_per_minute(double mps) { return mps * units::kSecondsPerMinute / units::kMetresPerFoot; }
 inline double unchanged(double value) { return value; }
 
 /// Removes ASCII spaces and tabs (and a CR) at both ends.

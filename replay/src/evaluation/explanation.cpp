@@ -148,17 +148,14 @@ std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation
   Pipeline pipeline(watched);
   pipeline.set_pair_watch(&watch);
   for (const TrackReport& r : records) {
-    const bool of_interest = watch.watches(r.source, r.id);
-    const std::uint64_t refused_before = pipeline.rejections().total();
-    pipeline.process(r);
-    if (!of_interest) continue;
+    const RecordOutcome outcome = pipeline.process(r);
     // Refusals happen before the track stage notes anything: they are seen from here.
-    if (pipeline.rejections().total() == refused_before) continue;
+    if (outcome.kind != RecordOutcome::Kind::Refused || !watch.watches(r.source, r.id)) continue;
     PairNote note;
     note.t = r.t;
     note.updated = note.subject = party_label(r.source, r.id);
     note.stage = PairStage::RecordRefused;
-    note.detail = fmt::format("{} record refused: {}", note.updated, pipeline.rejections().last_reason());
+    note.detail = fmt::format("{} record refused: {}", note.updated, track::kRefusalNames.name(outcome.refusal));
     watch.note_track(r.source, r.id, note);
   }
   pipeline.end_of_input();

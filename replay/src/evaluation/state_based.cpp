@@ -9,14 +9,13 @@
 
 #include <GeographicLib/Constants.hpp>
 #include <fmt/format.h>
+#include "kew/util/units.hpp"
 
 namespace kew::replay {
 
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-constexpr double kFoot_m = 0.3048;
-constexpr double kKnot_mps = 1852.0 / 3600.0;
 
 struct State {
   std::string source, id, callsign;
@@ -45,8 +44,8 @@ void update(State& s, const TrackReport& r) {
   double ve = 0.0, vn = 0.0;
   bool velocity = false;
   if (r.gs_kt && r.trk_deg) {
-    ve = *r.gs_kt * kKnot_mps * std::sin(*r.trk_deg * kDegree);
-    vn = *r.gs_kt * kKnot_mps * std::cos(*r.trk_deg * kDegree);
+    ve = *r.gs_kt * units::kMpsPerKnot * std::sin(*r.trk_deg * kDegree);
+    vn = *r.gs_kt * units::kMpsPerKnot * std::cos(*r.trk_deg * kDegree);
     velocity = true;
   } else if (s.seen && r.t > s.t) {
     double east = 0.0, north = 0.0;
@@ -57,13 +56,13 @@ void update(State& s, const TrackReport& r) {
   }
   double vz = 0.0;
   if (r.vr_fpm)
-    vz = *r.vr_fpm * kFoot_m / 60.0;
+    vz = *r.vr_fpm * units::kMetresPerFoot / 60.0;
   else if (s.seen && r.t > s.t)
-    vz = (r.alt_ft * kFoot_m - s.alt_m) / (r.t - s.t);
+    vz = (r.alt_ft * units::kMetresPerFoot - s.alt_m) / (r.t - s.t);
   s.t = r.t;
   s.lat = r.lat_deg;
   s.lon = r.lon_deg;
-  s.alt_m = r.alt_ft * kFoot_m;
+  s.alt_m = r.alt_ft * units::kMetresPerFoot;
   s.ve = ve;
   s.vn = vn;
   s.vz = vz;
@@ -87,7 +86,7 @@ Verdict test_pair(const State& i, const State& j, double now, const StateBasedCo
   const double dy = north + j.vn * (now - j.t) - i.vn * (now - i.t);
   const double dz = (j.alt_m + j.vz * (now - j.t)) - (i.alt_m + i.vz * (now - i.t));
   const double du = j.ve - i.ve, dv = j.vn - i.vn, dvz = j.vz - i.vz;
-  const double r = c.horizontal_m, h = c.vertical_ft * kFoot_m, T = c.lookahead_s;
+  const double r = c.horizontal_m, h = c.vertical_ft * units::kMetresPerFoot, T = c.lookahead_s;
   const double reach = std::hypot(i.ve, i.vn) + std::hypot(j.ve, j.vn);
   const double d2 = dx * dx + dy * dy;
   if (d2 > (r + reach * T) * (r + reach * T)) return {};

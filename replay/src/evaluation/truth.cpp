@@ -18,7 +18,7 @@ namespace {
 using namespace truth_rules;
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
-constexpr double kMpsPerKnot = kNauticalMile_m / 3600.0;
+using units::kMpsPerKnot;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::uint64_t pair_key(std::uint32_t i, std::uint32_t j) {

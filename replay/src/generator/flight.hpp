@@ -5,12 +5,13 @@
 #include <memory>
 
 #include <GeographicLib/GeodesicLine.hpp>
+#include "kew/util/units.hpp"
 
 namespace kew::replay::detail {
 
-inline constexpr double kMetresPerFoot = 0.3048;
-inline constexpr double kMetresPerNauticalMile = 1852.0;
-inline constexpr double kMpsPerKnot = kMetresPerNauticalMile / 3600.0;
+using units::kMetresPerFoot;
+using units::kMetresPerNauticalMile;
+using units::kMpsPerKnot;
 
 /// What the aircraft really does at one instant.
 struct TruthState {

@@ -131,7 +131,7 @@ std::vector<Update> generated(replay::Scenario scenario, std::size_t aircraft, d
   double clock = 0.0;
   v_max = 0.0;
   for (TrackReport r; generator.next(r);) {
-    if (!table.plausibility_problem(r).empty()) continue;
+    if (table.plausibility_problem(r) != kew::track::Refusal::None) continue;
     clock = std::max(clock, r.t);
     table.expire(clock, [&](track::TrackSlot slot, const track::Track&) {
       if (slot < in.size() && in[slot]) out.push_back({clock, slot, true, {}});

@@ -90,6 +90,42 @@ inline constexpr util::NameTable<Exclusion, 8> kExclusionNames({{
     {Exclusion::FirstRecords, "first_records"},
 }});
 
+/// The rule that turns a pair the conflict test found in conflict clear (design §4.5), in
+/// the order Rules::verdict() applies them.
+enum class PairRule : std::uint8_t {
+  None,              ///< no rule: the pair may alert
+  SameAddress,       ///< one aircraft: both tracks carry one 24-bit address
+  LevelPair,         ///< two level aircraft at adjacent levels
+  AdjacentLevelOff,  ///< a climb or descent presumed to level off beside a level aircraft
+  Inhibited,         ///< a party in an inhibition volume
+  SameCode,          ///< one aircraft: one discrete code on coinciding tracks
+  Excluded,          ///< a party may not open an alert (PairVerdict::exclusion says why)
+};
+inline constexpr util::NameTable<PairRule, 7> kPairRuleNames({{
+    {PairRule::None, "none"},
+    {PairRule::SameAddress, "same_address"},
+    {PairRule::LevelPair, "level_pair"},
+    {PairRule::AdjacentLevelOff, "adjacent_level_off"},
+    {PairRule::Inhibited, "inhibited"},
+    {PairRule::SameCode, "same_code"},
+    {PairRule::Excluded, "excluded"},
+}});
+
+/// What the rules make of a pair in conflict (Rules::verdict).
+struct PairVerdict {
+  PairRule rule = PairRule::None;
+  Exclusion exclusion = Exclusion::None;  ///< Excluded: why
+  bool second_excluded = false;           ///< Excluded: the second track (b), not the first
+};
+
+/// What the rules read of a pair besides its two tracks.
+struct PairContext {
+  double now = 0.0;          ///< the data time of the judgement (UTC s)
+  double distance_m = 0.0;   ///< the tracks' horizontal distance now (m, on the ellipsoid)
+  bool alert_open = false;   ///< the pair's alert is open: only facts may clear it
+  bool inhibited = false;    ///< either track in an inhibition volume (design §4.8)
+};
+
 /// The codes that are never identity (conspicuity codes shared by many aircraft), and
 /// 7500/7600/7700, which an aircraft in trouble selects and must never be treated as
 /// identity or excluded.
@@ -107,6 +143,12 @@ class Rules {
   /// nearest aerodrome's elevation plus aerodrome_height_ft where that is higher; the
   /// aerodrome, if it sets the limit, in `aerodrome`.
   double lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** aerodrome = nullptr) const;
+
+  /// The first rule, in the order of design §4.5, that turns the pair (a, b) clear: one
+  /// aircraft by address, level pair; then, only when no alert of the pair is open
+  /// (presumptions and weak evidence never end one), adjacent level-off, inhibition,
+  /// one aircraft by code, and the exclusions of a, then of b.
+  PairVerdict verdict(const track::Track& a, const track::Track& b, const PairContext& context) const;
 
   /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
   Exclusion exclusion(const track::Track& t, double now) const;

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "kew/geometry/vector2.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::probe {
 
@@ -60,7 +61,7 @@ struct SeparationMinima {
   /// Altimetry tolerance (≥ 0, m; default 200 ft): aircraft at adjacent levels read as
   /// little as S_v − this apart (altimetry error, 25 ft and 100 ft rounding), and are
   /// separated. Also the level-pair rule's (design §4.5).
-  double altimetry_tolerance_m = 200.0 * 0.3048;
+  double altimetry_tolerance_m = 200.0 * units::kMetresPerFoot;
 };
 
 struct ConflictGeometry {

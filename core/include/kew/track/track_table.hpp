@@ -15,6 +15,7 @@
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/probe/cpa.hpp"
 #include "kew/track/track_index.hpp"
+#include "kew/track/refusal.hpp"
 #include "kew/track/track_report.hpp"
 #include "kew/track/vertical_intent.hpp"
 #include "kew/util/chunked_vector.hpp"
@@ -120,6 +121,12 @@ struct Track {
   probe::Kinematics at(double at_t) const { return probe::extrapolated(kinematics, at_t - t); }
 };
 
+/// A record's position projected in a plane, and the projection's verdict on it.
+struct ProjectedPosition {
+  geo::PlanePosition at;
+  geo::ProjectionError error = geo::ProjectionError::None;
+};
+
 /// What admit() decided about a record.
 enum class Admission : std::uint8_t {
   Rejected,        ///< counted in the table's Rejections; the table is unchanged
@@ -132,7 +139,7 @@ struct AdmitResult {
   TrackSlot slot = kNoTrack;
   bool new_track = false;       ///< the record opened a new track
   bool velocity_reset = false;  ///< derived speed was implausible: velocity forgotten
-  std::string_view refusal;     ///< the reason counted, when the record was rejected
+  Refusal refusal = Refusal::None;  ///< the reason counted, when the record was rejected
 };
 
 class TrackTable {
@@ -147,8 +154,10 @@ class TrackTable {
   /// record judged without it. `plane` names the projection (Track::plane): a previous
   /// position or velocity in another plane is carried over through its geodetic
   /// position and ground velocity.
+  /// `projected`: the record's position already projected in `projection` by the caller
+  /// (null: admit() projects it), so that a record is projected once.
   AdmitResult admit(const TrackReport& report, double now, const geo::Projection& projection,
-                    std::uint32_t plane = 0);
+                    std::uint32_t plane = 0, const ProjectedPosition* projected = nullptr);
 
   /// Forgets a track (its slot may be reused by a later track).
   void drop(TrackSlot slot);
@@ -175,8 +184,8 @@ class TrackTable {
 
   /// The reason a record is implausible on its own (time, position, altitude, on
   /// ground...), or an empty view when it is plausible. Optional fields are not judged
-  /// here (admit() drops implausible ones). No state is read or changed.
-  std::string_view plausibility_problem(const TrackReport& r) const;
+  /// here (admit() drops implausible ones). No state is read or changed. None: plausible.
+  Refusal plausibility_problem(const TrackReport& r) const;
 
   const TrackTableConfig& config() const { return config_; }
   Rejections& rejections() { return rejections_; }

@@ -16,11 +16,12 @@
 
 #include "kew/replay/evaluation.hpp"
 #include "kew/track/track_report.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::replay {
 
 struct StateBasedConfig {
-  double horizontal_m = 5.0 * 1852.0;  ///< S_h (m, > 0): 5 NM
+  double horizontal_m = 5.0 * units::kMetresPerNauticalMile;  ///< S_h (m, > 0): 5 NM
   double vertical_ft = 1000.0;         ///< S_v (ft, > 0)
   double lookahead_s = 300.0;          ///< T (s, > 0): BlueSky's default dtlookahead
   double step_s = 1.0;                 ///< time between evaluations (s, > 0): BlueSky's asas_dt

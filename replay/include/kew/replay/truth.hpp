@@ -29,13 +29,14 @@
 #include <vector>
 
 #include "kew/track/track_report.hpp"
+#include "kew/util/units.hpp"
 
 namespace kew::replay {
 
 /// The truth's fixed rules. They are constants on purpose: a truth that moved with the
 /// configuration under test could not rank configurations.
 namespace truth_rules {
-inline constexpr double kNauticalMile_m = 1852.0;
+inline constexpr double kNauticalMile_m = units::kMetresPerNauticalMile;
 /// Records further apart than this are not interpolated between (s).
 inline constexpr double kMaxGap_s = 20.0;
 /// A derived speed is measured over at least this baseline when the run allows (s):
