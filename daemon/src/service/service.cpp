@@ -18,9 +18,9 @@
 #include "../outputs/nats_output.hpp"
 #include "../outputs/subscriber_output.hpp"
 #include "../outputs/websocket_output.hpp"
+#include "listen_address.hpp"
 #include "logging.hpp"
 #include "test_hooks.hpp"
-#include "kew/config/address.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
@@ -38,33 +38,6 @@ double wall_clock_s() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-/// "127.0.0.1:4747" → "0.0.0.0:4747" (and "[::1]:P" → "[::]:P") when the operator asked
-/// for every interface; other addresses were chosen on purpose and are kept.
-std::string widen_if_loopback(const std::string& address) {
-  const std::optional<config::HostPort> parsed = config::parse_host_port(address);
-  if (!parsed) return address;
-  if (parsed->host == "127.0.0.1" || parsed->host == "localhost") return config::to_string({"0.0.0.0", parsed->port});
-  if (parsed->host == "::1") return config::to_string({"::", parsed->port});
-  return address;
-}
-
-/// Runs `open` (which binds `address`), naming the listener and its address in what it
-/// throws: a bare "bind: Address already in use" does not say which port.
-template <class Open>
-auto open_listener(std::string_view name, std::string_view address, Open&& open) {
-  try {
-    return open();
-  } catch (const std::exception& e) {
-    throw std::runtime_error(fmt::format("{} = \"{}\": {}", name, address, e.what()));
-  }
-}
-
-tcp::endpoint resolve_listen(asio::io_context& io, const std::string& address) {
-  const config::HostPort listen = config::require_host_port(address);
-  tcp::resolver resolver(io);
-  return *resolver.resolve(listen.host, std::to_string(listen.port), tcp::resolver::passive).begin();
-}
-
 }  // namespace
 
 Service::Service(Config config, ServiceOptions options)
@@ -76,10 +49,7 @@ Service::Service(Config config, ServiceOptions options)
       pipeline_(config_.pipeline),
       // A replay's numbering starts at 1 each time and is kept nowhere (design §5.6).
       continuity_(options_.replay ? std::string() : state_directory(config_.service)),
-      started_(std::chrono::steady_clock::now()),
-      started_unix_s_(wall_clock_s()),
-      health_(config_.pipeline.tracks.track_timeout_s),
-      last_alive_(started_) {
+      status_(pipeline_, config_.pipeline.tracks.track_timeout_s) {
   pipeline_.set_alert_sink([this](const AlertEvent& e) { on_alert(e); });
   test_hooks::announce();
   pipeline_.rejections().set_reporter([](std::string_view reason, std::string_view message) {
@@ -143,7 +113,7 @@ void Service::open_outputs() {
     modbus_ = &fan_out_->add(open_listener("[modbus] listen", modbus.listen, [&] {
       return std::make_unique<ModbusOutput>(
           modbus, [this](const std::string& client) { asio::post(io_, [this, client] { acknowledge("modbus", client); }); },
-          [this] { return alarm_state(); });
+          [this] { return status_.alarm_state(std::chrono::steady_clock::now(), conditions()); });
     }));
   }
 }
@@ -272,7 +242,7 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
   if (outcome.kind == RecordOutcome::Kind::Refused)
     figures.pipeline_refused.reject(track::kRefusalNames.name(outcome.refusal));
   if (!outcome.applied()) return;
-  health_.accepted(std::chrono::steady_clock::now());
+  status_.record_applied(std::chrono::steady_clock::now());
   if (websockets_) websockets_->track_updated(outcome.slot);
 }
 
@@ -307,14 +277,8 @@ void Service::save_numbering() {
   continuity_.save({pipeline_.alerts().last_seq(), pipeline_.alerts().next_number()});
 }
 
-protocol::HealthReason Service::health(std::chrono::steady_clock::time_point now) const {
-  // The log first: the feed's state is also told by register 4 and ALIVE's "t", a lost
-  // record of the alerts by nothing else.
-  if (alert_log_ && alert_log_->failing()) return protocol::HealthReason::AlertLogFailing;
-  // A display connected to a standby (or to an active that lost its lease) must not
-  // take its silence for a quiet sky.
-  if (fan_out_->hot_standby() && !fan_out_->active()) return protocol::HealthReason::Standby;
-  return health_.reason(now);
+ServiceStatus::Conditions Service::conditions() const {
+  return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active()};
 }
 
 void Service::on_alert(const AlertEvent& event) {
@@ -366,14 +330,14 @@ double Service::data_clock_now() const {
   // show; as fast as possible, only records move it (as in kew-replay).
   const double last = pipeline_.statistics().last_data_time;
   if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return last;
-  const double idle = health_.seconds_since_accepted(std::chrono::steady_clock::now()).value_or(0.0);
+  const double idle = status_.seconds_since_applied(std::chrono::steady_clock::now()).value_or(0.0);
   return last + idle * (options_.replay ? options_.replay_speed : 1.0);
 }
 
 void Service::tick() {
   if (record_file_) record_file_->flush();
   if (websockets_) websockets_->flush(pipeline_.now(), last_alert_seq_);
-  const std::optional<double> idle = health_.seconds_since_accepted(std::chrono::steady_clock::now());
+  const std::optional<double> idle = status_.seconds_since_applied(std::chrono::steady_clock::now());
   // While records are accepted, their own times drive the clock; only a feed silent (or
   // wholly refused) for a whole tick moves it on, so its tracks time out.
   // A replay's clock stands still at its end, or when only its records move it.
@@ -383,21 +347,8 @@ void Service::tick() {
 
 void Service::alive() {
   const auto now = std::chrono::steady_clock::now();
-  const double span = std::chrono::duration<double>(now - last_alive_).count();
-  const PipelineStatistics s = pipeline_.statistics();
-  const std::uint64_t updates = pipeline_.kinetic_statistics().updates;
-  if (span > 0) {
-    records_per_s_ = static_cast<double>(s.accepted - accepted_at_last_alive_) / span;
-    updates_per_s_ = static_cast<double>(updates - updates_at_last_alive_) / span;
-  }
-  accepted_at_last_alive_ = s.accepted;
-  // Targets on the ground are left out by configuration, not refused for a fault: a
-  // receiver beside an airport at night sees mostly those and is healthy.
-  health_.sample(s.records - pipeline_.rejections().count(track::kRefusalNames.name(track::Refusal::OnGround)),
-                 s.accepted);
-  updates_at_last_alive_ = updates;
-  last_alive_ = now;
-  fan_out_->alive({alive_status(now), data_clock_now(), last_alert_seq_});
+  status_.sample(now);
+  fan_out_->alive({status_.alive(now, conditions()), data_clock_now(), last_alert_seq_});
 }
 
 void Service::wait_for_signal() {
@@ -484,37 +435,11 @@ void Service::end_replay() {
 protocol::ServiceStatistics Service::service_statistics() const {
   protocol::ServiceStatistics service;
   service.seq = last_alert_seq_;
-  service.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  service.uptime_s = status_.uptime_s(std::chrono::steady_clock::now());
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   fan_out_->report(service);
   service.resident_bytes = http::resident_bytes();
   return service;
-}
-
-protocol::AlarmSnapshot Service::alarm_state() const {
-  const auto now = std::chrono::steady_clock::now();
-  protocol::AlarmSnapshot snapshot;
-  snapshot.active = pipeline_.alerts().snapshot();
-  snapshot.live_tracks = static_cast<std::uint32_t>(pipeline_.live_tracks());
-  snapshot.seconds_since_last_record = health_.seconds_since_accepted(now).value_or(1e9);
-  snapshot.feed_healthy = health_.reason(now) == protocol::HealthReason::Healthy;
-  snapshot.degraded = health(now) != protocol::HealthReason::Healthy;
-  snapshot.uptime_s = static_cast<std::uint32_t>(std::chrono::duration<double>(now - started_).count());
-  snapshot.unacknowledged = static_cast<std::uint32_t>(pipeline_.alerts().unacknowledged_count());
-  return snapshot;
-}
-
-protocol::AliveStatus Service::alive_status(std::chrono::steady_clock::time_point now) const {
-  protocol::AliveStatus status;
-  const PipelineStatistics& s = pipeline_.statistics();
-  if (health_.seconds_since_accepted(now)) status.last_data_t = s.last_data_time;
-  status.tracks = pipeline_.live_tracks();
-  status.alerts = pipeline_.alerts().active_count();
-  status.records_per_s = records_per_s_;
-  status.updates_per_s = updates_per_s_;
-  status.uptime_s = static_cast<std::uint64_t>(std::chrono::duration<double>(now - started_).count());
-  status.health = health(now);
-  return status;
 }
 
 std::string Service::metrics_text() const {
@@ -539,7 +464,7 @@ std::string Service::metrics_text() const {
   m.alert_log_queued_bytes = service.alert_log_queued_bytes;
   m.nats = service.nats;
   m.latency = &latency_;
-  m.start_time_unix_s = started_unix_s_;
+  m.start_time_unix_s = status_.started_unix_s();
   return http::metrics_text(m);
 }
 
@@ -570,7 +495,7 @@ http::HttpSource Service::http_source() {
   };
   source.status = [this] {
     std::string out;
-    protocol::append_status_json(out, alive_status(std::chrono::steady_clock::now()), last_alert_seq_,
+    protocol::append_status_json(out, status_.alive(std::chrono::steady_clock::now(), conditions()), last_alert_seq_,
                                  data_clock_now(), wall_clock_s());
     return out;
   };
@@ -583,7 +508,7 @@ http::HttpSource Service::http_source() {
   source.snapshot = [this] {
     std::string out;
     protocol::append_snapshot_json(out, live_tracks(), pipeline_.alerts().snapshot(),
-                                   alive_status(std::chrono::steady_clock::now()), pipeline_.now(), last_alert_seq_);
+                                   status_.alive(std::chrono::steady_clock::now(), conditions()), pipeline_.now(), last_alert_seq_);
     return out;
   };
   source.acknowledge = [this](const protocol::AckRequest& request, std::string_view client) {

@@ -19,13 +19,12 @@
 #include "../inputs/inputs.hpp"
 #include "../outputs/fan_out.hpp"
 #include "continuity.hpp"
-#include "feed_health.hpp"
 #include "housekeeping.hpp"
 #include "line_file.hpp"
+#include "service_status.hpp"
 #include "subscribers.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/pipeline/pipeline.hpp"
-#include "kew/protocol/modbus_map.hpp"
 
 namespace kew::daemon {
 
@@ -72,8 +71,8 @@ class Service {
   void begin_run();
   void save_numbering();
   void start_housekeeping();
-  /// The verdict every interface reports: the alert log's, then the feed's.
-  protocol::HealthReason health(std::chrono::steady_clock::time_point now) const;
+  /// What the status needs beyond the feed: the alert log failing, standby.
+  ServiceStatus::Conditions conditions() const;
   void tick();
   void alive();
   /// Hot standby (design §5.9): the lease is this instance's, or it is lost.
@@ -88,8 +87,6 @@ class Service {
                                        std::optional<std::string_view> id = std::nullopt);
   /// The HTTP server's view of the service (design §5.8).
   http::HttpSource http_source();
-  protocol::AlarmSnapshot alarm_state() const;
-  protocol::AliveStatus alive_status(std::chrono::steady_clock::time_point now) const;
   protocol::ServiceStatistics service_statistics() const;
   std::string metrics_text() const;
   /// The TRACKS object of every live track (GET /api/tracks, [nats] tracks_subject).
@@ -139,15 +136,8 @@ class Service {
   std::uint64_t flushes_ = 0, flushes_at_last_ping_ = 0;
   std::string line_;  // scratch for encoding
 
-  std::chrono::steady_clock::time_point started_;
-  double started_unix_s_ = 0.0;
-  FeedHealth health_;
+  ServiceStatus status_;
   std::uint64_t last_alert_seq_ = 0;
-  std::uint64_t accepted_at_last_alive_ = 0;
-  std::uint64_t updates_at_last_alive_ = 0;
-  std::chrono::steady_clock::time_point last_alive_;
-  double records_per_s_ = 0.0;
-  double updates_per_s_ = 0.0;
   bool stopping_ = false;
   bool replay_ended_ = false;
 };
