@@ -176,4 +176,44 @@ Numbering resume_point(const std::optional<Numbering>& saved, const AlertLogTail
   return n;
 }
 
+RunContinuity::RunContinuity(const std::string& state_directory) : run_id_(make_run_id()) {
+  if (!state_directory.empty()) state_ = std::make_unique<StateFile>(state_directory);
+}
+
+RunContinuity::Beginning RunContinuity::begin(const std::string& alert_log_path) {
+  const std::optional<Numbering> saved = state_ ? state_->load() : std::nullopt;
+  AlertLogTail tail;
+  if (!alert_log_path.empty()) tail = read_alert_log_tail(alert_log_path);
+  if (tail.unreadable_lines)
+    spdlog::warn("alert log {}: {} of {} lines unreadable (skipped while looking for open alerts)", alert_log_path,
+                 tail.unreadable_lines, tail.lines);
+  Beginning beginning;
+  beginning.numbering = resume_point(saved, tail);
+  beginning.start_seq = beginning.numbering.last_seq;
+  for (AlertEvent event : tail.open) {
+    event.state = AlertState::End;
+    event.end_reason = AlertEndReason::Restart;
+    event.t = tail.last_t;
+    event.seq = ++beginning.numbering.last_seq;
+    beginning.ended.push_back(std::move(event));
+  }
+  return beginning;
+}
+
+void RunContinuity::save(const Numbering& now) {
+  if (!state_) return;
+  if (saved_ && now.last_seq == saved_->last_seq && now.next_number == saved_->next_number) return;
+  std::string error;
+  if (state_->save(now, run_id_, error)) {
+    saved_ = now;
+    if (errors_) spdlog::info("state file {} written again", state_->path());
+    errors_ = 0;
+    return;
+  }
+  // One failure a second at most (the housekeeping's period): the first, then each minute.
+  if (errors_++ % 60 == 0)
+    spdlog::error("cannot save the numbering: {} ({} failures; the alert log's tail still guards it)", error,
+                  errors_);
+}
+
 }  // namespace kew::daemon

@@ -8,6 +8,7 @@
 // absent, rotated away or deleted. The next run continues from the later of the two.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,5 +67,42 @@ AlertLogTail read_alert_log_tail(const std::string& path);
 /// The later of the saved numbering and the log's (by seq; numbers follow the source
 /// that saw the last New).
 Numbering resume_point(const std::optional<Numbering>& saved, const AlertLogTail& tail);
+
+/// One run's continuity: its id, where its numbering resumes, and the state file kept
+/// current while it runs.
+class RunContinuity {
+ public:
+  /// A fresh run id; `state_directory` empty: no state file (a replay, or none set).
+  /// Throws std::runtime_error when the directory cannot be created.
+  explicit RunContinuity(const std::string& state_directory);
+
+  const std::string& run_id() const { return run_id_; }
+  /// The state file's path, "" without one.
+  std::string state_path() const { return state_ ? state_->path() : std::string(); }
+
+  /// Where the run begins (design §4.7).
+  struct Beginning {
+    /// The last seq before this run: its START object carries it.
+    std::uint64_t start_seq = 0;
+    /// The End (reason "restart") of every alert the last run left open, with the last
+    /// data time it logged and seqs after start_seq: ended, not resumed under their ids,
+    /// because this run does not know whether the pair is still in conflict until its
+    /// tracks are rebuilt (if it is, the alert opens again under a new id).
+    std::vector<AlertEvent> ended;
+    /// The numbering after them, for the alert manager.
+    Numbering numbering;
+  };
+  /// From the state file and the alert log at `alert_log_path` ("" none).
+  Beginning begin(const std::string& alert_log_path);
+  /// Saves `now` when it moved since the last save; a failure is counted and logged at
+  /// the first and then once a minute of them (the alert log's tail still guards it).
+  void save(const Numbering& now);
+
+ private:
+  std::string run_id_;
+  std::unique_ptr<StateFile> state_;
+  std::optional<Numbering> saved_;
+  std::uint64_t errors_ = 0;
+};
 
 }  // namespace kew::daemon

@@ -374,45 +374,15 @@ void SubscriberServer::forget(const std::shared_ptr<SubscriberSession>& session)
   if (stopped_ && sessions_.empty() && on_empty_) on_empty_();
 }
 
-void SubscriberServer::broadcast_alert(const AlertEvent& event) {
-  Line line;
+void SubscriberServer::broadcast_alert(const AlertEvent& event, const Line& line) {
   // enqueue() never closes a session synchronously, so sessions_ is stable here.
-  for (const auto& s : sessions_) {
-    if (!s->wants(event)) continue;
-    if (!line) {
-      std::string text;
-      protocol::append_alert_json(text, event, event.seq);
-      line = std::make_shared<const std::string>(std::move(text));
-    }
-    s->enqueue(line);
-  }
+  for (const auto& s : sessions_)
+    if (s->wants(event)) s->enqueue(line);
 }
 
-void SubscriberServer::broadcast_alive(const protocol::AliveStatus& status) {
-  Line line;
-  // enqueue() never closes a session synchronously, so sessions_ is stable here.
-  for (const auto& s : sessions_) {
-    if (!s->watching()) continue;
-    if (!line) {
-      std::string text;
-      protocol::append_alive_json(text, status, source_.seq());
-      line = std::make_shared<const std::string>(std::move(text));
-    }
-    s->enqueue(line);
-  }
-}
-
-void SubscriberServer::broadcast_ack(const protocol::Acknowledgement& ack) {
-  Line line;
-  for (const auto& s : sessions_) {
-    if (!s->watching()) continue;
-    if (!line) {
-      std::string text;
-      protocol::append_ack_json(text, ack, source_.seq());
-      line = std::make_shared<const std::string>(std::move(text));
-    }
-    s->enqueue(line);
-  }
+void SubscriberServer::broadcast_to_watchers(const Line& line) {
+  for (const auto& s : sessions_)
+    if (s->watching()) s->enqueue(line);
 }
 
 bool SubscriberServer::anyone_wants_tracks() const {

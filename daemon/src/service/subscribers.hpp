@@ -134,10 +134,11 @@ class SubscriberServer {
   /// Stops accepting; every session writes what it has queued and closes.
   void shutdown();
 
-  void broadcast_alert(const AlertEvent& event);
-  void broadcast_alive(const protocol::AliveStatus& status);
-  /// Sends an ACK object (operator acknowledgement) to every watching session.
-  void broadcast_ack(const protocol::Acknowledgement& ack);
+  /// An alert event's ALERT line (encoded once by the caller) to the sessions that want
+  /// that alert.
+  void broadcast_alert(const AlertEvent& event, const Line& line);
+  /// An ALIVE or ACK line to every watching session.
+  void broadcast_to_watchers(const Line& line);
   /// Sends a TRACK object to the sessions that asked for tracks.
   void broadcast_track(const TrackReport& report);
   bool anyone_wants_tracks() const;

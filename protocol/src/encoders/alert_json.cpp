@@ -300,4 +300,39 @@ void append_live_track_json(std::string& out, const track::Track& track, double 
   o.close();
 }
 
+void append_tracks_json(std::string& out, std::span<const track::Track* const> tracks, double now,
+                        std::uint64_t seq) {
+  ObjectWriter o(out);
+  o.text("class", "TRACKS");
+  o.integer("seq", seq);
+  o.fixed("t", now, kTimeDecimals);
+  o.key("tracks");
+  out.push_back('[');
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (i) out.push_back(',');
+    append_live_track_json(out, *tracks[i], now, seq);
+  }
+  out.push_back(']');
+  o.close();
+  out.push_back('\n');
+}
+
+void append_snapshot_json(std::string& out, std::span<const track::Track* const> tracks,
+                          std::span<const AlertEvent> alerts, const AliveStatus& alive, double now,
+                          std::uint64_t seq) {
+  out.push_back('[');
+  for (const track::Track* track : tracks) {
+    append_live_track_json(out, *track, now, seq);
+    out.push_back(',');
+  }
+  for (const AlertEvent& event : alerts) {
+    append_alert_object(out, event, event.seq);
+    out.push_back(',');
+  }
+  ObjectWriter o(out);
+  write_alive_members(o, out, alive, seq);
+  o.close();
+  out.push_back(']');
+}
+
 }  // namespace kew::protocol

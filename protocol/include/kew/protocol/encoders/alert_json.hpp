@@ -142,4 +142,17 @@ void append_track_json(std::string& out, const TrackReport& report, std::uint64_
 /// "age_s" (`now` − t).
 void append_live_track_json(std::string& out, const track::Track& track, double now, std::uint64_t seq);
 
+/// {"class":"TRACKS","seq":…,"t":…,"tracks":[TRACK,…]}: the live TRACK object of each of
+/// `tracks`, in the caller's order, at data time `now` (UTC s) (HTTP /api/tracks, the
+/// NATS tracks subject, design §5.8).
+void append_tracks_json(std::string& out, std::span<const track::Track* const> tracks, double now,
+                        std::uint64_t seq);
+
+/// What a page shows at once, as one JSON array without the line end (HTTP
+/// /api/snapshot, design §5.8): the live TRACK object of each of `tracks`, the ALERT
+/// object of each of `alerts` (with its own seq), then the ALIVE object.
+void append_snapshot_json(std::string& out, std::span<const track::Track* const> tracks,
+                          std::span<const AlertEvent> alerts, const AliveStatus& alive, double now,
+                          std::uint64_t seq);
+
 }  // namespace kew::protocol

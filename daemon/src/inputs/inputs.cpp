@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "../nats/nats_input.hpp"
+#include "nats_input.hpp"
 #include "accept_guard.hpp"
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"

@@ -1,0 +1,15 @@
+#include "cat004_output.hpp"
+
+#include <ctime>
+
+namespace kew::daemon {
+
+void Cat004Output::alive(const AliveEvent& alive, const SharedLine&) {
+  protocol::Cat004Alive message;
+  // Before the first record the data clock means nothing: the wall clock stands in.
+  message.t = alive.status.last_data_t ? alive.data_clock_t : static_cast<double>(std::time(nullptr));
+  message.degraded = alive.status.degraded();
+  sender_.send_alive(message);
+}
+
+}  // namespace kew::daemon

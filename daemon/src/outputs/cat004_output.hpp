@@ -1,0 +1,29 @@
+#pragma once
+// ASTERIX CAT004 (design §5.4) as an output: STCA messages for alert events and Alive
+// messages, to the destination the pair shares.
+
+#include <boost/asio/io_context.hpp>
+
+#include "../service/cat004_sender.hpp"
+#include "output.hpp"
+
+namespace kew::daemon {
+
+class Cat004Output final : public Output {
+ public:
+  Cat004Output(boost::asio::io_context& io, const Cat004Config& config) : sender_(io, config) {}
+
+  std::string_view name() const override { return "cat004"; }
+  Audience audience() const override { return Audience::Shared; }
+  void alert(const AlertEvent& event, const SharedLine&) override { sender_.send_alert(event); }
+  void acknowledgement(const protocol::Acknowledgement&, std::uint64_t, const SharedLine&) override {}
+  void alive(const AliveEvent& alive, const SharedLine&) override;
+  void report(protocol::ServiceStatistics& statistics) const override {
+    statistics.cat004 = protocol::Cat004Statistics{sender_.datagrams_sent(), sender_.send_errors()};
+  }
+
+ private:
+  Cat004Sender sender_;
+};
+
+}  // namespace kew::daemon

@@ -1,0 +1,46 @@
+#include "nats_output.hpp"
+
+#include "kew/config/nats_subject.hpp"
+
+namespace kew::daemon {
+
+NatsOutput::NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline)
+    : publisher_(std::make_unique<NatsPublisher>(config, std::move(run_id))),
+      pipeline_(pipeline),
+      hot_standby_(config.hot_standby) {}
+
+void NatsOutput::alert(const AlertEvent& event, const SharedLine& line) {
+  if (publisher_) publisher_->publish_alert(zone(event), *line, event.seq);
+}
+
+void NatsOutput::acknowledgement(const protocol::Acknowledgement&, std::uint64_t seq, const SharedLine& line) {
+  if (publisher_) publisher_->publish_ack(*line, seq);
+}
+
+void NatsOutput::alive(const AliveEvent& alive, const SharedLine& line) {
+  if (publisher_) publisher_->publish_status(*line, alive.seq);
+}
+
+void NatsOutput::tracks(const std::string& line, std::uint64_t seq) {
+  if (publisher_ && active_) publisher_->publish_tracks(line, seq);
+}
+
+void NatsOutput::role_changed(bool active) {
+  if (active_ && !active && publisher_) publisher_->discard_outbox();
+  active_ = active;
+}
+
+void NatsOutput::report(protocol::ServiceStatistics& statistics) const {
+  if (!publisher_) return;
+  statistics.nats = publisher_->statistics();
+  if (hot_standby_) statistics.nats->active = active_;
+}
+
+std::string NatsOutput::zone(const AlertEvent& event) const {
+  const std::optional<zone::ZoneTiling>& tiling = pipeline_.tiling();
+  if (!tiling) return "single";
+  const zone::ZoneKey owner = tiling->owner({event.a.lat_deg, event.a.lon_deg}, {event.b.lat_deg, event.b.lon_deg});
+  return config::nats_subject_token(tiling->name(owner));
+}
+
+}  // namespace kew::daemon

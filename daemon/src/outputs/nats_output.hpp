@@ -1,0 +1,43 @@
+#pragma once
+// NATS (design §5.9) as an output: alerts to <alerts_subject>.<zone> and acknowledgements
+// kept in JetStream, the status now or never, a TRACKS snapshot at its own interval.
+
+#include <memory>
+#include <string>
+
+#include "../nats/nats_publisher.hpp"
+#include "kew/pipeline/pipeline.hpp"
+#include "output.hpp"
+
+namespace kew::daemon {
+
+class NatsOutput final : public Output {
+ public:
+  /// Connects (see NatsPublisher); `pipeline` (its zones name the subjects) outlives it.
+  NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline);
+
+  std::string_view name() const override { return "nats"; }
+  Audience audience() const override { return Audience::Shared; }
+  void alert(const AlertEvent& event, const SharedLine& line) override;
+  void acknowledgement(const protocol::Acknowledgement& ack, std::uint64_t seq, const SharedLine& line) override;
+  void alive(const AliveEvent& alive, const SharedLine& line) override;
+  /// Stepping down, what the outbox has not published is the next active's to send.
+  void role_changed(bool active) override;
+  void report(protocol::ServiceStatistics& statistics) const override;
+
+  /// A TRACKS object (its line) while active.
+  void tracks(const std::string& line, std::uint64_t seq);
+  /// The publisher stops, with the last events given their chance to reach the server.
+  void close() { publisher_.reset(); }
+
+ private:
+  /// The subject token of the zone that judges the event's pair ("single" in single mode).
+  std::string zone(const AlertEvent& event) const;
+
+  std::unique_ptr<NatsPublisher> publisher_;
+  const Pipeline& pipeline_;
+  bool hot_standby_;
+  bool active_ = true;
+};
+
+}  // namespace kew::daemon
