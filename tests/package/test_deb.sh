@@ -64,6 +64,8 @@ grep -q 'purge' "$control/postrm" || fail "postrm does not clean up on purge"
 # The package's version is the release the binaries report (debian/changelog and
 # project(VERSION) in CMakeLists.txt move together), with the revision it was built from.
 dpkg-deb -x "$deb" "$work/root"
+# The package builds without tests, so its kewd carries no test hook (docs/testing.md).
+! grep -q KEWD_TEST_STALL_FILE "$work/root/usr/bin/kewd" || fail "the packaged kewd contains a test hook"
 reported=$("$work/root/usr/bin/kewd" --version)
 [ "$reported" = "kewd $version ($revision)" ] || fail "kewd --version says '$reported', the package is $version of $revision"
 echo "test_deb: contents, conffile, maintainer scripts and version ($reported) as expected"
