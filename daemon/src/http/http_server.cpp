@@ -1,5 +1,7 @@
 #include "http_server.hpp"
 
+#include <filesystem>
+
 #include <algorithm>
 
 #include <spdlog/spdlog.h>
@@ -49,7 +51,14 @@ HttpServer::HttpServer(asio::io_context& io, const tcp::endpoint& endpoint, cons
 
 HttpServer::~HttpServer() = default;
 
-void HttpServer::start() { accept(); }
+void HttpServer::start() {
+  accept();
+  const std::string& root = router().web().root();
+  spdlog::info("HTTP (map, API, metrics) on port {}, files from {}", port(), root);
+  std::error_code ec;
+  if (!std::filesystem::is_directory(root, ec))
+    spdlog::warn("[http] web_root {} is not a directory: the map is not served (the API is)", root);
+}
 
 void HttpServer::accept() {
   acceptor_.async_accept([this](const boost::system::error_code& ec, tcp::socket socket) {

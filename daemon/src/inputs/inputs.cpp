@@ -433,4 +433,11 @@ std::unique_ptr<Input> make_input(asio::io_context& io, const InputConfig& confi
   return std::make_unique<FileInput>(io, config, options, std::move(handler));
 }
 
+std::string describe(const Input& input) {
+  const std::uint16_t port = input.bound_port();
+  return fmt::format("input {}: {} {} {}{}", input.config().name, protocol::to_string(input.config().format),
+                     to_string(input.config().transport), input.config().address,
+                     port ? fmt::format(" (port {})", port) : std::string());
+}
+
 }  // namespace kew::daemon

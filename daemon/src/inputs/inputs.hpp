@@ -76,4 +76,7 @@ class Input {
 std::unique_ptr<Input> make_input(boost::asio::io_context& io, const InputConfig& config,
                                   const protocol::DecoderOptions& options, Input::ReportHandler handler);
 
+/// For the log at start: "input NAME: FORMAT TRANSPORT ADDRESS (port P)".
+std::string describe(const Input& input);
+
 }  // namespace kew::daemon

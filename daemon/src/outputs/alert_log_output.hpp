@@ -19,6 +19,8 @@ class AlertLogOutput final : public Output {
 
   std::string_view name() const override { return "alert log"; }
   Audience audience() const override { return Audience::Journal; }
+  /// The path as resolved (design §5.7: relative to the working directory kewd started in).
+  std::string describe() const override { return "alert log: " + file_.path(); }
   void alert(const AlertEvent& event, const SharedLine& line) override;
   void acknowledgement(const protocol::Acknowledgement& ack, std::uint64_t seq, const SharedLine& line) override;
   void alive(const AliveEvent&, const SharedLine&) override {}

@@ -17,7 +17,10 @@ SharedLine encode(Encode&& write) {
 FanOut::FanOut(StandbyGate gate, RoleHandler on_role) : gate_(std::move(gate)), on_role_(std::move(on_role)) {}
 
 void FanOut::start() {
-  for (const auto& output : outputs_) output->role_changed(gate_.open());
+  for (const auto& output : outputs_) {
+    if (const std::string what = output->describe(); !what.empty()) spdlog::info("{}", what);
+    output->role_changed(gate_.open());
+  }
 }
 
 void FanOut::alert(const AlertEvent& event) {

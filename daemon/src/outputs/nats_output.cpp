@@ -1,5 +1,7 @@
 #include "nats_output.hpp"
 
+#include <fmt/format.h>
+
 #include "kew/config/nats_subject.hpp"
 
 namespace kew::daemon {
@@ -7,6 +9,10 @@ namespace kew::daemon {
 NatsOutput::NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline)
     : publisher_(std::make_unique<NatsPublisher>(config, std::move(run_id))),
       pipeline_(pipeline),
+      description_(fmt::format("NATS: alerts to {}.<zone>{}, status to {}", config.alerts_subject,
+                               config.stream.empty() ? ""
+                                                     : fmt::format(" (kept in the JetStream stream {})", config.stream),
+                               config.status_subject)),
       hot_standby_(config.hot_standby) {}
 
 void NatsOutput::alert(const AlertEvent& event, const SharedLine& line) {

@@ -18,6 +18,7 @@ class NatsOutput final : public Output {
 
   std::string_view name() const override { return "nats"; }
   Audience audience() const override { return Audience::Shared; }
+  std::string describe() const override { return description_; }
   void alert(const AlertEvent& event, const SharedLine& line) override;
   void acknowledgement(const protocol::Acknowledgement& ack, std::uint64_t seq, const SharedLine& line) override;
   void alive(const AliveEvent& alive, const SharedLine& line) override;
@@ -36,6 +37,7 @@ class NatsOutput final : public Output {
 
   std::unique_ptr<NatsPublisher> publisher_;
   const Pipeline& pipeline_;
+  std::string description_;
   bool hot_standby_;
   bool active_ = true;
 };

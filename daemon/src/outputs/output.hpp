@@ -44,6 +44,8 @@ class Output {
   /// For logs: "alert log", "nats", ...
   virtual std::string_view name() const = 0;
   virtual Audience audience() const = 0;
+  /// What it serves, for the log at start ("alert log: PATH"); "" says nothing.
+  virtual std::string describe() const { return {}; }
   /// An alert event (new, update or end), in seq order; `line` is its ALERT object.
   virtual void alert(const AlertEvent& event, const SharedLine& line) = 0;
   /// Alerts acknowledged by an operator; `line` is the ACK object, `seq` the stream's

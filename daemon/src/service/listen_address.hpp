@@ -15,6 +15,10 @@ namespace kew::daemon {
 /// "127.0.0.1:4747" → "0.0.0.0:4747" (and "[::1]:P" → "[::]:P") when the operator asked
 /// for every interface; other addresses were chosen on purpose and are kept.
 std::string widen_if_loopback(const std::string& address);
+/// The address to listen on: `configured`, widened when `listen_any`.
+inline std::string listen_address(const std::string& configured, bool listen_any) {
+  return listen_any ? widen_if_loopback(configured) : configured;
+}
 
 /// The endpoint to bind for "HOST:PORT"; throws config::ConfigError for a malformed
 /// address, boost::system::system_error when it does not resolve.

@@ -20,7 +20,8 @@
 #include "../outputs/fan_out.hpp"
 #include "continuity.hpp"
 #include "housekeeping.hpp"
-#include "line_file.hpp"
+#include "live_views.hpp"
+#include "record_intake.hpp"
 #include "service_status.hpp"
 #include "subscribers.hpp"
 #include "kew/daemon/config.hpp"
@@ -63,8 +64,6 @@ class Service {
   void open_inputs();
   /// A record decoded by inputs_[input].
   void on_report(const TrackReport& report, std::size_t input);
-  /// Runs the pipeline's pending batch (posted after the handler that took its records).
-  void flush_pipeline();
   void on_alert(const AlertEvent& event);
   /// Before the inputs start: the START line, the End ("restart") of every alert the
   /// last run left open, and the numbering continued (design §4.7).
@@ -75,9 +74,8 @@ class Service {
   ServiceStatus::Conditions conditions() const;
   void tick();
   void alive();
-  /// Hot standby (design §5.9): the lease is this instance's, or it is lost.
+  /// Hot standby (design §5.9): the lease is this instance's.
   void take_over(std::uint64_t published);
-  void step_down();
   /// Standby: the active acknowledged these alerts.
   void follow_acknowledgements(const std::vector<std::string>& ids);
   /// Coil 0 written 1 (posted from the Modbus thread), or POST /api/ack, through interface
@@ -89,9 +87,6 @@ class Service {
   http::HttpSource http_source();
   protocol::ServiceStatistics service_statistics() const;
   std::string metrics_text() const;
-  /// The TRACKS object of every live track (GET /api/tracks, [nats] tracks_subject).
-  std::string tracks_json() const;
-  std::vector<const track::Track*> live_tracks() const;
   void wait_for_signal();
   void reload();
   void shutdown();
@@ -111,7 +106,7 @@ class Service {
   std::unique_ptr<SubscriberServer> subscribers_;
   std::unique_ptr<http::HttpServer> http_;
   std::vector<std::unique_ptr<Input>> inputs_;
-  std::unique_ptr<LineFile> record_file_;
+  std::unique_ptr<RecordIntake> intake_;
   std::unique_ptr<HotStandby> standby_;  // hot standby only
   std::unique_ptr<FanOut> fan_out_;
   // The outputs the service also asks for more than events (owned by fan_out_).
@@ -120,23 +115,9 @@ class Service {
   NatsOutput* nats_ = nullptr;
   WebSocketOutput* websockets_ = nullptr;
   std::string start_line_;  // this run's START object, for each new subscriber
-  /// Per input: what /metrics says of it beyond its own statistics.
-  struct InputFigures {
-    Rejections pipeline_refused;  ///< the pipeline's refusals of its records
-    std::optional<double> last_record_unix_s;
-  };
-  std::vector<InputFigures> input_figures_;
-  http::LatencyHistogram latency_;
-  /// While a batch runs: the arrival of its first record (alert events it causes are
-  /// measured from there); and whether a flush of the pending batch is posted.
-  std::optional<std::chrono::steady_clock::time_point> batch_arrival_;
-  std::optional<std::chrono::steady_clock::time_point> record_arrival_;
-  bool flush_posted_ = false;
-  /// Batches the pipeline has run, and how many had run at the last watchdog ping.
-  std::uint64_t flushes_ = 0, flushes_at_last_ping_ = 0;
-  std::string line_;  // scratch for encoding
 
   ServiceStatus status_;
+  LiveViews views_;
   std::uint64_t last_alert_seq_ = 0;
   bool stopping_ = false;
   bool replay_ended_ = false;
