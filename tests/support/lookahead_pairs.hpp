@@ -26,8 +26,9 @@
 // query also tests the twins directly, and a twin's own query searches the disk.
 //
 // Straight-line prediction only: the turn hypothesis of design §4.4 is not covered.
-// A prototype for measurement (tests/bench/peers_bench.cpp, method kew-lookahead) and
-// the property test that proves it exact (tests/core/property/test_lookahead_pairs.cpp).
+// A prototype for measurement (tests/bench/peers/lookahead.cpp, kew_peers_bench's method
+// kew-lookahead) and the property test that proves it exact
+// (tests/core/property/test_lookahead_pairs.cpp).
 
 #include <cstdint>
 #include <map>
