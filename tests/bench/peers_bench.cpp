@@ -80,6 +80,7 @@
 
 #include "bench_report.hpp"
 #include "lookahead_pairs.hpp"
+#include "kew/config/aerodromes.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
 #include "kew/pipeline/instrumentation.hpp"
 #include "kew/pipeline/pipeline.hpp"
@@ -288,6 +289,8 @@ void reorder_first_period(const Params& prm, double start_time, std::vector<kew:
 
 Workload make_workload(const Params& prm, std::size_t aircraft) {
   Workload w;
+  // kew's aerodromes, as every tool reads them (the lower limit above them).
+  w.config.eligibility.aerodromes = kew::config::load_default_aerodromes();
   double start_time = 0.0;
   if (!prm.recording.empty()) {
     read_recording(prm, w);

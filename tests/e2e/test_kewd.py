@@ -724,6 +724,11 @@ class Install(E2eCase):
         result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", elsewhere],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        # The installed programs read the aerodrome table installed beside them, wherever
+        # the tree was staged.
+        table = os.path.join(prefix, "share", "kew", "aerodromes.csv")
+        self.assertTrue(os.path.isfile(table), table)
+        self.assertIn(f"aerodromes file: {table} (", result.stdout)
         unit = os.path.join(prefix, "lib", "systemd", "system", "kewd.service")
         with open(unit) as f:
             text = f.read()
