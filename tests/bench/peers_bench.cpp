@@ -305,6 +305,7 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
     g.duration_s = prm.period_s * static_cast<double>(prm.warmup + prm.periods);
     g.seed = prm.seed;
     g.radius_km = w.radius_km;
+    g.aerodromes = w.config.eligibility.aerodromes;
     kew::replay::TrafficGenerator generator(g);
     w.records.reserve(aircraft * (prm.warmup + prm.periods));
     for (kew::TrackReport r; generator.next(r);) w.records.push_back(r);

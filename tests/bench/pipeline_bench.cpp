@@ -137,6 +137,7 @@ kew::replay::GeneratorConfig generated(std::size_t aircraft, double seconds,
   g.duration_s = seconds;
   g.seed = 1;
   g.radius_km = std::min(2000.0, 400.0 * std::sqrt(static_cast<double>(aircraft) / 2000.0));
+  g.aerodromes = kew::config::load_default_aerodromes();
   return g;
 }
 

@@ -93,6 +93,7 @@ std::vector<kew::TrackReport> global_traffic(std::size_t aircraft, double second
   g.duration_s = seconds;
   g.period_s = 1.0;
   g.seed = 20261203;
+  g.aerodromes = kew::config::load_default_aerodromes();
   kew::replay::TrafficGenerator generator(g);
   std::vector<kew::TrackReport> records;
   records.reserve(static_cast<std::size_t>(static_cast<double>(aircraft) * seconds));
