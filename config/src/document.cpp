@@ -95,6 +95,12 @@ void TableReader::path(std::string_view key, std::string& out) {
   if (!out.empty()) out = std::filesystem::absolute(out).lexically_normal().string();
 }
 
+void TableReader::path_beside_file(std::string_view key, std::string& out) {
+  string(key, out);
+  if (!out.empty())
+    out = std::filesystem::absolute(std::filesystem::path(origin_).parent_path() / out).lexically_normal().string();
+}
+
 void TableReader::utc_day(std::string_view key, std::string& out) {
   const toml::node* node = table_.get(key);
   string(key, out);
@@ -159,7 +165,7 @@ Document Document::parse(std::string_view text, std::string origin) {
 // The file's text, refused before anything large is read: a configuration is a small
 // regular file, and a path to a device, a pipe or a huge file must fail at once rather
 // than fill the memory of `--check-config` or of a daemon reloading on SIGHUP.
-std::string read_config_file(const std::string& path) {
+std::string read_config_file(const std::string& path, std::size_t max_bytes) {
   // O_NONBLOCK: opening a FIFO without a writer must not wait; it is refused just below.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw ConfigError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
@@ -172,13 +178,10 @@ std::string read_config_file(const std::string& path) {
   if (!S_ISREG(status.st_mode))
     throw ConfigError(fmt::format("{}: not a regular file ({}), refused", path,
                                   S_ISDIR(status.st_mode) ? "a directory" : "a device, pipe or socket"));
-  const auto too_large = [&] {
-    return ConfigError(fmt::format("{}: larger than {} bytes, refused (a configuration is a small file)", path,
-                                   kMaxConfigBytes));
-  };
-  if (static_cast<std::uint64_t>(status.st_size) > kMaxConfigBytes) throw too_large();
+  const auto too_large = [&] { return ConfigError(fmt::format("{}: larger than {} bytes, refused", path, max_bytes)); };
+  if (static_cast<std::uint64_t>(status.st_size) > max_bytes) throw too_large();
   // The size may change under us: read at most one byte more than the cap.
-  std::string text(kMaxConfigBytes + 1, '\0');
+  std::string text(max_bytes + 1, '\0');
   std::size_t used = 0;
   while (used < text.size()) {
     const ssize_t n = ::read(fd, text.data() + used, text.size() - used);
@@ -187,7 +190,7 @@ std::string read_config_file(const std::string& path) {
     if (n == 0) break;
     used += static_cast<std::size_t>(n);
   }
-  if (used > kMaxConfigBytes) throw too_large();
+  if (used > max_bytes) throw too_large();
   text.resize(used);
   return text;
 }

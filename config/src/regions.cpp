@@ -3,7 +3,6 @@
 #include <simdjson.h>
 
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
 #include <fmt/format.h>
@@ -270,12 +269,8 @@ std::vector<Region> read_regions(const Document& document, const PipelineConfig&
   });
   std::string path;
   document.section("regions", [&](TableReader& r) {
-    r.string("geojson", path);
+    r.path_beside_file("geojson", path);
     if (path.empty()) return;
-    // Relative to the configuration file's directory, kept absolute and normalised.
-    path = std::filesystem::absolute(std::filesystem::path(document.origin()).parent_path() / path)
-               .lexically_normal()
-               .string();
     std::vector<Region> from_file;
     try {
       from_file = parse_regions_geojson(read_config_file(path), path, pipeline);

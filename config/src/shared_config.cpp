@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "kew/config/aerodromes.hpp"
 #include "kew/config/document.hpp"
 #include "kew/config/regions.hpp"
 #include "parameter_ranges.hpp"
@@ -110,7 +111,9 @@ void read_alerts(TableReader& r, alert::AlertConfig& a) {
   r.number("update_cpa_v_ft", a.update_cpa_v_ft, 0.0, 1e5);
 }
 
-void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
+// `aerodromes_file`: the key's path, resolved beside the configuration file; "" when
+// absent or "" (the default table).
+void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e, std::string& aerodromes_file) {
   r.number("min_ground_speed_kt", e.min_ground_speed_kt, 0.0, 1000.0);
   r.number("min_altitude_ft", e.min_altitude_ft, -5000.0, 200000.0);
   r.number("max_altitude_ft", e.max_altitude_ft, -5000.0, 200000.0);
@@ -118,6 +121,7 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e) {
   r.number("lower_limit_ft", e.lower_limit_ft, 0.0, 100000.0);
   r.number("aerodrome_height_ft", e.aerodrome_height_ft, 0.0, 10000.0);
   r.number("aerodrome_radius_nm", e.aerodrome_radius_nm, 0.1, 50.0);
+  r.path_beside_file("aerodromes_file", aerodromes_file);
   r.mode3a_list("excluded_mode3a", e.excluded_mode3a);
   for (const std::uint16_t code : e.excluded_mode3a)
     if (!eligibility::may_exclude_mode3a(code))
@@ -170,7 +174,19 @@ SharedConfig read_shared_config(const Document& document) {
   document.section("kinetic", [&](TableReader& r) { read_kinetic(r, config.pipeline); });
   document.section("probe", [&](TableReader& r) { read_probe(r, config.pipeline); });
   document.section("alerts", [&](TableReader& r) { read_alerts(r, config.pipeline.alerts); });
-  document.section("eligibility", [&](TableReader& r) { read_eligibility(r, config.pipeline.eligibility); });
+  document.section("eligibility", [&](TableReader& r) {
+    read_eligibility(r, config.pipeline.eligibility, config.aerodromes_file);
+    if (config.aerodromes_file.empty()) return;
+    try {
+      config.pipeline.eligibility.aerodromes = load_aerodromes(config.aerodromes_file);
+    } catch (const ConfigError& e) {
+      r.fail(r.node("aerodromes_file"), e.what());
+    }
+  });
+  if (config.aerodromes_file.empty()) {
+    config.aerodromes_file = default_aerodromes_file();
+    config.pipeline.eligibility.aerodromes = load_default_aerodromes();
+  }
   document.section("decoding", [&](TableReader& r) { read_decoding(r, config.decoding); });
   document.each_table("radar", [&](TableReader& r, std::size_t) {
     protocol::RadarSite site{};
@@ -202,5 +218,7 @@ SharedConfig read_shared_config(const Document& document) {
 }
 
 SharedConfig load_shared_config(const std::string& path) { return read_shared_config(Document::load(path)); }
+
+SharedConfig default_shared_config() { return read_shared_config(Document::parse("", "the built-in configuration")); }
 
 }  // namespace kew::config

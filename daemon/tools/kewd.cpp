@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
     flags.config_path = kSystemConfig;
   kew::daemon::Config config;
   try {
-    if (!flags.config_path.empty()) config = kew::daemon::load_config(flags.config_path);
+    config = flags.config_path.empty() ? kew::daemon::default_config() : kew::daemon::load_config(flags.config_path);
     if (replaying) {
       flags.replay.format = *kew::protocol::kFormatNames.parse(format);
       if (flags.max_speed) flags.replay.speed = 0.0;
@@ -210,6 +210,8 @@ int main(int argc, char** argv) {
     for (const auto& input : config.inputs)
       if (input.transport == kew::daemon::Transport::File)
         std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());
+    std::printf("aerodromes file: %s (%zu aerodromes)\n", config.aerodromes_file.c_str(),
+                config.pipeline.eligibility.aerodromes->size());
     if (!config.regions_geojson.empty()) std::printf("regions file: %s\n", config.regions_geojson.c_str());
     for (const auto& region : config.pipeline.regions)
       std::printf("region %s: %s\n", region.name.c_str(), describe(region).c_str());

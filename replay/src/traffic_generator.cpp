@@ -13,6 +13,7 @@
 #include <GeographicLib/Math.hpp>
 
 #include "generator/airspace.hpp"
+#include "kew/replay/airports.hpp"
 #include "generator/flight.hpp"
 #include "generator/random_stream.hpp"
 
@@ -126,7 +127,15 @@ std::string validate(const GeneratorConfig& c) {
   if (!in_range(c.termination_probability_per_hour, 0, 3600))
     return fmt::format("termination rate must be 0 to 3600 per hour (got {})", c.termination_probability_per_hour);
   if (!in_range(c.start_time, 0, 1e11)) return fmt::format("start time must be 0 to 1e11 s (got {})", c.start_time);
-  if (c.scenario == Scenario::Global) return {};  // flies the whole world: no region to check
+  if (c.scenario == Scenario::Global) {  // flies the whole world: no region to check, but its aerodromes
+    if (!c.aerodromes) return "the global scenario needs an aerodrome table";
+    try {
+      world_airports(*c.aerodromes);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return {};
+  }
   if (!in_range(c.center_lat_deg, -80, 80))
     return fmt::format("centre latitude must be -80 to 80 degrees (got {})", c.center_lat_deg);
   if (!in_range(c.center_lon_deg, -180, 180))

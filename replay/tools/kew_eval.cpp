@@ -670,7 +670,12 @@ int main(int argc, char** argv) {
     columns.back().path = path;
   }
   const bool run_default = configs.empty() && options.alert_paths.empty();
-  if (configs.empty()) configs.emplace_back();
+  if (configs.empty()) {
+    // The default configuration: run, or only the source of the truth's aerodromes.
+    std::optional<kew::config::SharedConfig> defaults = kew::replay::tools::load_tool_config("kew-eval", "");
+    if (!defaults) return kUsageError;
+    configs.push_back(std::move(*defaults));
+  }
   if (run_default) columns.push_back(Column{});
   for (std::size_t i = 0; i < columns.size(); ++i) {
     columns[i].parameters = {configs[i].pipeline.minima.lookahead_s, configs[i].pipeline.alerts.confirm};
@@ -703,7 +708,8 @@ int main(int argc, char** argv) {
   standard.horizontal_m = options.h_nm * kew::replay::truth_rules::kNauticalMile_m;
   standard.vertical_ft = options.v_ft;
   const auto start = std::chrono::steady_clock::now();
-  const Truth truth(records, standard);
+  // The truth's lower limit stands above the first configuration's aerodromes.
+  const Truth truth(records, *configs.front().pipeline.eligibility.aerodromes, standard);
   const double truth_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   for (std::size_t i = 0; i < columns.size(); ++i) {

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "kew/config/shared_config.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 #include "kew/protocol/version.hpp"
 #include "kew/replay/traffic_generator.hpp"
@@ -41,16 +42,18 @@ bool parse_center(std::string_view text, double& lat, double& lon) {
 }
 
 /// The command line that reproduces this output, as a '#' comment (skipped by kew's
-/// NDJSON reader): every setting, so a recording says how it was made.
-std::string header_line(const kew::replay::GeneratorConfig& c) {
+/// NDJSON reader): every setting, so a recording says how it was made; the configuration
+/// (`config_path`, "" for none) by its path.
+std::string header_line(const kew::replay::GeneratorConfig& c, const std::string& config_path) {
   return fmt::format(
       "# kew-gen {} --scenario {} --aircraft {} --duration {} --seed {} --period {} --jitter {} "
       "--noise {} --alt-noise {} --alt-quantum {} --missed {} --termination {} --start {} "
-      "--center {},{} --radius {}{}\n",
+      "--center {},{} --radius {}{}{}\n",
       kew::protocol::release(), kew::replay::to_string(c.scenario), c.aircraft, c.duration_s, c.seed,
       c.period_s, c.jitter_s, c.position_noise_m, c.altitude_noise_ft, c.altitude_quantum_ft,
       c.missed_update_probability, c.termination_probability_per_hour, c.start_time, c.center_lat_deg,
-      c.center_lon_deg, c.radius_km, c.report_velocity ? "" : " --no-velocity");
+      c.center_lon_deg, c.radius_km, c.report_velocity ? "" : " --no-velocity",
+      config_path.empty() ? "" : " --config " + config_path);
 }
 
 /// CLI11 2.1 reads "-5" into an unsigned option as 2⁶⁴ − 5: refuse a sign instead.
@@ -91,6 +94,7 @@ int main(int argc, char** argv) {
   std::string scenario = std::string(kew::replay::to_string(config.scenario));
   std::string center;
   std::string output_path;
+  std::string config_path;
   bool no_velocity = false;
   bool no_header = false;
 
@@ -130,6 +134,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-velocity", no_velocity, "write positions only (no gs_kt, trk_deg, vr_fpm)");
   app.add_flag("--no-header", no_header, "omit the first line, a '#' comment with every setting");
   app.add_option("-o,--output", output_path, "output file (default stdout); replaced if it exists");
+  app.add_option("-c,--config", config_path,
+                 "kew TOML configuration whose [eligibility] aerodromes_file global flies between "
+                 "(default: the installed aerodrome table)")
+      ->check(CLI::ExistingFile);
 
   try {
     app.parse(argc, argv);
@@ -145,6 +153,15 @@ int main(int argc, char** argv) {
   if (!center.empty() && !parse_center(center, config.center_lat_deg, config.center_lon_deg))
     return usage_error(fmt::format("--center wants LAT,LON in degrees (got '{}')", center));
   config.report_velocity = !no_velocity;
+  // The aerodromes of the global scenario are those the lower limit of alerting stands on:
+  // the configuration's table, as kewd and kew-replay read it.
+  try {
+    const kew::config::SharedConfig shared = config_path.empty() ? kew::config::default_shared_config()
+                                                                 : kew::config::load_shared_config(config_path);
+    config.aerodromes = shared.pipeline.eligibility.aerodromes;
+  } catch (const kew::config::ConfigError& e) {
+    return usage_error(e.what());
+  }
   if (const std::string problem = kew::replay::validate(config); !problem.empty()) return usage_error(problem);
 
   std::FILE* file = stdout;
@@ -158,7 +175,7 @@ int main(int argc, char** argv) {
   Output out(file, output_path.empty() ? "stdout" : output_path);
 
   kew::replay::TrafficGenerator generator(config);
-  if (!no_header) out.buffer() += header_line(config);
+  if (!no_header) out.buffer() += header_line(config, config_path);
   kew::TrackReport record;
   bool ok = true;
   while (ok && generator.next(record)) {

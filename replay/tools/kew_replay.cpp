@@ -236,12 +236,9 @@ int main(int argc, char** argv) {
   }
 
   const kew::protocol::Format format = *kew::protocol::kFormatNames.parse(options.format);
-  kew::config::SharedConfig config;
-  if (!options.config_path.empty()) {
-    std::optional<kew::config::SharedConfig> loaded = kew::replay::tools::load_tool_config("kew-replay", options.config_path);
-    if (!loaded) return kUsageError;
-    config = std::move(*loaded);
-  }
+  std::optional<kew::config::SharedConfig> loaded = kew::replay::tools::load_tool_config("kew-replay", options.config_path);
+  if (!loaded) return kUsageError;
+  kew::config::SharedConfig& config = *loaded;
   if (!options.probe.empty()) config.pipeline.probe_mode = *kew::probe::kProbeModeNames.parse(options.probe);
 
   kew::replay::MergedRecordings recordings;

@@ -13,13 +13,14 @@ namespace kew::replay::tools {
 /// EX_USAGE (sysexits.h): a bad flag, input name or configuration file.
 inline constexpr int kUsageError = 64;
 
-/// The shared tables of the configuration file at `path`. A kewd file is accepted: its
-/// [service], [cat004], [modbus], [http] and [[input]] tables are read but not used by the
-/// tools. On an error prints "<tool>: <file>:<line>: <message>" on stderr and returns
+/// The shared tables of the configuration file at `path`; "" : the built-in defaults with
+/// the default aerodrome table (config::default_shared_config). A kewd file is accepted:
+/// its [service], [cat004], [modbus], [http] and [[input]] tables are read but not used by
+/// the tools. On an error prints "<tool>: <file>:<line>: <message>" on stderr and returns
 /// nullopt (the caller exits with kUsageError).
 inline std::optional<config::SharedConfig> load_tool_config(const char* tool, const std::string& path) {
   try {
-    return config::load_shared_config(path);
+    return path.empty() ? config::default_shared_config() : config::load_shared_config(path);
   } catch (const config::ConfigError& e) {
     std::fprintf(stderr, "%s: %s\n", tool, e.what());
     return std::nullopt;

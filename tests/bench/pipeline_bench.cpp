@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bench_report.hpp"
+#include "kew/config/aerodromes.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/protocol/encoders/alert_json.hpp"
 #include "kew/protocol/formats.hpp"
@@ -121,6 +122,13 @@ Params parse(int argc, char** argv) {
 
 // kew-replay's usual density: 2,000 aircraft in a 400 km radius; other fleets get a
 // region scaled by √N (one aircraft per 251 km²).
+// The pipeline's defaults with kew's aerodromes, as every tool reads them.
+kew::PipelineConfig with_aerodromes() {
+  kew::PipelineConfig config;
+  config.eligibility.aerodromes = kew::config::load_default_aerodromes();
+  return config;
+}
+
 kew::replay::GeneratorConfig generated(std::size_t aircraft, double seconds,
                                        kew::replay::Scenario scenario = kew::replay::Scenario::Mixed) {
   kew::replay::GeneratorConfig g;
@@ -129,6 +137,7 @@ kew::replay::GeneratorConfig generated(std::size_t aircraft, double seconds,
   g.duration_s = seconds;
   g.seed = 1;
   g.radius_km = std::min(2000.0, 400.0 * std::sqrt(static_cast<double>(aircraft) / 2000.0));
+  g.aerodromes = kew::config::load_default_aerodromes();
   return g;
 }
 
@@ -203,7 +212,7 @@ EndToEnd run_end_to_end(const std::string& name, kew::protocol::Format format, c
   // Throughput pass: nothing but the work itself is timed.
   {
     auto decoder = kew::protocol::make_decoder(format);
-    kew::Pipeline pipeline;
+    kew::Pipeline pipeline(with_aerodromes());
     std::string out;
     pipeline.set_alert_sink([&](const kew::AlertEvent& e) {
       kew::protocol::append_alert_json(out, e, e.seq);
@@ -223,7 +232,7 @@ EndToEnd run_end_to_end(const std::string& name, kew::protocol::Format format, c
   // a client sees; CPU time leaves out the slices another process took on a busy machine.
   {
     auto decoder = kew::protocol::make_decoder(format);
-    kew::Pipeline pipeline;
+    kew::Pipeline pipeline(with_aerodromes());
     std::string out;
     std::vector<double> alert_s, record_s, alert_cpu_s, record_cpu_s;
     record_s.reserve(r.records);
@@ -285,7 +294,7 @@ MemoryPerTrack measure_memory(std::size_t aircraft, kew::replay::Scenario scenar
   m.scenario = kew::replay::to_string(scenario);
   m.aircraft = aircraft;
   {
-    kew::PipelineConfig config;
+    kew::PipelineConfig config = with_aerodromes();
     // Centred on the region, whose radius (2,000 km at 100k aircraft) is beyond the
     // default coverage.
     const kew::replay::GeneratorConfig region = generated(aircraft, 12.0, scenario);

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bench_report.hpp"
+#include "kew/config/aerodromes.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
@@ -92,6 +93,7 @@ std::vector<kew::TrackReport> global_traffic(std::size_t aircraft, double second
   g.duration_s = seconds;
   g.period_s = 1.0;
   g.seed = 20261203;
+  g.aerodromes = kew::config::load_default_aerodromes();
   kew::replay::TrafficGenerator generator(g);
   std::vector<kew::TrackReport> records;
   records.reserve(static_cast<std::size_t>(static_cast<double>(aircraft) * seconds));
@@ -109,6 +111,7 @@ double thread_cpu_s() { return cpu_clock_s(CLOCK_THREAD_CPUTIME_ID); }
 
 kew::PipelineConfig configured(std::size_t threads) {
   kew::PipelineConfig c;  // worldwide zones, the defaults
+  c.eligibility.aerodromes = kew::config::load_default_aerodromes();  // as every tool reads them
   c.threads = threads;
   c.batch_records = 512;
   c.prompt_records = 16;  // as kewd (config::kDefaultPromptRecords)

@@ -66,16 +66,24 @@ std::vector<Flight> over_granada(double alt_ft) {
   return pair;
 }
 
+// The pipeline's defaults with Granada as the one aerodrome (its row of data/aerodromes.csv).
+PipelineConfig with_granada() {
+  PipelineConfig config;
+  config.eligibility.aerodromes = std::make_shared<const eligibility::AerodromeTable>(
+      std::vector<eligibility::Aerodrome>{{"LEGA", 37.1332, -3.6357, 2297}});
+  return config;
+}
+
 TEST(Eligibility, TheLowerLimitStandsAboveTheNearestAerodrome) {
   // 3,500 ft is 1,200 ft above Granada: above its aerodrome traffic, alerted as early as
   // the same geometry at FL200 far from any aerodrome.
-  const Outcome terminal = fly(over_granada(3500.0), 60.0);
+  const Outcome terminal = fly(over_granada(3500.0), 60.0, with_granada());
   std::vector<Flight> en_route = over_granada(20000.0);
   for (Flight& f : en_route) {
     f.lat0_deg = 50.0;
     f.lon0_deg = 8.0;
   }
-  const Outcome high = fly(en_route, 60.0);
+  const Outcome high = fly(en_route, 60.0, with_granada());
   ASSERT_EQ(terminal.opened(), 1u);
   ASSERT_EQ(high.opened(), 1u);
   EXPECT_EQ(terminal.first_opened_t(), high.first_opened_t());
@@ -83,14 +91,15 @@ TEST(Eligibility, TheLowerLimitStandsAboveTheNearestAerodrome) {
   EXPECT_EQ(terminal.first_opened_t(), kT0 + 8.0);
   // 3,000 ft there is 700 ft above the runway, in the circuit: no alert, though it is
   // 1,500 ft above the sea.
-  const Outcome circuit = fly(over_granada(3000.0), 60.0);
+  const Outcome circuit = fly(over_granada(3000.0), 60.0, with_granada());
   EXPECT_EQ(circuit.opened(), 0u);
   EXPECT_GT(circuit.pipeline->suppressed().count("below_lower_limit"), 0u);
   EXPECT_DOUBLE_EQ(circuit.pipeline->config().eligibility.aerodrome_height_ft, 1000.0);
-  // The height switched off: 1,500 ft above the sea is the only limit.
-  PipelineConfig sea_level;
+  // The height switched off, or no table: 1,500 ft above the sea is the only limit.
+  PipelineConfig sea_level = with_granada();
   sea_level.eligibility.aerodrome_height_ft = 0.0;
   EXPECT_EQ(fly(over_granada(3000.0), 60.0, sea_level).opened(), 1u);
+  EXPECT_EQ(fly(over_granada(3000.0), 60.0, PipelineConfig{}).opened(), 1u);
 }
 
 TEST(Eligibility, AltitudesOutsideTheBandAreNotAircraft) {

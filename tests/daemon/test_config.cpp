@@ -31,7 +31,7 @@ using config::parse_utc_day;
 
 TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   const Config file = load_config(std::string(KEW_DEPLOY_DIR) + "/kew.toml");
-  const Config defaults;
+  const Config defaults = default_config();
   const PipelineConfig& p = file.pipeline;
   const PipelineConfig& d = defaults.pipeline;
   EXPECT_EQ(file.service.alert_listen, defaults.service.alert_listen);
@@ -106,6 +106,10 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(p.eligibility.min_altitude_ft, d.eligibility.min_altitude_ft);
   EXPECT_EQ(p.eligibility.max_altitude_ft, d.eligibility.max_altitude_ft);
   EXPECT_EQ(p.eligibility.lower_limit_ft, d.eligibility.lower_limit_ft);
+  EXPECT_EQ(p.eligibility.aerodrome_height_ft, d.eligibility.aerodrome_height_ft);
+  EXPECT_EQ(p.eligibility.aerodrome_radius_nm, d.eligibility.aerodrome_radius_nm);
+  EXPECT_EQ(file.aerodromes_file, defaults.aerodromes_file);  // "": kew's table
+  EXPECT_EQ(p.eligibility.aerodromes->size(), d.eligibility.aerodromes->size());
   EXPECT_EQ(p.eligibility.excluded_mode3a, d.eligibility.excluded_mode3a);
   EXPECT_EQ(p.eligibility.exclude_coasting, d.eligibility.exclude_coasting);
   EXPECT_EQ(p.eligibility.max_position_age_s, d.eligibility.max_position_age_s);

@@ -724,6 +724,16 @@ class Install(E2eCase):
         result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", elsewhere],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        # The installed programs read the aerodrome table installed beside them, wherever
+        # the tree was staged: the lower limit's, and kew-gen's global scenario's.
+        table = os.path.join(prefix, "share", "kew", "aerodromes.csv")
+        self.assertTrue(os.path.isfile(table), table)
+        self.assertIn(f"aerodromes file: {table} (", result.stdout)
+        generated = subprocess.run([os.path.join(prefix, "bin", "kew-gen"), "--scenario", "global", "--aircraft", "3",
+                                    "--duration", "8", "--no-header"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                   text=True)
+        self.assertEqual(generated.returncode, 0, generated.stderr)
+        self.assertTrue(generated.stdout.strip(), "kew-gen wrote no record")
         unit = os.path.join(prefix, "lib", "systemd", "system", "kewd.service")
         with open(unit) as f:
             text = f.read()

@@ -2,7 +2,9 @@
 // config.hpp, the TOML reader of config/). Every input is either read into a Config or
 // refused with a ConfigError that says where and why; any other exception, crash or
 // sanitizer report is a finding. Paths are not checked (that is --check-config's work);
-// a [regions] geojson file is opened, relative to the run's working directory.
+// a [regions] geojson file and an [eligibility] aerodromes_file are opened, relative to the
+// run's working directory, and without one kew's aerodrome table (the source tree's
+// data/aerodromes.csv: the fuzzer runs from the build tree) is read with every input.
 
 #include <cstddef>
 #include <cstdint>

@@ -42,13 +42,14 @@ grep -Eq -- "-Werror( |$)" "$work/build.log" || fail "the package was not built 
 [ -f "$deb" ] || fail "$deb was not built (found: $(ls "$work"))"
 echo "test_deb: built $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
 
-# Contents: binaries, the unit, the conffile, manual pages, the map.
+# Contents: binaries, the unit, the conffile, manual pages, the map, the aerodrome table.
 contents=$(dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|')
 for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-gen /usr/bin/kew-eval \
             /usr/bin/kew-decode /lib/systemd/system/kewd.service /etc/kew/kew.toml \
             /usr/share/man/man8/kewd.8.gz /usr/share/man/man5/kew.toml.5.gz /usr/share/man/man1/kew-replay.1.gz \
             /usr/share/man/man1/kew-gen.1.gz /usr/share/man/man1/kew-watch.1.gz /usr/share/man/man1/kew-decode.1.gz \
-            /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/doc/kew/copyright \
+            /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/kew/aerodromes.csv \
+            /usr/share/doc/kew/copyright \
             /usr/share/doc/kew/examples/nats/nats-server.conf \
             /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf; do
   grep -qx "$path" <<<"$contents" || fail "$path is not in the package"
@@ -103,7 +104,10 @@ fi
 # StateDirectory, which systemd creates before ExecStartPre runs this same check; without
 # systemd as PID 1 they are made here as it would (and must go on purge).
 [ -d /run/systemd/system ] || mkdir -p /var/log/kew /var/lib/kew
-kewd --check-config -c /etc/kew/kew.toml || fail "kewd --check-config -c /etc/kew/kew.toml"
+checked=$(kewd --check-config -c /etc/kew/kew.toml) || fail "kewd --check-config -c /etc/kew/kew.toml"
+# The installed kewd reads the installed aerodrome table by default.
+grep -q "^aerodromes file: /usr/share/kew/aerodromes.csv " <<<"$checked" ||
+  fail "kewd --check-config does not read /usr/share/kew/aerodromes.csv: $checked"
 [ "$(man -w kewd)" = /usr/share/man/man8/kewd.8.gz ] || fail "man -w kewd: $(man -w kewd 2>&1)"
 kewd --version | grep -q "($revision)" || fail "kewd --version: $(kewd --version) (built from $revision)"
 echo "test_deb: installed: unit enabled, conffile registered, configuration valid, man kewd found"

@@ -24,6 +24,8 @@ constexpr double kNm = 1852.0;
 constexpr double kT0 = 1714400000.0;  // a whole second
 constexpr double kLat0 = 50.0;
 constexpr double kSpeed_mps = 250.0;  // 485.96 kt
+// The truth's aerodromes: none but where a test says (the tracks lie far from any).
+const eligibility::AerodromeTable kNoAerodromes(std::vector<eligibility::Aerodrome>{});
 
 // WGS84 radii of curvature at kLat0, so that tracks laid out with them have exactly the
 // distances local_distance_m() measures when they are symmetric about kLat0.
@@ -118,7 +120,7 @@ TEST(LocalDistance, AgreesWithTheGeodesicWithin20Nm) {
 }
 
 TEST(Truth, PlantedCrossingAtOneLevelIsOneLossEventWithItsStartSecond) {
-  const Truth truth(records_of(head_on("A", "B", 8.0)));
+  const Truth truth(records_of(head_on("A", "B", 8.0)), kNoAerodromes);
   ASSERT_EQ(truth.loss_events().size(), 1u);
   const LossEvent& loss = truth.loss_events()[0];
   EXPECT_EQ(loss.start_s, kLossStart);
@@ -153,7 +155,7 @@ TEST(Truth, SamplesAreInterpolatedOnWholeSecondsAndNeverAcrossGaps) {
     r.alt_ft += 100;
     records.push_back(r);
   }
-  const Truth truth(records);
+  const Truth truth(records, kNoAerodromes);
   const TruthTrackId g = *truth.find_track("", "G");
   EXPECT_FALSE(truth.sample(g, static_cast<std::int64_t>(kT0)));
   const auto mid = truth.sample(g, static_cast<std::int64_t>(kT0) + 5);
@@ -177,21 +179,27 @@ TEST(Truth, SamplesAreInterpolatedOnWholeSecondsAndNeverAcrossGaps) {
 }
 
 TEST(Truth, AdjacentLevelsWithinTheAltimetryToleranceAreSeparated) {
-  EXPECT_TRUE(Truth(records_of(head_on("A", "B", 8.0, 30975.0))).loss_events().empty());
-  EXPECT_TRUE(Truth(records_of(head_on("A", "B", 8.0, 30800.0))).loss_events().empty());
-  EXPECT_EQ(Truth(records_of(head_on("A", "B", 8.0, 30700.0))).loss_events().size(), 1u);
+  EXPECT_TRUE(Truth(records_of(head_on("A", "B", 8.0, 30975.0)), kNoAerodromes).loss_events().empty());
+  EXPECT_TRUE(Truth(records_of(head_on("A", "B", 8.0, 30800.0)), kNoAerodromes).loss_events().empty());
+  EXPECT_EQ(Truth(records_of(head_on("A", "B", 8.0, 30700.0)), kNoAerodromes).loss_events().size(), 1u);
   // The standard is an option of the evaluation: with S_v = 2,000 ft, 975 ft is a loss.
   SeparationStandard wide;
   wide.vertical_ft = 2000.0;
-  EXPECT_EQ(Truth(records_of(head_on("A", "B", 8.0, 30975.0)), wide).loss_events().size(), 1u);
+  EXPECT_EQ(Truth(records_of(head_on("A", "B", 8.0, 30975.0)), kNoAerodromes, wide).loss_events().size(), 1u);
 }
 
 TEST(Truth, PairsBelowTheLowerLimitSlowOrOnTheGroundLoseNoSeparation) {
   auto low = head_on("A", "B", 8.0);
   low[0].alt_ft = low[1].alt_ft = 1400.0;
-  EXPECT_TRUE(Truth(records_of(low)).loss_events().empty());
+  EXPECT_TRUE(Truth(records_of(low), kNoAerodromes).loss_events().empty());
   low[0].alt_ft = low[1].alt_ft = 1500.0;  // at the limit: airborne
-  EXPECT_EQ(Truth(records_of(low)).loss_events().size(), 1u);
+  EXPECT_EQ(Truth(records_of(low), kNoAerodromes).loss_events().size(), 1u);
+
+  // 1,000 ft above an aerodrome of the table (2,000 ft) within 5 NM: aerodrome traffic.
+  low[0].alt_ft = low[1].alt_ft = 2500.0;
+  EXPECT_EQ(Truth(records_of(low), kNoAerodromes).loss_events().size(), 1u);
+  const eligibility::AerodromeTable hill({{"HILL", kLat0, 8.0, 2000.0}});
+  EXPECT_TRUE(Truth(records_of(low), hill).loss_events().empty());
 
   // Two targets 2 NM apart at one level, not flying: reported 40 kt, or no speed and
   // no movement (derived 0 kt), or flagged on the ground.
@@ -200,25 +208,25 @@ TEST(Truth, PairsBelowTheLowerLimitSlowOrOnTheGroundLoseNoSeparation) {
   y.id = "Y";
   y.north0_m = 2 * kNm;
   x.gs_kt = y.gs_kt = 40.0;
-  EXPECT_TRUE(Truth(records_of({x, y})).loss_events().empty());
+  EXPECT_TRUE(Truth(records_of({x, y}), kNoAerodromes).loss_events().empty());
   x.gs_kt = y.gs_kt = 60.0;
-  EXPECT_EQ(Truth(records_of({x, y})).loss_events().size(), 1u);
+  EXPECT_EQ(Truth(records_of({x, y}), kNoAerodromes).loss_events().size(), 1u);
   std::vector<TrackReport> still = records_of({x, y});
   for (TrackReport& r : still) r.gs_kt.reset();
-  EXPECT_TRUE(Truth(still).loss_events().empty());
-  EXPECT_EQ(Truth(still).figures().airborne_seconds, 0);
+  EXPECT_TRUE(Truth(still, kNoAerodromes).loss_events().empty());
+  EXPECT_EQ(Truth(still, kNoAerodromes).figures().airborne_seconds, 0);
   x.on_ground = true;
-  EXPECT_TRUE(Truth(records_of({x, y})).loss_events().empty());
+  EXPECT_TRUE(Truth(records_of({x, y}), kNoAerodromes).loss_events().empty());
   // Implausible altitude.
   x.on_ground = false;
   x.alt_ft = y.alt_ft = 71900.0;
-  EXPECT_TRUE(Truth(records_of({x, y})).loss_events().empty());
+  EXPECT_TRUE(Truth(records_of({x, y}), kNoAerodromes).loss_events().empty());
 }
 
 TEST(Truth, SpeedIsDerivedFromPositionsWhenNotReported) {
   std::vector<TrackReport> records = records_of(head_on("A", "B", 8.0));
   for (TrackReport& r : records) r.gs_kt.reset();
-  const Truth truth(records);
+  const Truth truth(records, kNoAerodromes);
   ASSERT_EQ(truth.loss_events().size(), 1u);
   EXPECT_EQ(truth.loss_events()[0].start_s, kLossStart);
   const auto s = truth.sample(*truth.find_track("test", "A"), kLossStart);
@@ -244,7 +252,7 @@ std::vector<Flight> twins(double seconds, std::optional<std::uint32_t> a = {}, s
 TEST(Truth, TwoTracksWithOneCodeTogetherForAMinuteAreOneAircraft) {
   std::vector<Flight> squawking = twins(90);
   for (Flight& f : squawking) f.mode3a = 04711;
-  const Truth together(records_of(squawking));
+  const Truth together(records_of(squawking), kNoAerodromes);
   EXPECT_EQ(together.figures().tracks, 2u);
   EXPECT_EQ(together.figures().aircraft, 1u);
   EXPECT_EQ(together.figures().merged_by_proximity, 1u);
@@ -255,29 +263,29 @@ TEST(Truth, TwoTracksWithOneCodeTogetherForAMinuteAreOneAircraft) {
   // 40 s side by side is not long enough: two aircraft losing separation.
   std::vector<Flight> brief_pair = twins(40);
   for (Flight& f : brief_pair) f.mode3a = 04711;
-  const Truth brief(records_of(brief_pair));
+  const Truth brief(records_of(brief_pair), kNoAerodromes);
   EXPECT_EQ(brief.figures().aircraft, 2u);
   ASSERT_EQ(brief.loss_events().size(), 1u);
   EXPECT_EQ(brief.loss_events()[0].start_s, static_cast<std::int64_t>(kT0));
 
   // Closeness alone is no identity: without a code in common, or with a conspicuity code
   // (7000) in common, two tracks together for minutes are two aircraft (a formation).
-  const Truth formation_no_codes(records_of(twins(180)));
+  const Truth formation_no_codes(records_of(twins(180)), kNoAerodromes);
   EXPECT_EQ(formation_no_codes.figures().aircraft, 2u);
   EXPECT_EQ(formation_no_codes.loss_events().size(), 1u);
   std::vector<Flight> vfr = twins(180);
   for (Flight& f : vfr) f.mode3a = 07000;
-  EXPECT_EQ(Truth(records_of(vfr)).figures().aircraft, 2u);
+  EXPECT_EQ(Truth(records_of(vfr), kNoAerodromes).figures().aircraft, 2u);
 
   // The same address is one aircraft wherever the tracks are; two addresses are two.
   auto apart = twins(40, 0x4CA123, 0x4CA123);
   apart[1].east_m = 50 * kNm;
-  EXPECT_EQ(Truth(records_of(apart)).figures().aircraft, 1u);
-  EXPECT_EQ(Truth(records_of(apart)).figures().merged_by_address, 1u);
+  EXPECT_EQ(Truth(records_of(apart), kNoAerodromes).figures().aircraft, 1u);
+  EXPECT_EQ(Truth(records_of(apart), kNoAerodromes).figures().merged_by_address, 1u);
   std::vector<Flight> formation = twins(90, 0x4CA123, 0x4CA124);
   for (Flight& f : formation) f.mode3a = 04711;
-  EXPECT_EQ(Truth(records_of(formation)).figures().aircraft, 2u);
-  EXPECT_EQ(Truth(records_of(formation)).loss_events().size(), 1u);
+  EXPECT_EQ(Truth(records_of(formation), kNoAerodromes).figures().aircraft, 2u);
+  EXPECT_EQ(Truth(records_of(formation), kNoAerodromes).loss_events().size(), 1u);
 }
 
 TEST(Truth, RefusesUnusableRecordsAndSplitsAtTrackEnd) {
@@ -288,14 +296,14 @@ TEST(Truth, RefusesUnusableRecordsAndSplitsAtTrackEnd) {
   bad = records[0];
   bad.lon_deg = 200;
   records.push_back(bad);
-  EXPECT_EQ(Truth(records).figures().records_refused, 2u);
-  EXPECT_EQ(Truth(records).figures().records, records.size() - 2);
+  EXPECT_EQ(Truth(records, kNoAerodromes).figures().records_refused, 2u);
+  EXPECT_EQ(Truth(records, kNoAerodromes).figures().records, records.size() - 2);
 
   // A's track ends at kT0+100; its id reappears at once as another aircraft (reused
   // number): no samples between kT0+100 and kT0+104, so no airborne second there.
   for (TrackReport& r : records)
     if (r.id == "A" && r.t == kT0 + 100) r.track_end = true;
-  const Truth truth(records);
+  const Truth truth(records, kNoAerodromes);
   const TruthTrackId a = *truth.find_track("test", "A");
   EXPECT_TRUE(truth.sample(a, kLossStart - 1));
   EXPECT_FALSE(truth.sample(a, kLossStart));
@@ -365,7 +373,7 @@ std::vector<TrackReport> five_pairs() {
 }
 
 TEST(Evaluation, ClassifiesAlertsIntoEachClass) {
-  const Truth truth(five_pairs());
+  const Truth truth(five_pairs(), kNoAerodromes);
   ASSERT_EQ(truth.loss_events().size(), 1u);
   const double opened = kT0 + 20.0;
   std::vector<AlertSpan> alerts = {
@@ -425,7 +433,7 @@ TEST(Evaluation, ClassifiesAlertsIntoEachClass) {
 
 // Scores alerts of pair A/B against the planted loss; returns its ScoredLoss.
 ScoredLoss loss_outcome(const std::vector<AlertSpan>& alerts, const std::vector<TrackReport>& records) {
-  const Truth truth(records);
+  const Truth truth(records, kNoAerodromes);
   EXPECT_EQ(truth.loss_events().size(), 1u);
   return evaluate(truth, alerts, {120.0, 2}).losses.at(0);
 }
@@ -477,7 +485,7 @@ TEST(Evaluation, LossesAreDetectedMissedOrUnwarnableWithExactWarningTimes) {
   EXPECT_EQ(l.outcome, LossOutcome::Missed);
   EXPECT_EQ(l.eligible_for_s, 9);
 
-  const Truth truth(records_of(late));
+  const Truth truth(records_of(late), kNoAerodromes);
   const Evaluation e = evaluate(truth, {}, {120.0, 4});  // confirm 4: 16 s
   EXPECT_EQ(e.losses[0].outcome, LossOutcome::Unwarnable);
   EXPECT_EQ(e.figures.unwarnable, 1u);
@@ -499,7 +507,7 @@ TEST(Evaluation, WarningTimePercentilesAreNearestRank) {
   std::vector<Flight> flights = head_on("A", "B", 8.0);
   const auto other = head_on("C", "D", 9.0);
   flights.insert(flights.end(), other.begin(), other.end());
-  const Truth truth(records_of(flights));
+  const Truth truth(records_of(flights), kNoAerodromes);
   const double start = static_cast<double>(kLossStart);
   const std::vector<AlertSpan> alerts = {alert("A", "B", start - 80.0), alert("C", "D", start - 30.0)};
   const Evaluation e = evaluate(truth, alerts, {120.0, 2});

@@ -140,7 +140,8 @@ FeedRun replay_feed(const Feed& feed, const PipelineConfig& config) {
   pipeline.end_of_input();
   run.outside_coverage = pipeline.rejections().count("outside_coverage");
   run.accepted = pipeline.statistics().accepted;
-  const replay::Truth truth(feed.records);
+  // The truth stands above the run's aerodromes, as kew-eval's above its configuration's.
+  const replay::Truth truth(feed.records, *config.eligibility.aerodromes);
   replay::ScoringParameters parameters;
   parameters.lookahead_s = config.minima.lookahead_s;
   parameters.confirm = config.alerts.confirm;
@@ -162,7 +163,7 @@ TEST(NationalFeed, FourThousandKilometresServedWithNoRefusalAndNoLossMissedForCo
   std::filesystem::remove(file);
   ASSERT_GT(feed.records.size(), 80000u);
 
-  const FeedRun zoned = replay_feed(feed, config::SharedConfig{}.pipeline);  // the defaults
+  const FeedRun zoned = replay_feed(feed, config::default_shared_config().pipeline);  // the defaults
   EXPECT_EQ(zoned.outside_coverage, 0u);
   EXPECT_EQ(zoned.accepted, feed.records.size());
   EXPECT_GE(zoned.zones_max, 8u);
@@ -184,7 +185,7 @@ TEST(NationalFeed, FourThousandKilometresServedWithNoRefusalAndNoLossMissedForCo
 
   // One plane of 1,500 km, as kew had before zones: the far ends are refused and their
   // losses go unalerted.
-  PipelineConfig single = config::SharedConfig{}.pipeline;
+  PipelineConfig single = config::default_shared_config().pipeline;
   single.zone_mode = ZoneMode::Single;
   const FeedRun one_plane = replay_feed(feed, single);
   EXPECT_GT(one_plane.outside_coverage, 1000u);

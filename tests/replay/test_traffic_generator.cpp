@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,9 @@
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include "kew/config/aerodromes.hpp"
+#include "kew/config/shared_config.hpp"
+#include "kew/eligibility/eligibility.hpp"
 #include "kew/replay/airports.hpp"
 #include "kew/replay/traffic_generator.hpp"
 
@@ -40,6 +44,12 @@ const Scenario kRegionalScenarios[] = {Scenario::Random, Scenario::Airways, Scen
                                        Scenario::Tma, Scenario::Mixed, Scenario::Calibrated};
 const Scenario kAllScenarios[] = {Scenario::Random, Scenario::Airways, Scenario::Stacks, Scenario::Tma,
                                   Scenario::Mixed, Scenario::Calibrated, Scenario::Global};
+
+/// kew's aerodrome table (data/aerodromes.csv), which the global scenario flies between.
+std::shared_ptr<const eligibility::AerodromeTable> kew_aerodromes() {
+  static const std::shared_ptr<const eligibility::AerodromeTable> table = config::load_default_aerodromes();
+  return table;
+}
 
 std::vector<TrackReport> generate(const GeneratorConfig& config) {
   TrafficGenerator generator(config);
@@ -61,6 +71,7 @@ GeneratorConfig truth_config(Scenario scenario, std::size_t aircraft, double dur
   config.position_noise_m = 0;
   config.missed_update_probability = 0;
   config.altitude_quantum_ft = 0;
+  config.aerodromes = kew_aerodromes();
   return config;
 }
 
@@ -156,6 +167,16 @@ TEST(TrafficGenerator, InvalidConfigurationIsRejectedWithItsReason) {
   GeneratorConfig polar;
   polar.center_lat_deg = 85;
   EXPECT_NE(validate(polar).find("latitude"), std::string::npos);
+  // The global scenario needs a table with every aerodrome it flies to.
+  GeneratorConfig global;
+  global.scenario = Scenario::Global;
+  EXPECT_EQ(validate(global), "the global scenario needs an aerodrome table");
+  global.aerodromes = std::make_shared<const eligibility::AerodromeTable>(
+      std::vector<eligibility::Aerodrome>{{"EGLL", 51.4706, -0.4619, 83}});
+  EXPECT_EQ(validate(global), "the aerodrome table has no EGCC, an aerodrome of the global scenario");
+  EXPECT_THROW(TrafficGenerator{global}, std::invalid_argument);
+  global.aerodromes = kew_aerodromes();
+  EXPECT_EQ(validate(global), "");
 }
 
 // ------------------------------------------------------------------ determinism
@@ -207,6 +228,7 @@ TEST(TrafficGenerator, ScenariosWithOneSeedDoNotShareTheirSampling) {
     config.aircraft = 200;
     config.duration_s = 120;
     config.seed = 3;
+    config.aerodromes = kew_aerodromes();
     counts.insert(generate(config).size());
   }
   EXPECT_GE(counts.size(), 4u);
@@ -517,20 +539,21 @@ TEST(TrafficGenerator, TmaArrivalsConvergeAndSlowDown) {
 
 // ------------------------------------------------------------------ aerodromes
 
-TEST(Airports, TableIsValidAndSpreadOverEveryContinent) {
-  const std::span<const Airport> airports = world_airports();
+TEST(Airports, TheSelectionIsValidAndSpreadOverEveryContinent) {
+  const std::vector<Airport> airports = world_airports(*kew_aerodromes());
+  ASSERT_EQ(airports.size(), selected_airports().size());
   EXPECT_GE(airports.size(), 150u);
   EXPECT_LE(airports.size(), 250u);
   std::set<std::string_view> codes;
   std::map<Continent, int> per_continent;
   int arctic = 0;
   for (const Airport& a : airports) {
-    ASSERT_EQ(a.icao.size(), 4u);
-    for (const char c : a.icao) EXPECT_TRUE(c >= 'A' && c <= 'Z') << a.icao;
-    EXPECT_TRUE(codes.insert(a.icao).second) << a.icao << " twice";
-    EXPECT_TRUE(in_range(a.lat_deg, -90, 90)) << a.icao;
-    EXPECT_TRUE(in_range(a.lon_deg, -180, 180)) << a.icao;
-    EXPECT_TRUE(in_range(a.elevation_ft, -100, 14'000)) << a.icao;  // Amsterdam (−11 ft) to La Paz
+    ASSERT_EQ(a.ident.size(), 4u);
+    for (const char c : a.ident) EXPECT_TRUE(c >= 'A' && c <= 'Z') << a.ident;
+    EXPECT_TRUE(codes.insert(a.ident).second) << a.ident << " twice";
+    EXPECT_TRUE(in_range(a.lat_deg, -90, 90)) << a.ident;
+    EXPECT_TRUE(in_range(a.lon_deg, -180, 180)) << a.ident;
+    EXPECT_TRUE(in_range(a.elevation_ft, -100, 14'000)) << a.ident;  // Amsterdam (−11 ft) to La Paz
     ++per_continent[a.continent];
     if (a.lat_deg >= 70) ++arctic;
   }
@@ -541,11 +564,13 @@ TEST(Airports, TableIsValidAndSpreadOverEveryContinent) {
   EXPECT_GE(arctic, 8);
 }
 
-TEST(Airports, KnownPositionsCatchSignAndDigitErrors) {
-  // Reference points as published (AIPs), to 0.01°: one per hemisphere pair at least, the
-  // ones either side of the antimeridian and the polar ones.
+TEST(Airports, TheTableFindsTheAerodromesTheSelectionMeans) {
+  // Aerodrome reference points and elevations as published (AIPs), one per hemisphere pair
+  // at least, the ones either side of the antimeridian and the polar ones: the table's
+  // figures (runway thresholds' centre, highest threshold) lie within 3 km and 60 ft of
+  // them, so each ident names the aerodrome the selection means.
   struct Known {
-    std::string_view icao;
+    std::string_view ident;
     double lat_deg, lon_deg, elevation_ft;
   };
   const Known known[] = {
@@ -554,15 +579,38 @@ TEST(Airports, KnownPositionsCatchSignAndDigitErrors) {
       {"PHNL", 21.32, -157.92, 13},    {"NFFN", -17.76, 177.44, 59},   {"NTAA", -17.55, -149.61, 5},
       {"BGTL", 76.53, -68.70, 251},    {"ENSB", 78.25, 15.47, 88},     {"PABR", 71.29, -156.77, 44},
       {"UHMA", 64.74, 177.74, 194},    {"FAOR", -26.14, 28.25, 5558},  {"SBGR", -23.44, -46.47, 2459},
-      {"SLLP", -16.51, -68.19, 13325}, {"NZSP", -90.00, 0.00, 9300},
+      {"SLLP", -16.51, -68.19, 13325}, {"NZSP", -90.00, 0.00, 9300},   {"SPIM", -12.02, -77.11, 113},
   };
-  const std::span<const Airport> airports = world_airports();
+  const std::vector<Airport> airports = world_airports(*kew_aerodromes());
   for (const Known& k : known) {
-    const auto found = std::find_if(airports.begin(), airports.end(), [&](const Airport& a) { return a.icao == k.icao; });
-    ASSERT_NE(found, airports.end()) << k.icao;
-    EXPECT_NEAR(found->lat_deg, k.lat_deg, 0.01) << k.icao;
-    EXPECT_NEAR(found->lon_deg, k.lon_deg, 0.01) << k.icao;
-    EXPECT_NEAR(found->elevation_ft, k.elevation_ft, 1) << k.icao;
+    const auto found = std::find_if(airports.begin(), airports.end(), [&](const Airport& a) { return a.ident == k.ident; });
+    ASSERT_NE(found, airports.end()) << k.ident;
+    double distance_m = 0;
+    GeographicLib::Geodesic::WGS84().Inverse(found->lat_deg, found->lon_deg, k.lat_deg, k.lon_deg, distance_m);
+    EXPECT_LE(distance_m, 3000) << k.ident;
+    EXPECT_NEAR(found->elevation_ft, k.elevation_ft, 60) << k.ident;
+  }
+}
+
+TEST(Airports, TheGeneratorAndTheLowerLimitStandOnTheSameElevations) {
+  // kew-gen's flights start and end above the aerodromes the lower limit of alerting stands
+  // on: for every aerodrome of the global scenario, the elevation the generator uses is the
+  // one lower_limit_at() reads there, from one table (the default configuration's).
+  const config::SharedConfig shared = config::default_shared_config();
+  eligibility::EligibilityConfig eligibility = shared.pipeline.eligibility;
+  eligibility.lower_limit_ft = 0.0;  // so that every aerodrome's height sets the limit
+  const eligibility::Rules rules(eligibility, shared.pipeline.minima);
+  GeneratorConfig global;
+  global.scenario = Scenario::Global;
+  global.aerodromes = shared.pipeline.eligibility.aerodromes;
+  ASSERT_EQ(validate(global), "");
+  for (const Airport& a : world_airports(*global.aerodromes)) {
+    const eligibility::Aerodrome* at = nullptr;
+    const double limit_ft = rules.lower_limit_at(a.lat_deg, a.lon_deg, &at);
+    ASSERT_NE(at, nullptr) << a.ident;
+    EXPECT_EQ(at->ident, a.ident);
+    EXPECT_EQ(limit_ft, a.elevation_ft + eligibility.aerodrome_height_ft) << a.ident;
+    EXPECT_EQ(at->elevation_ft, a.elevation_ft) << a.ident;
   }
 }
 
@@ -571,6 +619,7 @@ TEST(Airports, KnownPositionsCatchSignAndDigitErrors) {
 TEST(TrafficGenerator, GlobalIsDeterministicAndIgnoresTheRegion) {
   GeneratorConfig config;
   config.scenario = Scenario::Global;
+  config.aerodromes = kew_aerodromes();
   config.aircraft = 500;
   config.duration_s = 120;
   config.termination_probability_per_hour = 30;  // replacements departing from the aerodromes
@@ -590,6 +639,7 @@ TEST(TrafficGenerator, GlobalIsDeterministicAndIgnoresTheRegion) {
 TEST(TrafficGenerator, GlobalValuesArePlausible) {
   GeneratorConfig config;
   config.scenario = Scenario::Global;
+  config.aerodromes = kew_aerodromes();
   config.aircraft = 2000;
   config.duration_s = 120;
   const Envelope envelope = envelope_of(Scenario::Global);

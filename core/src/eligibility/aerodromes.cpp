@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "kew/geo/projection.hpp"
 
@@ -11,19 +14,39 @@ namespace {
 constexpr double kMetresPerDegree = 111000.0;  // below the meridian's 111,694 m at the poles
 int lat_cell_of(double lat) { return std::clamp(static_cast<int>(std::floor(lat)), -90, 89); }
 int lon_cell_of(double lon) { return std::clamp(static_cast<int>(std::floor(lon)), -180, 179); }
+
+// "" when lo ≤ value ≤ hi (NaN is outside).
+std::string outside(std::string_view name, double value, double lo, double hi) {
+  if (value >= lo && value <= hi) return {};
+  return fmt::format("{} = {} is outside [{}, {}]", name, value, lo, hi);
+}
 }  // namespace
 
-AerodromeIndex::AerodromeIndex(std::span<const Aerodrome> aerodromes) : aerodromes_(aerodromes) {
-  for (std::uint32_t i = 0; i < aerodromes_.size(); ++i)
-    cells_[cell(lat_cell_of(aerodromes_[i].lat_deg), lon_cell_of(aerodromes_[i].lon_deg))].push_back(i);
+std::string problem(const Aerodrome& a) {
+  if (a.ident.empty()) return "the ident is empty";
+  for (const std::string& p : {outside("lat_deg", a.lat_deg, -90.0, 90.0), outside("lon_deg", a.lon_deg, -180.0, 180.0),
+                        outside("elevation_ft", a.elevation_ft, kMinElevation_ft, kMaxElevation_ft)})
+    if (!p.empty()) return p;
+  return {};
 }
 
-const AerodromeIndex& AerodromeIndex::bundled() {
-  static const AerodromeIndex index(bundled_aerodromes());
-  return index;
+AerodromeTable::AerodromeTable(std::vector<Aerodrome> aerodromes) : aerodromes_(std::move(aerodromes)) {
+  for (std::uint32_t i = 0; i < aerodromes_.size(); ++i) {
+    const Aerodrome& a = aerodromes_[i];
+    if (const std::string p = problem(a); !p.empty())
+      throw std::invalid_argument(fmt::format("aerodrome {} (row {}): {}", a.ident, i + 1, p));
+    if (!by_ident_.emplace(a.ident, i).second)
+      throw std::invalid_argument(fmt::format("aerodrome {} is in the table twice", a.ident));
+    cells_[cell(lat_cell_of(a.lat_deg), lon_cell_of(a.lon_deg))].push_back(i);
+  }
 }
 
-const Aerodrome* AerodromeIndex::nearest(double lat_deg, double lon_deg, double radius_m) const {
+const Aerodrome* AerodromeTable::find(std::string_view ident) const {
+  const auto it = by_ident_.find(std::string(ident));
+  return it == by_ident_.end() ? nullptr : &aerodromes_[it->second];
+}
+
+const Aerodrome* AerodromeTable::nearest(double lat_deg, double lon_deg, double radius_m) const {
   const double dlat = radius_m / kMetresPerDegree;
   const double cos_lat = std::cos(std::min(89.0, std::abs(lat_deg) + dlat) * M_PI / 180.0);
   // Near a pole the circle may hold every meridian.

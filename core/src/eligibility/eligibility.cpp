@@ -43,9 +43,9 @@ Rules::Rules(const EligibilityConfig& config, const probe::SeparationMinima& min
 double Rules::lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** aerodrome) const {
   if (aerodrome) *aerodrome = nullptr;
   double limit = config_.lower_limit_ft;
-  if (config_.aerodrome_height_ft <= 0.0) return limit;
+  if (config_.aerodrome_height_ft <= 0.0 || !config_.aerodromes) return limit;
   const Aerodrome* near =
-      AerodromeIndex::bundled().nearest(lat_deg, lon_deg, config_.aerodrome_radius_nm * units::kMetresPerNauticalMile);
+      config_.aerodromes->nearest(lat_deg, lon_deg, config_.aerodrome_radius_nm * units::kMetresPerNauticalMile);
   if (near && near->elevation_ft + config_.aerodrome_height_ft > limit) {
     limit = near->elevation_ft + config_.aerodrome_height_ft;
     if (aerodrome) *aerodrome = near;

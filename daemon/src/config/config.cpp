@@ -194,6 +194,12 @@ Config parse_config(std::string_view toml_text, std::string_view origin) {
 
 Config load_config(const std::string& path) { return read_config(config::Document::load(path)); }
 
+Config default_config() {
+  Config c = read_config(config::Document::parse("", "the built-in configuration"));
+  c.origin.clear();
+  return c;
+}
+
 std::string state_directory(const ServiceConfig& service) {
   if (!service.state_directory.empty()) return service.state_directory;
   // Next to the alert log: a plain run keeps its numbering with its log, and a log

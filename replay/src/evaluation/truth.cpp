@@ -111,12 +111,14 @@ double local_distance_m(double lat1_deg, double lon1_deg, double lat2_deg, doubl
   return std::hypot(east, north);
 }
 
-Truth::Truth(std::span<const TrackReport> records, SeparationStandard standard) : standard_(standard) {
+Truth::Truth(std::span<const TrackReport> records, const eligibility::AerodromeTable& aerodromes,
+             SeparationStandard standard)
+    : standard_(standard) {
   if (!(standard_.horizontal_m > 0.0 && standard_.horizontal_m <= 100.0 * kNauticalMile_m))
     throw std::invalid_argument("separation standard: horizontal minimum outside (0, 100 NM]");
   if (!(standard_.vertical_ft > kAltimetryTolerance_ft && standard_.vertical_ft <= 10000.0))
     throw std::invalid_argument("separation standard: vertical minimum outside (200, 10000] ft");
-  add_records(records);
+  add_records(records, aerodromes);
   for (Track& track : tracks_) prepare_track(track);
   std::unordered_map<std::uint64_t, PairTrace> found;
   sweep(found);
@@ -130,13 +132,12 @@ Truth::Truth(std::span<const TrackReport> records, SeparationStandard standard) 
 }
 
 // The truth's lower limit at a position (TruthSample::lower_limit_ft).
-static double lower_limit_at(double lat_deg, double lon_deg) {
-  const eligibility::Aerodrome* aerodrome =
-      eligibility::AerodromeIndex::bundled().nearest(lat_deg, lon_deg, kAerodromeRadius_m);
+static double lower_limit_at(const eligibility::AerodromeTable& aerodromes, double lat_deg, double lon_deg) {
+  const eligibility::Aerodrome* aerodrome = aerodromes.nearest(lat_deg, lon_deg, kAerodromeRadius_m);
   return aerodrome ? std::max(kLowerLimit_ft, aerodrome->elevation_ft + kAerodromeHeight_ft) : kLowerLimit_ft;
 }
 
-void Truth::add_records(std::span<const TrackReport> records) {
+void Truth::add_records(std::span<const TrackReport> records, const eligibility::AerodromeTable& aerodromes) {
   std::string key;
   for (const TrackReport& r : records) {
     const bool usable = std::isfinite(r.t) && std::isfinite(r.lat_deg) && std::isfinite(r.lon_deg) &&
@@ -161,7 +162,7 @@ void Truth::add_records(std::span<const TrackReport> records) {
         std::find(track.codes.begin(), track.codes.end(), *r.mode3a) == track.codes.end())
       track.codes.push_back(*r.mode3a);
     const double speed = r.gs_kt && std::isfinite(*r.gs_kt) && *r.gs_kt >= 0.0 ? *r.gs_kt : kNaN;
-    track.points.push_back({r.t, r.lat_deg, r.lon_deg, r.alt_ft, speed, lower_limit_at(r.lat_deg, r.lon_deg),
+    track.points.push_back({r.t, r.lat_deg, r.lon_deg, r.alt_ft, speed, lower_limit_at(aerodromes, r.lat_deg, r.lon_deg),
                             r.on_ground, r.track_end});
     ++figures_.records;
   }

@@ -124,7 +124,9 @@ Airspace::Airspace(const GeneratorConfig& config, const std::vector<SlotPlan>& p
   // In a mixed scenario the stacks feed the TMA, so they sit around its terminal.
   lay_out_stacks(stacks, config.scenario == Scenario::Mixed || calibrated_, layout);
   lay_out_arrivals(count_of(plans, FlightKind::Tma), layout);
-  if (count_of(plans, FlightKind::Global) > 0) global_ = std::make_unique<GlobalRoutes>();
+  // validate() has checked that the table holds every aerodrome of the selection.
+  if (count_of(plans, FlightKind::Global) > 0)
+    global_ = std::make_unique<GlobalRoutes>(world_airports(*config.aerodromes));
 }
 
 void Airspace::lay_out_airways(std::size_t aircraft, RandomStream& layout) {

@@ -94,7 +94,7 @@ GreatCircle great_circle(const Airport& from, const Airport& to) {
 
 }  // namespace
 
-GlobalRoutes::GlobalRoutes() : airports_(world_airports()) {
+GlobalRoutes::GlobalRoutes(std::vector<Airport> airports) : airports_(std::move(airports)) {
   for (std::size_t a = 0; a < airports_.size(); ++a) {
     for (std::size_t b = a + 1; b < airports_.size(); ++b) {
       const GreatCircle g = great_circle(airports_[a], airports_[b]);
@@ -116,7 +116,7 @@ GlobalRoutes::GlobalRoutes() : airports_(world_airports()) {
   double departure_total = 0;
   for (std::size_t k = 0; k < kRouteClasses; ++k) {
     Class& c = classes_[k];
-    if (c.pairs.empty()) throw std::logic_error("the aerodrome table gives a class of routes no city pair");
+    if (c.pairs.empty()) throw std::logic_error("the aerodromes give a class of routes no city pair");
     double sum = 0;
     c.cumulative_km.reserve(c.pairs.size());
     for (const std::uint32_t p : c.pairs) c.cumulative_km.push_back(sum += pairs_[p].sphere_km);

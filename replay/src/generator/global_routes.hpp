@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <vector>
 
 #include <GeographicLib/GeodesicLine.hpp>
@@ -28,7 +27,7 @@ enum class RouteClass : std::uint8_t {
 };
 inline constexpr std::size_t kRouteClasses = 5;
 
-/// A city pair of the table (a < b, indices into world_airports()) and its great-circle
+/// A city pair of the selection (a < b, indices into the airports) and its great-circle
 /// distance on the mean sphere, km (within about 0.5 % of the geodesic: enough to classify and
 /// weight routes; the flights themselves fly the geodesic).
 struct CityPair {
@@ -38,9 +37,10 @@ struct CityPair {
 
 class GlobalRoutes {
  public:
-  /// Classifies every pair of world_airports() (a few milliseconds for 240 aerodromes);
-  /// builds no geodesic yet. Throws std::logic_error if the table leaves a class empty.
-  GlobalRoutes();
+  /// Classifies every pair of `airports` (world_airports(); a few milliseconds for 240
+  /// aerodromes); builds no geodesic yet. Throws std::logic_error if they leave a class
+  /// of routes empty.
+  explicit GlobalRoutes(std::vector<Airport> airports);
   GlobalRoutes(const GlobalRoutes&) = delete;
   GlobalRoutes& operator=(const GlobalRoutes&) = delete;
 
@@ -68,7 +68,7 @@ class GlobalRoutes {
   Flight flight(std::uint32_t pair, bool from_a, double flown_m, double speed_mps, double t,
                 RandomStream& rng) const;
 
-  std::span<const Airport> airports_;
+  std::vector<Airport> airports_;
   std::vector<CityPair> pairs_;
   std::array<Class, kRouteClasses> classes_;
   // Class probabilities of successor() draws: the airborne mix, in flights started.

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "cgal_types.hpp"
+#include "kew/config/aerodromes.hpp"
 #include "kew/replay/recording_reader.hpp"
 #include "kew/replay/traffic_generator.hpp"
 
@@ -70,6 +71,8 @@ void reorder_first_period(const Params& prm, double start_time, std::vector<kew:
 
 Workload make_workload(const Params& prm, std::size_t aircraft) {
   Workload w;
+  // kew's aerodromes, as every tool reads them (the lower limit above them).
+  w.config.eligibility.aerodromes = kew::config::load_default_aerodromes();
   double start_time = 0.0;
   if (!prm.recording.empty()) {
     read_recording(prm, w);
@@ -84,6 +87,7 @@ Workload make_workload(const Params& prm, std::size_t aircraft) {
     g.duration_s = prm.period_s * static_cast<double>(prm.warmup + prm.periods);
     g.seed = prm.seed;
     g.radius_km = w.radius_km;
+    g.aerodromes = w.config.eligibility.aerodromes;
     kew::replay::TrafficGenerator generator(g);
     w.records.reserve(aircraft * (prm.warmup + prm.periods));
     for (kew::TrackReport r; generator.next(r);) w.records.push_back(r);

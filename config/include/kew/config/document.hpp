@@ -70,6 +70,10 @@ class TableReader {
   void ip_list(std::string_view key, std::vector<std::string>& out);
   /// A list of host names (["kew.example"]): letters, digits, '-' and '.', kept lower-case.
   void host_name_list(std::string_view key, std::vector<std::string>& out);
+  /// A file path that belongs with the configuration file (a table it names, as [regions]
+  /// geojson): a relative path is resolved against the directory of the file being read
+  /// (`origin`), kept absolute and normalised. "" stays "".
+  void path_beside_file(std::string_view key, std::string& out);
   /// A file path. A relative path is resolved against the working directory kewd was
   /// started in and kept absolute and normalised ("../log/a" → "/srv/log/a"), so that
   /// what is checked, reported and opened is one file even after the daemon changes
@@ -121,10 +125,11 @@ class TableReader {
 /// Largest configuration file read, bytes (1 MiB; the shipped kew.toml is a few KB).
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;
 
-/// The text of a configuration file (a kew TOML file, or a GeoJSON file it names). Throws
-/// ConfigError naming the file when it cannot be read, is not a regular file (/dev/zero,
-/// a pipe) or is larger than kMaxConfigBytes; nothing more than the cap is ever read.
-std::string read_config_file(const std::string& path);
+/// The text of a configuration file (a kew TOML file, or a GeoJSON or aerodrome file it
+/// names). Throws ConfigError naming the file when it cannot be read, is not a regular
+/// file (/dev/zero, a pipe) or is larger than max_bytes; nothing more than the cap is
+/// ever read.
+std::string read_config_file(const std::string& path, std::size_t max_bytes = kMaxConfigBytes);
 
 /// A parsed configuration file.
 class Document {

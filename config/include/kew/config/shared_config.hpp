@@ -29,12 +29,17 @@ inline constexpr std::size_t kDefaultPromptRecords = 16;
 
 struct SharedConfig {
   /// The service's defaults: PipelineConfig's, with every core, kDefaultBatchRecords and
-  /// kDefaultPromptRecords.
+  /// kDefaultPromptRecords; no aerodrome table yet (default_shared_config() loads it).
   SharedConfig();
-  PipelineConfig pipeline;  ///< regions: the [[region]] tables, then [regions] geojson's
+  /// regions: the [[region]] tables, then [regions] geojson's; eligibility.aerodromes:
+  /// the table of aerodromes_file
+  PipelineConfig pipeline;
   protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits
   /// The GeoJSON file of [regions] geojson, absolute; empty when none.
   std::string regions_geojson;
+  /// The aerodrome table read into pipeline.eligibility.aerodromes, absolute: [eligibility]
+  /// aerodromes_file, or default_aerodromes_file() (aerodromes.hpp); empty before reading.
+  std::string aerodromes_file;
 };
 
 /// Top-level tables read into SharedConfig.
@@ -46,9 +51,13 @@ inline constexpr std::array<std::string_view, 6> kDaemonSections = {"service", "
                                                                    "input"};
 
 /// Reads the shared tables of `document`, after refusing any top-level key that is
-/// neither a shared nor a kewd table. Throws ConfigError naming file and line.
+/// neither a shared nor a kewd table, and loads the aerodrome table. Throws ConfigError
+/// naming file and line (an aerodrome file's own line after the key's).
 SharedConfig read_shared_config(const Document& document);
 /// Loads the file at `path` and reads its shared tables. Throws ConfigError.
 SharedConfig load_shared_config(const std::string& path);
+/// What a tool runs with when given no file: every default, and the default aerodrome
+/// table loaded. Throws ConfigError when that table cannot be read.
+SharedConfig default_shared_config();
 
 }  // namespace kew::config

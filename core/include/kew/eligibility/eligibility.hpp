@@ -12,6 +12,7 @@
 //    alert (an alert already open stays open and ends by its own rules).
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -39,9 +40,12 @@ struct EligibilityConfig {
   /// above the sea is 3,300 ft. 1,000 ft is the usual circuit height, the ceiling of
   /// aerodrome traffic; 1,500 ft above the sea keeps a sea-level aerodrome's.
   double aerodrome_height_ft = 1000.0;
-  /// The aerodromes (bundled, AerodromeIndex::bundled()) whose elevation counts: within
-  /// this distance (NM, (0, 50]) of the track.
+  /// The aerodromes whose elevation counts: within this distance (NM, (0, 50]) of the track.
   double aerodrome_radius_nm = 5.0;
+  /// The aerodrome table: kew_config loads [eligibility] aerodromes_file into it (default
+  /// data/aerodromes.csv, installed under share/kew); a program or test may hand in its
+  /// own. Null: no aerodromes, the lower limit is lower_limit_ft everywhere.
+  std::shared_ptr<const AerodromeTable> aerodromes;
   /// Mode 3/A codes whose tracks open no alert (12-bit values; 7777 = a test
   /// transponder). 7500, 7600 and 7700 are never excluded (see may_exclude_mode3a).
   std::vector<std::uint16_t> excluded_mode3a = {07777};
@@ -140,8 +144,9 @@ class Rules {
   Rules(const EligibilityConfig& config, const probe::SeparationMinima& minima);
 
   /// The lower limit at (lat, lon) (ft above mean sea level): lower_limit_ft, or the
-  /// nearest aerodrome's elevation plus aerodrome_height_ft where that is higher; the
-  /// aerodrome, if it sets the limit, in `aerodrome`.
+  /// elevation of the nearest aerodrome of config.aerodromes within aerodrome_radius_nm
+  /// plus aerodrome_height_ft where that is higher; the aerodrome, if it sets the limit,
+  /// in `aerodrome`.
   double lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** aerodrome = nullptr) const;
 
   /// The first rule, in the order of design §4.5, that turns the pair (a, b) clear: one

@@ -206,6 +206,9 @@ std::string state_directory(const ServiceConfig& service);
 Config parse_config(std::string_view toml_text, std::string_view origin = "config");
 /// Reads and parses a file. Throws config::ConfigError.
 Config load_config(const std::string& path);
+/// kewd without a file: every default, and the default aerodrome table loaded
+/// (config::default_shared_config). Throws config::ConfigError when it cannot be read.
+Config default_config();
 
 /// `kewd --replay FILE` (design §5.6): what the command line says about the replay.
 struct ReplaySettings {

@@ -27,6 +27,7 @@
 #include <string>
 #include <string_view>
 
+#include "kew/eligibility/aerodromes.hpp"
 #include "kew/track/track_report.hpp"
 #include "kew/util/name_table.hpp"
 
@@ -42,7 +43,8 @@ enum class Scenario {
   /// cruise on airways with route-allocated levels, lower traffic climbing and
   /// descending on semicircular levels, TMA arrivals, a few small holding stacks.
   Calibrated,
-  /// Worldwide: great-circle routes between 240 real aerodromes (kew/replay/airports.hpp),
+  /// Worldwide: great-circle routes between 240 real aerodromes (kew/replay/airports.hpp,
+  /// their figures from GeneratorConfig::aerodromes),
   /// regional and long-haul, over the oceans, the polar caps and the antimeridian, at
   /// semicircular levels FL290–FL410, 420–500 kt. No region: center and radius are unused.
   Global,
@@ -100,6 +102,11 @@ struct GeneratorConfig {
   /// Records carry gs_kt, trk_deg and vr_fpm (the true velocity) when true; positions
   /// only when false.
   bool report_velocity = true;
+  /// The aerodrome table Scenario::Global takes its aerodromes' positions and elevations
+  /// from (kew-gen: that of its configuration, [eligibility] aerodromes_file), so that its
+  /// flights start and end where the lower limit of alerting stands. Global needs one that
+  /// holds every aerodrome of the selection (selected_airports()); the others ignore it.
+  std::shared_ptr<const eligibility::AerodromeTable> aerodromes;
 };
 
 /// Empty when `config` is valid, otherwise a message naming the first field out of range.

@@ -11,7 +11,7 @@
 // records at most 20 s apart, never extrapolated, and sampled at every whole UTC second.
 // A sample is airborne when it flies (≥ 50 kt), has a plausible altitude, is not on the
 // ground and is at or above 1,500 ft and 1,000 ft above the nearest aerodrome within
-// 5 NM (kew's bundled table of aerodrome elevations). Two airborne samples of one second lose
+// 5 NM (of the aerodrome table handed to Truth). Two airborne samples of one second lose
 // separation when they are closer than S_h horizontally and than S_v − 200 ft
 // vertically (the altimetry tolerance: 975 ft apart at adjacent levels is separated).
 // Tracks that are one aircraft (the same 24-bit address, or a discrete Mode 3/A code in
@@ -28,6 +28,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "kew/eligibility/aerodromes.hpp"
 #include "kew/track/track_report.hpp"
 #include "kew/util/units.hpp"
 
@@ -50,7 +51,7 @@ inline constexpr double kMaxPlausibleAltitude_ft = 60000.0;
 /// ... and at or above this altitude (ft): aerodrome traffic is separated visually ...
 inline constexpr double kLowerLimit_ft = 1500.0;
 /// ... and at or above this height (ft) above the nearest aerodrome within
-/// kAerodromeRadius_m (kew's bundled table, eligibility::AerodromeIndex), the usual
+/// kAerodromeRadius_m (of the table handed to Truth: kew-eval's, its first configuration's), the usual
 /// circuit height: the traffic of an aerodrome 2,300 ft above the sea flies below 3,300 ft.
 inline constexpr double kAerodromeHeight_ft = 1000.0;
 inline constexpr double kAerodromeRadius_m = 5.0 * kNauticalMile_m;
@@ -155,8 +156,10 @@ class Truth {
   /// [−180, 180], is counted in records_refused and not used. A record flagged
   /// track_end ends its track's run: the next record of that id starts a new one.
   /// Runs in O(records·log + Σ_s n_s·log n_s + close pairs) for n_s airborne samples in
-  /// second s.
-  explicit Truth(std::span<const TrackReport> records, SeparationStandard standard = {});
+  /// second s. `aerodromes`: where the lower limit stands above the sea
+  /// (truth_rules::kAerodromeHeight_ft), read during construction only.
+  Truth(std::span<const TrackReport> records, const eligibility::AerodromeTable& aerodromes,
+        SeparationStandard standard = {});
 
   const SeparationStandard& standard() const { return standard_; }
   const TruthFigures& figures() const { return figures_; }
@@ -213,7 +216,7 @@ class Truth {
     std::vector<std::uint64_t> loss_tracks;               // per loss range: track pair key
   };
 
-  void add_records(std::span<const TrackReport> records);
+  void add_records(std::span<const TrackReport> records, const eligibility::AerodromeTable& aerodromes);
   void prepare_track(Track& track) const;
   void sweep(std::unordered_map<std::uint64_t, PairTrace>& traces);
   void merge_aircraft(const std::vector<std::pair<std::uint64_t, const PairTrace*>>& traces);
