@@ -367,12 +367,12 @@ void print_explanations(const Truth& truth, const std::vector<Column>& columns, 
   for (const Column& c : columns) {
     if (c.from_log) continue;
     for (const kew::replay::LossExplanation& e : c.explanations) {
-      out += fmt::format("[{}] {}: {}: {}\n", c.name, loss_heading(truth, c, e), kew::kPairStageNames.name(e.stage),
+      out += fmt::format("[{}] {}: {}: {}\n", c.name, loss_heading(truth, c, e), kew::replay::kPairStageNames.name(e.stage),
                          e.reason);
       const double start = static_cast<double>(truth.loss_events()[e.loss].start_s);
       for (const kew::replay::StageSpan& span : e.spans) {
         out += fmt::format("    {:+6.0f} .. {:+6.0f} s  {} x{}: {}\n", span.first_t - start, span.last_t - start,
-                           kew::kPairStageNames.name(span.stage), span.notes, span.first.detail);
+                           kew::replay::kPairStageNames.name(span.stage), span.notes, span.first.detail);
         if (span.notes > 1) out += fmt::format("{:>27}last: {}\n", "", span.last.detail);
       }
     }
@@ -380,7 +380,7 @@ void print_explanations(const Truth& truth, const std::vector<Column>& columns, 
                        c.explanations.size(), fixed(late_s, 0));
     out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", "stage", "missed", "late", "unwarnable");
     for (const auto& [stage, counts] : census_of(c))
-      out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", kew::kPairStageNames.name(stage), counts[0], counts[1],
+      out += fmt::format("    {:<22}{:>8}{:>8}{:>12}\n", kew::replay::kPairStageNames.name(stage), counts[0], counts[1],
                          counts[2]);
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
@@ -512,7 +512,7 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
         const kew::replay::StageSpan& span = e.spans[k];
         std::string one;
         JsonObject(one)
-            .text("stage", kew::kPairStageNames.name(span.stage))
+            .text("stage", kew::replay::kPairStageNames.name(span.stage))
             .number("from_t", span.first_t, 3)
             .number("to_t", span.last_t, 3)
             .count("notes", span.notes)
@@ -529,7 +529,7 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
           .raw("b", json_party(truth.track(l.track_b).source, truth.track(l.track_b).id, truth.track(l.track_b).callsign))
           .text("outcome", kew::replay::kExplainedOutcomeNames.name(e.outcome))
           .raw("warning_s", c.evaluation.losses[e.loss].warning_s ? fixed(*c.evaluation.losses[e.loss].warning_s, 3) : "null")
-          .text("stage", kew::kPairStageNames.name(e.stage))
+          .text("stage", kew::replay::kPairStageNames.name(e.stage))
           .text("reason", e.reason)
           .raw("spans", spans + "]")
           .close();
@@ -541,7 +541,7 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
     for (const auto& [stage, counts] : census_of(c)) {
       std::string one;
       JsonObject(one).count("missed", counts[0]).count("late", counts[1]).count("unwarnable", counts[2]).close();
-      census += (first ? "\"" : ",\"") + std::string(kew::kPairStageNames.name(stage)) + "\":" + one;
+      census += (first ? "\"" : ",\"") + std::string(kew::replay::kPairStageNames.name(stage)) + "\":" + one;
       first = false;
     }
     o.raw("census", census + "}");

@@ -99,7 +99,7 @@ void AlertStage::run_step(Batch& batch, const AlertStep& step) {
     evaluated_.push_back({other, held ? owner : zone::kNoZone, std::nullopt});
   }
   evaluate_pairs(slot);
-  if (watch_) note_watched_pairs(slot);
+  if (observer_) observe_watched_pairs(slot);
 }
 
 void AlertStage::brute_over_sphere(track::TrackSlot slot) {

@@ -13,7 +13,7 @@
 #include "kew/alert/alert_manager.hpp"
 #include "kew/eligibility/eligibility.hpp"
 #include "kew/pipeline/instrumentation.hpp"
-#include "kew/pipeline/pair_watch.hpp"
+#include "kew/pipeline/pair_observer.hpp"
 #include "kew/pipeline/pipeline_config.hpp"
 #include "kew/util/rejections.hpp"
 #include "pair_judge.hpp"
@@ -25,7 +25,7 @@ class AlertStage {
  public:
   using AlertSink = std::function<void(const AlertEvent&)>;
 
-  /// Every argument must outlive the stage; `tracks` is read only to find a watched
+  /// Every argument must outlive the stage; `tracks` is read only to find an observed
   /// pair's partner by name.
   AlertStage(const PipelineConfig& config, const PairJudge& judge, ZoneSet& zones,
              const PipelineInstrumentation& instruments, const track::TrackTable& tracks);
@@ -34,7 +34,7 @@ class AlertStage {
   void run(Batch& batch);
 
   void set_sink(AlertSink sink) { sink_ = std::move(sink); }
-  void set_pair_watch(PairWatch* watch) { watch_ = watch; }
+  void set_pair_observer(PairObserver* observer) { observer_ = observer; }
 
   const alert::AlertManager& alerts() const { return alerts_; }
   alert::AlertManager& alerts() { return alerts_; }
@@ -70,10 +70,12 @@ class AlertStage {
   /// served_longitudes: the event's pair is this pipeline's to report.
   bool serves(const AlertEvent& event) const;
   void deliver();
-  /// Notes where every watched pair of the updated track stands (PairWatch).
-  void note_watched_pairs(track::TrackSlot slot);
-  /// The note of one watched pair after the update of `slot` (design §4.10).
-  PairNote watched_pair_note(track::TrackSlot slot, std::string_view partner_source, std::string_view partner_id);
+  /// Reports where every watched pair of the updated track stands (PairObserver).
+  void observe_watched_pairs(track::TrackSlot slot);
+  /// Where the pair of `slot` and `partner` stands after the update of `slot` (design §4.10).
+  PairObservation observe_pair(track::TrackSlot slot, alert::PartyName partner);
+  /// The limit of design §4.5 that track `t` is beyond by exclusion `why`.
+  ExclusionLimit exclusion_limit(eligibility::Exclusion why, const track::Track& t) const;
 
   const PipelineConfig& config_;
   const PairJudge& judge_;
@@ -90,7 +92,7 @@ class AlertStage {
   double brute_reach_m_ = 0.0;  // worldwide ProbeMode::Brute: pairs within this (m)
   std::vector<AlertEvent> pending_events_;
   AlertSink sink_;
-  PairWatch* watch_ = nullptr;
+  PairObserver* observer_ = nullptr;
   std::uint64_t probes_ = 0, candidates_ = 0;
 };
 

@@ -5,6 +5,7 @@
 #include "alert_stage.hpp"
 #include "batch.hpp"
 #include "kew/pipeline/instrumentation.hpp"
+#include "kew/pipeline/pair_observer.hpp"
 #include "kew/util/worker_pool.hpp"
 #include "pair_judge.hpp"
 #include "phase_timer.hpp"
@@ -33,15 +34,20 @@ void Pipeline::instrument(const PipelineInstrumentation& instruments) { *instrum
 const PhaseTimes& Pipeline::phase_times() const { return *phases_; }
 void Pipeline::set_time_ceiling(double utc_s) { track_->set_time_ceiling(utc_s); }
 
-void Pipeline::set_pair_watch(PairWatch* watch) {
-  if (watch && config_.batch_records != 1) throw std::invalid_argument("a pair watch needs batch_records = 1");
-  track_->set_pair_watch(watch);
-  alert_->set_pair_watch(watch);
+void Pipeline::set_pair_observer(PairObserver* observer) {
+  if (observer && config_.batch_records != 1) throw std::invalid_argument("a pair observer needs batch_records = 1");
+  observer_ = observer;
+  track_->set_pair_observer(observer);
+  alert_->set_pair_observer(observer);
 }
 
 RecordOutcome Pipeline::process(const TrackReport& report) {
   const track::Refusal refusal = track_->screen(report);
-  if (refusal != track::Refusal::None) return {RecordOutcome::Kind::Refused, refusal};
+  if (refusal != track::Refusal::None) {
+    const RecordOutcome refused{RecordOutcome::Kind::Refused, refusal};
+    observe_refusal(report, refused);
+    return refused;
+  }
   const RecordOutcome outcome = track_->process(report);
   if (track_->young_run_stuck()) restart_young_run();
   if (prompt_left_ > 0) {
@@ -50,7 +56,13 @@ RecordOutcome Pipeline::process(const TrackReport& report) {
   } else if (batch_->steps.size() >= config_.batch_records) {
     run_batch();
   }
+  // After the batch: the alert stage has judged what the track stage took meanwhile.
+  if (outcome.kind == RecordOutcome::Kind::Refused) observe_refusal(report, outcome);
   return outcome;
+}
+
+void Pipeline::observe_refusal(const TrackReport& report, const RecordOutcome& refused) {
+  if (observer_ && observer_->watches(report.source, report.id)) observer_->record(report, refused);
 }
 
 void Pipeline::restart_young_run() {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <fmt/format.h>
-
 namespace kew::pipeline {
 
 namespace {
@@ -162,8 +160,11 @@ RecordOutcome TrackStage::apply_record(const TrackReport& report) {
   young_refused_.clear();
   late_since_accepted_ = false;
   stats_.last_data_time = clock_;
-  if (watch_) watch_record(report, admitted.admission);
-  if (admitted.admission == track::Admission::AwaitingVelocity) {
+  const bool awaiting = admitted.admission == track::Admission::AwaitingVelocity;
+  const RecordOutcome applied{awaiting ? RecordOutcome::Kind::AwaitingVelocity : RecordOutcome::Kind::Accepted,
+                              track::Refusal::None, admitted.slot};
+  if (observer_ && observer_->watches(report.source, report.id)) observer_->record(report, applied);
+  if (awaiting) {
     ++stats_.awaiting_velocity;
     if (tracks_[admitted.slot].in_engine) {
       // Velocity reset: the track leaves the probe until it has a velocity again.
@@ -171,11 +172,11 @@ RecordOutcome TrackStage::apply_record(const TrackReport& report) {
       batch_.steps.push_back({AlertStep::Kind::DropAlerts, admitted.slot, 0, 0, 0, clock_});
     }
     if (report.track_end) end_track(admitted.slot);
-    return {RecordOutcome::Kind::AwaitingVelocity, track::Refusal::None, admitted.slot};
+    return applied;
   }
   apply(admitted.slot);
   if (report.track_end) end_track(admitted.slot);
-  return {RecordOutcome::Kind::Accepted, track::Refusal::None, admitted.slot};
+  return applied;
 }
 
 bool TrackStage::outside_limit(const TrackReport& report) const {
@@ -272,18 +273,6 @@ void TrackStage::apply(track::TrackSlot slot) {
   const auto first_zone = static_cast<std::uint32_t>(batch_.step_zones.size());
   const std::uint32_t zone_count = zones_.place(slot, snapshot, track.lat_deg, track.lon_deg, clock_, batch_.step_zones);
   batch_.steps.push_back({AlertStep::Kind::Update, slot, snapshot, first_zone, zone_count, clock_});
-}
-
-void TrackStage::watch_record(const TrackReport& report, track::Admission admission) {
-  if (!watch_->watches(report.source, report.id)) return;
-  watch_->seen(report.source, report.id, report.t);
-  if (admission != track::Admission::AwaitingVelocity) return;  // the alert stage notes the rest
-  PairNote note;
-  note.t = report.t;
-  note.updated = note.subject = party_label(report.source, report.id);
-  note.stage = PairStage::AwaitingVelocity;
-  note.detail = fmt::format("{} has no velocity yet", note.updated);
-  watch_->note_track(report.source, report.id, note);
 }
 
 }  // namespace kew::pipeline

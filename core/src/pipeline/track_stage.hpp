@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "batch.hpp"
-#include "kew/pipeline/pair_watch.hpp"
+#include "kew/pipeline/pair_observer.hpp"
 #include "kew/pipeline/pipeline_config.hpp"
 #include "kew/pipeline/pipeline_statistics.hpp"
 #include "kew/pipeline/record_outcome.hpp"
@@ -53,7 +53,7 @@ class TrackStage {
   void drop_all();
 
   void set_time_ceiling(double utc_s) { time_ceiling_ = utc_s; }
-  void set_pair_watch(PairWatch* watch) { watch_ = watch; }
+  void set_pair_observer(PairObserver* observer) { observer_ = observer; }
 
   double now() const { return clock_; }
   const track::TrackTable& tracks() const { return tracks_; }
@@ -82,7 +82,6 @@ class TrackStage {
   void apply(track::TrackSlot slot);
   /// A worldwide run's explicit coverage limit refuses the report.
   bool outside_limit(const TrackReport& report) const;
-  void watch_record(const TrackReport& report, track::Admission admission);
 
   const PipelineConfig& config_;
   ZoneSet& zones_;
@@ -98,7 +97,7 @@ class TrackStage {
   double time_ceiling_ = std::numeric_limits<double>::infinity();
   std::optional<geo::GeodeticPosition> coverage_centre_;  // of the reference or first record
   std::size_t live_tracks_ = 0;
-  PairWatch* watch_ = nullptr;
+  PairObserver* observer_ = nullptr;
   double epoch_ = 0.0;  // engine time = data time − epoch (design §4.1: local time frames)
   bool started_ = false;
   double clock_ = 0.0;

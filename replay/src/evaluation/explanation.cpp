@@ -146,18 +146,8 @@ std::vector<LossExplanation> explain_losses(const Truth& truth, const Evaluation
   PipelineConfig watched = config;
   watched.batch_records = 1;
   Pipeline pipeline(watched);
-  pipeline.set_pair_watch(&watch);
-  for (const TrackReport& r : records) {
-    const RecordOutcome outcome = pipeline.process(r);
-    // Refusals happen before the track stage notes anything: they are seen from here.
-    if (outcome.kind != RecordOutcome::Kind::Refused || !watch.watches(r.source, r.id)) continue;
-    PairNote note;
-    note.t = r.t;
-    note.updated = note.subject = party_label(r.source, r.id);
-    note.stage = PairStage::RecordRefused;
-    note.detail = fmt::format("{} record refused: {}", note.updated, track::kRefusalNames.name(outcome.refusal));
-    watch.note_track(r.source, r.id, note);
-  }
+  pipeline.set_pair_observer(&watch);
+  for (const TrackReport& r : records) pipeline.process(r);
   pipeline.end_of_input();
 
   std::vector<LossExplanation> out;

@@ -19,7 +19,6 @@
 
 #include "kew/alert/alert_manager.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
-#include "kew/pipeline/pair_watch.hpp"
 #include "kew/pipeline/pipeline_config.hpp"
 #include "kew/pipeline/pipeline_statistics.hpp"
 #include "kew/pipeline/record_outcome.hpp"
@@ -41,6 +40,7 @@ class AlertStage;
 struct Batch;
 }  // namespace pipeline
 struct PipelineInstrumentation;  // kew/pipeline/instrumentation.hpp
+class PairObserver;              // kew/pipeline/pair_observer.hpp
 struct PhaseTimes;
 
 class Pipeline {
@@ -62,11 +62,12 @@ class Pipeline {
   /// Zero unless instrumented with time_phases.
   const PhaseTimes& phase_times() const;
 
-  /// Notes where each pair of `watch` stands at every update of either of its tracks
-  /// (design §4.10); null stops. The watch must outlive its use. Requires batch_records
-  /// = 1 (the alert stage then judges each record as the track stage takes it): throws
-  /// std::invalid_argument otherwise. Changes no alert.
-  void set_pair_watch(PairWatch* watch);
+  /// Reports to `observer` the records of the tracks it watches and where each pair it
+  /// watches stands at every update of either of its tracks (design §4.10); null stops.
+  /// The observer must outlive its use. Requires batch_records = 1 (the alert stage then
+  /// judges each record as the track stage takes it): throws std::invalid_argument
+  /// otherwise. Changes no alert.
+  void set_pair_observer(PairObserver* observer);
 
   /// Processes one record (any data time; see TrackTableConfig for what is refused) and
   /// says what became of it. A record too far ahead of the clock is held, not applied
@@ -146,6 +147,8 @@ class Pipeline {
  private:
   /// Restarts a young run whose records went elsewhere (TrackStage::kYoungRun).
   void restart_young_run();
+  /// `refused`, process()'s outcome for `report`, to the observer if it watches the track.
+  void observe_refusal(const TrackReport& report, const RecordOutcome& refused);
   /// The zones, then the alert stage, over the batch taken so far.
   void run_batch();
 
@@ -159,6 +162,7 @@ class Pipeline {
   std::unique_ptr<pipeline::AlertStage> alert_;
   std::unique_ptr<util::WorkerPool> pool_;
   std::size_t prompt_left_ = 0;  // records still to judge one by one (prompt_records)
+  PairObserver* observer_ = nullptr;
 };
 
 }  // namespace kew

@@ -1,7 +1,7 @@
 #pragma once
 // Why a loss was missed or warned late (design §2.6, §4.10; kew-eval --explain): the
 // pipeline is run again over the recording with the pairs of those losses watched
-// (kew::PairWatch), and what it noted at every update of either aircraft is condensed
+// (PairWatch), and what it noted at every update of either aircraft is condensed
 // into the stage that kept kew from alerting earlier, with its evidence.
 
 #include <cstddef>
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "kew/pipeline/pair_watch.hpp"
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/replay/evaluation.hpp"
+#include "kew/replay/pair_watch.hpp"
 #include "kew/replay/truth.hpp"
 
 namespace kew::replay {

@@ -1,6 +1,6 @@
-// The pair watch (design §4.10): what the alert stage notes about a watched pair at each
+// The pair watch (design §4.10): what it notes, in words, about a watched pair at each
 // update, the first stage that holds it back, and that watching changes no alert.
-#include "kew/pipeline/pair_watch.hpp"
+#include "kew/replay/pair_watch.hpp"
 #include "kew/pipeline/pipeline.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +15,8 @@
 namespace kew {
 namespace {
 
+using replay::PairNote;
+using replay::PairWatch;
 using test_support::Flight;
 using test_support::head_on;
 using test_support::kT0;
@@ -29,7 +31,7 @@ Watched watch_pair(const std::vector<Flight>& flights, double seconds = 60.0, Pi
   PairWatch watch;
   watch.watch("test", "A", "test", "B", kT0, kT0 + seconds);
   Pipeline pipeline(config);
-  pipeline.set_pair_watch(&watch);
+  pipeline.set_pair_observer(&watch);
   Watched out;
   pipeline.set_alert_sink([&](const AlertEvent& e) { out.events.push_back(e); });
   for (double t = kT0; t <= kT0 + seconds; t += 4.0)
@@ -111,9 +113,9 @@ TEST(PairWatch, NeedsOneRecordPerBatch) {
   PipelineConfig config;
   config.batch_records = 512;
   Pipeline batched(config);
-  EXPECT_THROW(batched.set_pair_watch(&watch), std::invalid_argument);
+  EXPECT_THROW(batched.set_pair_observer(&watch), std::invalid_argument);
   Pipeline single;
-  EXPECT_NO_THROW(single.set_pair_watch(&watch));
+  EXPECT_NO_THROW(single.set_pair_observer(&watch));
 }
 
 }  // namespace
