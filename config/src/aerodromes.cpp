@@ -1,6 +1,9 @@
 #include "kew/config/aerodromes.hpp"
 
+#include <cstdint>
 #include <filesystem>
+#include <mutex>
+#include <optional>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -25,13 +28,64 @@ std::string default_aerodromes_file() {
   return (exe.parent_path() / KEW_AERODROMES_FROM_BINDIR).lexically_normal().string();
 }
 
+namespace {
+
+// Which file a table was read from, as far as the file system tells: a file replaced or
+// edited in place gets another modification time or size, and is read again.
+struct FileIdentity {
+  std::string path;
+  std::uintmax_t size = 0;
+  fs::file_time_type modified;
+  bool operator==(const FileIdentity&) const = default;
+};
+
+std::optional<FileIdentity> identify(const std::string& path) {
+  std::error_code ec;
+  FileIdentity id{path, fs::file_size(path, ec), {}};
+  if (ec) return std::nullopt;
+  id.modified = fs::last_write_time(path, ec);
+  if (ec) return std::nullopt;
+  return id;
+}
+
+// The last table read. Every configuration read (kewd's SIGHUP, a test's hundreds of
+// configurations, the configuration fuzzer's every input) names the same 230 KB table;
+// parsing it once per file version, not once per read, keeps a reload quick. Tables are
+// immutable, so one may be shared by any number of configurations.
+struct LastTable {
+  std::mutex mutex;
+  std::optional<FileIdentity> identity;
+  std::shared_ptr<const eligibility::AerodromeTable> table;
+};
+
+LastTable& last_table() {
+  static LastTable last;
+  return last;
+}
+
+}  // namespace
+
 std::shared_ptr<const eligibility::AerodromeTable> load_aerodromes(const std::string& path) {
+  const std::optional<FileIdentity> before = identify(path);
+  LastTable& last = last_table();
+  if (before) {
+    const std::lock_guard lock(last.mutex);
+    if (last.identity == before) return last.table;
+  }
   const std::string text = read_config_file(path, kMaxAerodromeFileBytes);
+  std::shared_ptr<const eligibility::AerodromeTable> table;
   try {
-    return std::make_shared<const eligibility::AerodromeTable>(eligibility::parse_aerodrome_csv(text, path));
+    table = std::make_shared<const eligibility::AerodromeTable>(eligibility::parse_aerodrome_csv(text, path));
   } catch (const eligibility::AerodromeCsvError& e) {
     throw ConfigError(e.what());
   }
+  // Remembered only when the file did not change while it was read.
+  if (before && identify(path) == before) {
+    const std::lock_guard lock(last.mutex);
+    last.identity = before;
+    last.table = table;
+  }
+  return table;
 }
 
 std::shared_ptr<const eligibility::AerodromeTable> load_default_aerodromes() {

@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -116,6 +117,27 @@ TEST(ConfigAerodromes, ATwoRowFileIsTheTableTheLowerLimitStandsOn) {
   const SharedConfig empty = load_shared_config(dir.write("etc/empty.toml", "[eligibility]\naerodromes_file = \"\"\n"));
   EXPECT_EQ(empty.aerodromes_file, default_aerodromes_file());
   EXPECT_EQ(empty.pipeline.eligibility.aerodromes->size(), kews.pipeline.eligibility.aerodromes->size());
+}
+
+TEST(ConfigAerodromes, AFileReadAgainIsTheSameTableUntilItIsReplacedOrEdited) {
+  const ScratchDir dir("aerodromes-again");
+  const std::string path = dir.write("a.csv", "ident,lat_deg,lon_deg,elevation_ft\nHILL,46.0,7.0,4000\n");
+  const auto first = load_aerodromes(path);
+  EXPECT_EQ(load_aerodromes(path), first);  // parsed once
+  // Edited in place to the same size: the modification time tells.
+  dir.write("a.csv", "ident,lat_deg,lon_deg,elevation_ft\nHILL,46.0,7.0,4100\n");
+  std::filesystem::last_write_time(path, std::filesystem::last_write_time(path) + std::chrono::seconds(5));
+  const auto edited = load_aerodromes(path);
+  ASSERT_NE(edited, first);
+  EXPECT_DOUBLE_EQ(edited->aerodromes().front().elevation_ft, 4100.0);
+  // Replaced by rename, with another size.
+  const std::string other = dir.write("b.csv", "ident,lat_deg,lon_deg,elevation_ft\nHILL,46.0,7.0,4000\nLOW,45.0,7.0,300\n");
+  std::filesystem::rename(other, path);
+  EXPECT_EQ(load_aerodromes(path)->size(), 2u);
+  // Another file between two reads of the first does not hide the first's changes.
+  const std::string kews = default_aerodromes_file();
+  EXPECT_EQ(load_aerodromes(kews), load_aerodromes(kews));
+  EXPECT_EQ(load_aerodromes(path)->size(), 2u);
 }
 
 TEST(ConfigAerodromes, AFileThatCannotBeReadOrAMalformedRowNamesTheFileAndLine) {

@@ -4,7 +4,8 @@
 // sanitizer report is a finding. Paths are not checked (that is --check-config's work);
 // a [regions] geojson file and an [eligibility] aerodromes_file are opened, relative to the
 // run's working directory, and without one kew's aerodrome table (the source tree's
-// data/aerodromes.csv: the fuzzer runs from the build tree) is read with every input.
+// data/aerodromes.csv: the fuzzer runs from the build tree) is used, parsed once for
+// the whole run (config/src/aerodromes.cpp keeps the last table read).
 
 #include <cstddef>
 #include <cstdint>

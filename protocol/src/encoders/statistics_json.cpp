@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "kew/pipeline/pipeline.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
 
 namespace kew::protocol {

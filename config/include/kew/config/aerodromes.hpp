@@ -29,7 +29,9 @@ std::shared_ptr<const eligibility::AerodromeTable> load_default_aerodromes();
 
 /// The aerodrome table of the CSV file at `path` (kew/eligibility/aerodrome_csv.hpp).
 /// Throws ConfigError "path:line: message" for a malformed row, or naming the file when
-/// it cannot be read or is larger than kMaxAerodromeFileBytes.
+/// it cannot be read or is larger than kMaxAerodromeFileBytes. The file read last is
+/// parsed once per version (its size and modification time): reading it again returns
+/// the same table, until the file is replaced or edited.
 std::shared_ptr<const eligibility::AerodromeTable> load_aerodromes(const std::string& path);
 
 }  // namespace kew::config

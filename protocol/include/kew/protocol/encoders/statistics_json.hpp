@@ -11,8 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "kew/pipeline/pipeline.hpp"
 #include "kew/util/rejections.hpp"
+
+namespace kew {
+class Pipeline;  // kew/pipeline/pipeline.hpp: the encoders read its statistics and zones
+}
 
 namespace kew::protocol {
 
