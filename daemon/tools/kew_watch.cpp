@@ -3,8 +3,11 @@
 // readable line per alert event (or the raw JSON lines with --json), like gpsd's
 // cgps/gpspipe.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <memory>
 #include <optional>
@@ -141,6 +144,13 @@ std::uint64_t first_after(jsCtx* js, const std::string& stream, std::uint64_t si
   return low;
 }
 
+/// The Kew-Lease header of a message (0: none, not hot standby).
+std::uint64_t fencing_token(natsMsg* message) {
+  const char* value = nullptr;
+  if (natsMsgHeader_Get(message, kew::nats::kLeaseHeader, &value) != NATS_OK) return 0;
+  return std::strtoull(value, nullptr, 10);
+}
+
 /// kew-watch --nats: the alert events and acknowledgements of `flags.stream`, from the
 /// first after --since (or those published from now on), until -n is reached.
 int watch_nats(const Flags& flags) {
@@ -168,6 +178,7 @@ int watch_nats(const Flags& flags) {
     kew::protocol::AlertStreamReader reader;
     std::set<std::string> shown;  // alerts printed: their End is printed whatever its severity
     long alerts = 0;
+    std::uint64_t latest_token = 0, stale = 0;
     for (;;) {
       natsMsg* message = nullptr;
       const natsStatus s = natsSubscription_NextMsg(&message, subscription.get(), 1000);
@@ -179,7 +190,17 @@ int watch_nats(const Flags& flags) {
       }
       kew::nats::check(s, "reading " + flags.stream);
       std::string line(natsMsg_GetData(message), static_cast<std::size_t>(natsMsg_GetDataLength(message)));
+      const std::uint64_t token = fencing_token(message);
       natsMsg_Destroy(message);
+      // Hot standby: a message of an earlier holding than one already read was sent by an
+      // instance that had lost the lease (design §5.9): not the pair's.
+      if (token && token < latest_token) {
+        if (stale++ % 100 == 0)
+          std::fprintf(stderr, "kew-watch: %llu messages of an instance that no longer held the lease skipped\n",
+                       static_cast<unsigned long long>(stale));
+        continue;
+      }
+      latest_token = std::max(latest_token, token);
       line += '\n';
       if (!reader.read(line)) {
         std::fprintf(stderr, "kew-watch: unreadable message in %s: %s\n", flags.stream.c_str(), reader.error().c_str());

@@ -10,6 +10,7 @@ by hand: KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest t
 
 import json
 import shutil
+import signal
 import subprocess
 import threading
 import time
@@ -342,6 +343,127 @@ class HotStandby(NatsCase):
         after = {a["id"]: a for a in active_alerts(second)}
         for alert_id in acknowledged:
             self.assertTrue(after[alert_id]["ack"], f"{alert_id} acknowledged on the active stays so")
+
+
+    def test_a_chain_of_failures_and_restarts_keeps_the_stream_of_the_run_without_failure(self):
+        """A active, B standby; SIGKILL A, restart A; SIGKILL B, restart B; SIGKILL A: each
+        restarted instance catches up with the pair before it may take over, and JetStream
+        holds the run without failure event for event."""
+        recording = self.path("tma-long.ndjson")
+        generate(recording, "tma", aircraft=150, duration=300, seed=5)
+        config = {name: SERVICE + HOT_STANDBY.format(url=self.nats.url, name=name) for name in "ab"}
+        kewd = {"a": self.start(config["a"])}
+        kewd["a"].wait_log("a holds the lease active: active")
+        kewd["b"] = self.start(config["b"])
+        for name in "ab":
+            kewd[name].wait_log("reading kew.feed.tma through the JetStream consumer")
+        expected = offline_alerts(kewd["a"].config_path, recording)
+        self.assertGreater(len(expected), 200, "the scenario must keep alerts open through every failure")
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", recording, "--speed", "5"))
+        feeder.start()
+        takeovers = []
+
+        def fail_over(dead, heir, share):
+            # Mid-conflict: a share of the run's events is in the stream when the active dies.
+            wait_until(lambda: stream_messages(self.nats.port) >= len(expected) * share, 120, "alerts in the stream")
+            kewd[dead].process.kill()
+            kewd[dead].process.wait()
+            killed = time.monotonic()
+            kewd[heir].wait_log(f"active now (hot standby {heir})", timeout_s=30)
+            takeovers.append(time.monotonic() - killed)
+            kewd[dead] = self.start(config[dead])
+            # Back as a standby in step with the pair: only then may it take over.
+            kewd[dead].wait_log(f"{dead}: in step with the active", timeout_s=60)
+
+        fail_over("a", "b", 1 / 6)
+        fail_over("b", "a", 2 / 6)
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected) * 3 / 6, 120, "alerts in the stream")
+        kewd["a"].process.kill()
+        killed = time.monotonic()
+        kewd["b"].wait_log("active now (hot standby b)", timeout_s=30)
+        takeovers.append(time.monotonic() - killed)
+        print("\ntakeovers after SIGKILL: " + ", ".join(f"{t:.2f} s" for t in takeovers))
+        feeder.join()
+        kewd["b"].wait_records(count_lines(recording))
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected), 60, "every event in the stream")
+        time.sleep(1.0)
+        kept = [line for line in watch(self.nats.url, "--since", "0", "-n", str(stream_messages(self.nats.port)))
+                if json.loads(line)["class"] == "ALERT"]
+        check_alert_lifecycles(self, kept)
+        self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
+
+
+    def test_an_active_stalled_past_its_lease_sends_nothing_after_the_takeover(self):
+        """SIGSTOP the active for three lease TTLs, then SIGCONT: nothing it computes after
+        the standby took over reaches its subscribers, the stream or kew-watch."""
+        config = {name: SERVICE + HOT_STANDBY.format(url=self.nats.url, name=name) for name in "ab"}
+        first = self.start(config["a"])
+        first.wait_log("a holds the lease active: active")
+        second = self.start(config["b"])
+        second.wait_log("b: in step with the active")
+        expected = offline_alerts(first.config_path, self.recording)
+        on_first = Subscriber(first.alert_port)
+        on_second = Subscriber(second.alert_port)
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "4"))
+        feeder.start()
+        wait_until(lambda: len(on_first.alert_lines()) >= len(expected) // 4, 60, "alerts from the active")
+        first.process.send_signal(signal.SIGSTOP)
+        stopped = time.monotonic()
+        second.wait_log("active now (hot standby b)", timeout_s=30)
+        # Three TTLs (1.5 s each) in all; what the stopped active had written is read by now.
+        time.sleep(max(0.0, 4.5 - (time.monotonic() - stopped)))
+        seen_by_first = len(on_first.alert_lines())
+        first.process.send_signal(signal.SIGCONT)
+        first.wait_log("standby now", timeout_s=30)
+        feeder.join()
+        second.wait_records(count_lines(self.recording))
+        first.wait_records(count_lines(self.recording))
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected), 60, "every event in the stream")
+        time.sleep(1.0)
+        self.assertEqual(len(on_first.alert_lines()), seen_by_first, "the stalled active sent nothing after waking")
+        self.assertEqual(on_first.objects("ALIVE")[-1]["health"], "standby")
+        result = subprocess.run([KEW_WATCH, "--nats", self.nats.url, "--json", "--since", "0", "-n",
+                                 str(len(expected))], capture_output=True, text=True, timeout=60)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn("no longer held the lease", result.stderr, "no message of the stalled holding after the takeover")
+        kept = result.stdout.splitlines(keepends=True)
+        self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
+        published = int(second.wait_log("active now (hot standby b)").split("published up to seq ")[1].split(";")[0])
+        self.assertEqual(on_second.alert_lines(), expected[published:])
+
+
+def stream_messages(port, stream="KEW_ALERTS"):
+    """Messages held by a JetStream stream (0 before it exists)."""
+    info = json.loads(nats_request(port, f"$JS.API.STREAM.INFO.{stream}"))
+    return info.get("state", {}).get("messages", 0)
+
+
+def check_alert_lifecycles(case, alert_lines):
+    """Every id begins with its "new" and has no event after its "end"; no pair of
+    aircraft has two alerts open at once; seq grows by one."""
+    open_by_pair = {}
+    state_by_id = {}
+    previous_seq = None
+    for line in alert_lines:
+        event = json.loads(line)
+        if previous_seq is not None:
+            case.assertEqual(event["seq"], previous_seq + 1, line)
+        previous_seq = event["seq"]
+        pair = tuple(sorted((event["a"]["id"], event["b"]["id"])))
+        known = state_by_id.get(event["id"])
+        if event["state"] == "new":
+            case.assertIsNone(known, f"a second new: {line}")
+            case.assertNotIn(pair, open_by_pair, f"the pair has two open alerts: {line}")
+            open_by_pair[pair] = event["id"]
+        else:
+            case.assertEqual(known, "open", f"an {event['state']} of an alert not open: {line}")
+        if event["state"] == "end":
+            del open_by_pair[pair]
+            state_by_id[event["id"]] = "ended"
+        else:
+            state_by_id[event["id"]] = "open"
 
 
 def active_alerts(kewd):

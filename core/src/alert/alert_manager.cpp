@@ -283,6 +283,16 @@ std::vector<std::string> AlertManager::acknowledge(std::string_view id) {
   return {};
 }
 
+bool AlertManager::forget(std::string_view id) {
+  for (auto it = pairs_.begin(); it != pairs_.end(); ++it) {
+    if (!it->second.active || format_alert_id(it->second.last.id_hash) != id) continue;
+    pairs_.erase(it);
+    --active_;
+    return true;
+  }
+  return false;
+}
+
 std::size_t AlertManager::unacknowledged_count() const {
   std::size_t n = 0;
   for (const auto& [key, s] : pairs_)

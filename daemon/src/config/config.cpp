@@ -103,6 +103,7 @@ void read_nats(TableReader& r, NatsConfig& n) {
   r.integer("outbox", n.outbox, 16, 100'000'000);
   r.boolean("hot_standby", n.hot_standby);
   stream_name(r, "lease_bucket", n.lease_bucket);
+  stream_name(r, "pair_bucket", n.pair_bucket);
   r.string("lease_key", n.lease_key);
   if (!config::valid_nats_subject(n.lease_key, false) || n.lease_key.find('.') != std::string::npos)
     r.fail(r.node("lease_key"), fmt::format("lease_key = \"{}\" is not a key (no '.', wildcard or space)", n.lease_key));

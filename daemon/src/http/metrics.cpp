@@ -178,6 +178,8 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
     e.single("kew_nats_retries_total", "counter", "Publications tried again.", num(n.retries));
     e.single("kew_nats_queued", "gauge", "Events waiting for the NATS server.", num(n.queued));
     e.single("kew_nats_dropped_total", "counter", "Events dropped from a full NATS outbox.", num(n.dropped));
+    e.single("kew_nats_fenced_total", "counter",
+             "Hot standby: publications refused because another publisher had added to the stream.", num(n.fenced));
     if (n.active)
       e.single("kew_standby_active", "gauge", "Hot standby: 1 while this kewd holds the lease and sends alerts.",
                *n.active ? 1.0 : 0.0);

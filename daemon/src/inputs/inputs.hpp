@@ -30,6 +30,10 @@ class Input {
   /// Called once when a file input has read its file to the end (or could not open it);
   /// other inputs never end.
   void set_end_handler(std::function<void()> handler) { end_handler_ = std::move(handler); }
+  /// Hot standby (design §5.9): before start(), read the feed from this message of its
+  /// JetStream stream (the pair's origin), whatever this input's durable consumer had
+  /// taken before. Only a NATS input with `durable` and `stream` can; false for the others.
+  virtual bool read_from_stream_sequence(std::uint64_t /*sequence*/) { return false; }
   /// The port actually bound (servers and UDP; useful with port 0 in tests).
   virtual std::uint16_t bound_port() const { return 0; }
   /// Figures so far; `rejected` holds ended streams' and the open streams' rejections.

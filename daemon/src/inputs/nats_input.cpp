@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -56,6 +57,11 @@ class NatsInput final : public Input {
 
   void start() override {
     reader_ = std::thread([this] { read(); });
+  }
+  bool read_from_stream_sequence(std::uint64_t sequence) override {
+    if (!jetstream() || config_.stream.empty()) return false;
+    start_sequence_ = sequence;
+    return true;
   }
   void stop() override {
     halt();
@@ -150,6 +156,20 @@ class NatsInput final : public Input {
     options.Config.AckPolicy = js_AckAll;
     options.Config.AckWait = kAckWaitNs;
     options.Config.DeliverPolicy = js_DeliverAll;
+    if (start_sequence_) {
+      // What this consumer took before belongs to a computation this kewd no longer has:
+      // it is made again from the sequence asked for.
+      jsErrCode deleted = static_cast<jsErrCode>(0);
+      const natsStatus d = js_DeleteConsumer(connection_.jetstream(), config_.stream.c_str(), config_.durable.c_str(),
+                                             nullptr, &deleted);
+      if (d != NATS_OK && d != NATS_NOT_FOUND && deleted != JSConsumerNotFoundErr) {
+        failures_.report(fmt::format("cannot make the JetStream consumer {} again: {}", config_.durable,
+                                     nats::describe(d)));
+        return nullptr;
+      }
+      options.Config.DeliverPolicy = js_DeliverByStartSequence;
+      options.Config.OptStartSeq = *start_sequence_;
+    }
     jsErrCode error = static_cast<jsErrCode>(0);
     const natsStatus s = js_PullSubscribe(&subscription, connection_.jetstream(), config_.address.c_str(),
                                           config_.durable.c_str(), nullptr, &options, &error);
@@ -159,8 +179,13 @@ class NatsInput final : public Input {
                                    error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
       return nullptr;
     }
-    spdlog::info("input {}: reading {} through the JetStream consumer {}", config_.name, config_.address,
-                 config_.durable);
+    if (start_sequence_)
+      spdlog::info("input {}: reading {} through the JetStream consumer {} from message {} of {}", config_.name,
+                   config_.address, config_.durable, *start_sequence_, config_.stream);
+    else
+      spdlog::info("input {}: reading {} through the JetStream consumer {}", config_.name, config_.address,
+                   config_.durable);
+    start_sequence_.reset();  // a later subscription resumes where this consumer is
     return subscription;
   }
 
@@ -248,6 +273,7 @@ class NatsInput final : public Input {
   bool stopped_ = false;    // I/O thread
   std::atomic<std::uint64_t> dropped_{0};
   RepeatedFailure failures_;  // reader thread
+  std::optional<std::uint64_t> start_sequence_;  // set before start(), then the reader thread's
 };
 
 }  // namespace

@@ -17,10 +17,12 @@ Clock::duration seconds(double s) {
 
 }  // namespace
 
-LeaderLease::LeaderLease(const NatsConfig& config, std::string instance, Handlers handlers)
+LeaderLease::LeaderLease(const NatsConfig& config, std::string instance, Handlers handlers,
+                         std::shared_ptr<SpeakingRight> right)
     : config_(config),
       instance_(std::move(instance)),
       handlers_(std::move(handlers)),
+      right_(std::move(right)),
       // Every call answered within half the TTL, or given up: a slow server must not
       // keep the thread long past the moment it has to step down (may_speak() covers
       // the rest).
@@ -46,11 +48,6 @@ LeaderLease::~LeaderLease() {
   kvStore_Destroy(bucket_);
 }
 
-bool LeaderLease::may_speak() const {
-  const auto now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
-  return active_ && now < speak_until_ns_.load();
-}
-
 bool LeaderLease::wait(Clock::duration period) {
   std::unique_lock lock(mutex_);
   stop_.wait_for(lock, period, [this] { return stopping_; });
@@ -60,16 +57,9 @@ bool LeaderLease::wait(Clock::duration period) {
 bool LeaderLease::bind_bucket() {
   if (bucket_) return true;
   if (!connection_.connected()) return false;
-  kvConfig kv;
-  kvConfig_Init(&kv);
-  kv.Bucket = config_.lease_bucket.c_str();
-  kv.History = 1;
-  kv.TTL = static_cast<std::int64_t>(config_.lease_ttl_s * 1e9);
-  // On file: a server restart keeps the bucket (a memory one would be gone with it).
-  kv.StorageType = js_FileStorage;
-  if (js_CreateKeyValue(&bucket_, connection_.jetstream(), &kv) == NATS_OK) return true;
-  // Made by another instance (or an earlier run) with its own settings.
-  return js_KeyValue(&bucket_, connection_.jetstream(), config_.lease_bucket.c_str()) == NATS_OK;
+  // The key expires lease_ttl_s after its last renewal.
+  bucket_ = nats::bind_key_value(connection_.jetstream(), config_.lease_bucket, config_.lease_ttl_s);
+  return bucket_ != nullptr;
 }
 
 void LeaderLease::forget_bucket_if_gone(natsStatus status) {
@@ -93,15 +83,26 @@ std::optional<std::uint64_t> LeaderLease::last_published_seq() {
   }
 }
 
+bool LeaderLease::free_for_a_ttl() {
+  kvEntry* entry = nullptr;
+  const natsStatus s = kvStore_Get(&entry, bucket_, config_.lease_key.c_str());
+  kvEntry_Destroy(entry);
+  if (s != NATS_NOT_FOUND) {
+    free_since_.reset();  // held (or the server did not tell)
+    return false;
+  }
+  const Clock::time_point now = Clock::now();
+  if (!free_since_) free_since_ = now;
+  return now - *free_since_ >= seconds(config_.lease_ttl_s);
+}
+
 void LeaderLease::run() {
   RepeatedFailure failures("[nats] lease");
   const Clock::duration period = seconds(config_.lease_ttl_s / 4.0);
   const Clock::duration ttl = seconds(config_.lease_ttl_s);
-  const auto speak_until = [&](Clock::time_point sent) {
-    speak_until_ns_ =
-        std::chrono::duration_cast<std::chrono::nanoseconds>((sent + ttl - period).time_since_epoch()).count();
-  };
-  std::uint64_t revision = 0;
+  const auto speak_until = [&](std::uint64_t held, Clock::time_point sent) { right_->hold(held, sent + ttl - period); };
+  std::uint64_t revision = 0;  // the key's, renewed
+  std::uint64_t holding = 0;   // the key's when taken
   do {
     if (!bind_bucket()) {
       if (connection_.connected())
@@ -111,6 +112,16 @@ void LeaderLease::run() {
     const Clock::time_point sent = Clock::now();
     std::uint64_t taken = 0;  // the client zeroes its output on failure: never the revision itself
     if (!active_) {
+      const Readiness readiness = handlers_.readiness ? handlers_.readiness() : Readiness::InStep;
+      if (readiness == Readiness::NotReady) continue;
+      if (readiness == Readiness::Unsynced) {
+        if (!free_for_a_ttl()) continue;
+        spdlog::warn("[nats] the lease {} has been free for {} s and this instance is not in step with the pair: "
+                     "taking it unsynced",
+                     config_.lease_key, config_.lease_ttl_s);
+      } else {
+        free_since_.reset();
+      }
       const natsStatus s = kvStore_Create(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
                                           static_cast<int>(instance_.size()));
       if (s != NATS_OK) {
@@ -125,43 +136,56 @@ void LeaderLease::run() {
         continue;
       }
       revision = taken;
+      // The fencing token of this holding: the key's revision when it was taken, above
+      // every earlier holding's (a bucket's revisions only grow).
+      holding = taken;
       renewed_ = sent;
-      speak_until(sent);
+      speak_until(holding, sent);
       if (Clock::now() >= sent + ttl - period) {
+        right_->release();
         kvStore_Delete(bucket_, config_.lease_key.c_str());
         continue;  // the calls took so long that the lease may already be another's
       }
       active_ = true;
       failures.recovered("lease taken");
-      spdlog::info("[nats] {} holds the lease {}: active (the stream's last seq is {})", instance_,
-                   config_.lease_key, *last);
+      spdlog::info("[nats] {} holds the lease {}: active (the stream's last seq is {}; fencing token {})",
+                   instance_, config_.lease_key, *last, holding);
       handlers_.on_acquired(*last);
       continue;
     }
     natsStatus s = kvStore_Update(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
                                   static_cast<int>(instance_.size()), revision);
+    bool lost = false;  // the server says so: another holds the key, or it expired
     if (s != NATS_OK) {
       // The update may have been stored with its answer lost: then the key still says
       // this instance, at a newer revision.
       kvEntry* entry = nullptr;
-      if (kvStore_Get(&entry, bucket_, config_.lease_key.c_str()) == NATS_OK) {
+      const natsStatus got = kvStore_Get(&entry, bucket_, config_.lease_key.c_str());
+      if (got == NATS_OK) {
         if (instance_ == kvEntry_ValueString(entry)) {
           taken = kvEntry_Revision(entry);
           s = taken > revision ? NATS_OK : s;
+        } else {
+          lost = true;
         }
         kvEntry_Destroy(entry);
+      } else if (got == NATS_NOT_FOUND) {
+        lost = true;
       }
     }
     if (s == NATS_OK) {
       revision = taken;
       renewed_ = sent;
-      speak_until(sent);
+      speak_until(holding, sent);
     } else {
       forget_bucket_if_gone(s);
-      if (Clock::now() - renewed_ >= ttl - period) {
+      // A stalled process may wake with its clock telling little time has passed (a
+      // paused virtual machine): the server's word ends the holding at once.
+      if (lost || Clock::now() - renewed_ >= ttl - period) {
         // The key expires on the server lease_ttl_s after the last renewal reached it;
         // this instance stops speaking a period earlier, before another can hold it.
         active_ = false;
+        right_->release();
         spdlog::error("[nats] {} could not renew the lease {} ({}): standby", instance_, config_.lease_key,
                       nats::describe(s));
         handlers_.on_lost();

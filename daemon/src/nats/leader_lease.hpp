@@ -6,13 +6,15 @@
 // becomes active: a dead active is replaced within 1.25 × lease_ttl_s. An active that
 // cannot renew for three quarters of lease_ttl_s (its server gone, another holding the
 // key) steps down before anyone else can take over, so two never speak at once. A clean stop deletes the
-// key: the standby takes over at its next try.
+// key: the standby takes over at its next try. Only an instance in step with the pair
+// tries at once; one out of step waits until the key has stayed free for a whole TTL.
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -20,21 +22,32 @@
 
 #include "kew/daemon/config.hpp"
 #include "nats_connection.hpp"
+#include "speaking_right.hpp"
 
 namespace kew::daemon {
 
 class LeaderLease {
  public:
+  /// Where a standby stands with the pair (design §5.9).
+  enum class Readiness : std::uint8_t {
+    NotReady,  ///< the pair's origin is not known yet: never takes the lease
+    Unsynced,  ///< out of step: takes a free lease only when nobody has taken it for a
+               ///< whole TTL since it was first seen free (no instance in step is left)
+    InStep,    ///< takes a free lease at once
+  };
   /// Called on the lease's thread. `on_acquired(last_seq)`: this instance is active now;
   /// `last_seq` is the Kew-Seq of the last message in [nats] stream (0: none, or no
   /// stream), what the previous active published last. `on_lost()`: it is not any more.
   struct Handlers {
     std::function<void(std::uint64_t last_seq)> on_acquired;
     std::function<void()> on_lost;
+    /// Whether this instance may take a free lease (HotStandby); unset: InStep.
+    std::function<Readiness()> readiness;
   };
 
-  /// Starts trying at once. Throws nats::NatsError for a malformed url.
-  LeaderLease(const NatsConfig& config, std::string instance, Handlers handlers);
+  /// Starts trying at once; keeps `right` current (the revision held, the time the last
+  /// renewal vouches for). Throws nats::NatsError for a malformed url.
+  LeaderLease(const NatsConfig& config, std::string instance, Handlers handlers, std::shared_ptr<SpeakingRight> right);
   /// Stops, and gives the lease up when held.
   ~LeaderLease();
   LeaderLease(const LeaderLease&) = delete;
@@ -45,7 +58,7 @@ class LeaderLease {
   /// no other instance can hold the lease (its send time + lease_ttl_s − a renewal
   /// period). The service checks it before sending anything, so that a lease thread
   /// stuck in a slow call cannot let two instances speak at once.
-  bool may_speak() const;
+  bool may_speak() const { return right_->may_speak(); }
   const std::string& instance() const { return instance_; }
 
  private:
@@ -57,17 +70,20 @@ class LeaderLease {
   /// A call failed because the bucket is gone (a server restarted without it): bind
   /// again at the next try.
   void forget_bucket_if_gone(natsStatus status);
+  /// Out of step: whether the lease has been free for a whole TTL (checked each period).
+  bool free_for_a_ttl();
   /// Waits `period` or until stopping; true when stopping.
   bool wait(std::chrono::steady_clock::duration period);
 
   NatsConfig config_;
   std::string instance_;
   Handlers handlers_;
+  std::shared_ptr<SpeakingRight> right_;
   nats::NatsConnection connection_;
   kvStore* bucket_ = nullptr;  // lease thread
   std::atomic<bool> active_{false};
-  std::atomic<std::int64_t> speak_until_ns_{0};  // steady clock
   std::chrono::steady_clock::time_point renewed_{};  // lease thread: send time of the last renewal taken
+  std::optional<std::chrono::steady_clock::time_point> free_since_;  // lease thread: first seen free
   std::mutex mutex_;
   std::condition_variable stop_;
   bool stopping_ = false;  // guarded by mutex_

@@ -34,6 +34,19 @@ std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_
   return seq;
 }
 
+kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s) {
+  kvConfig kv;
+  kvConfig_Init(&kv);
+  kv.Bucket = name.c_str();
+  kv.History = 1;
+  kv.TTL = static_cast<std::int64_t>(ttl_s * 1e9);
+  kv.StorageType = js_FileStorage;
+  kvStore* bucket = nullptr;
+  if (js_CreateKeyValue(&bucket, jetstream, &kv) == NATS_OK) return bucket;
+  if (js_KeyValue(&bucket, jetstream, name.c_str()) == NATS_OK) return bucket;
+  return nullptr;
+}
+
 namespace {
 
 // The options live only through Connect: the connection keeps a copy.

@@ -21,6 +21,10 @@ namespace kew::nats {
 /// The header of every message kewd publishes: the seq of the last alert event at that
 /// point (an ALERT's own), by which `kew-watch --since` finds where to start.
 inline constexpr const char* kSeqHeader = "Kew-Seq";
+/// Hot standby: the fencing token of the holding that published a message (design
+/// §5.9): the lease's revision when its publisher took it. A message whose token is
+/// below one already read comes from an instance that no longer holds the lease.
+inline constexpr const char* kLeaseHeader = "Kew-Lease";
 
 /// A NATS C client call failed: its status text and the client's last error.
 class NatsError : public std::runtime_error {
@@ -38,6 +42,12 @@ void check(natsStatus status, std::string_view what);
 /// The Kew-Seq header of message `stream_seq` of JetStream stream `stream` (0 when it has
 /// none). Throws NatsError when the message cannot be read.
 std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_t stream_seq);
+
+/// The key-value bucket `name` on file (a server restart keeps it), keeping one value per
+/// key, its values removed `ttl_s` seconds after their last write (0: never): made when
+/// missing, else bound as it is (another instance or an earlier run made it). Null when
+/// the server did not answer.
+kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s);
 
 /// "no such stream", "timeout", …: the text of a status and the client's last error.
 std::string describe(natsStatus status);

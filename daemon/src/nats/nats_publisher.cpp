@@ -1,5 +1,8 @@
 #include "nats_publisher.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -16,10 +19,12 @@ constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 /// A message with the seq header, destroyed with its owner.
 class OutgoingMessage {
  public:
-  OutgoingMessage(const std::string& subject, std::string_view json, std::uint64_t seq) {
+  /// `holding`: hot standby's fencing token (0: none).
+  OutgoingMessage(const std::string& subject, std::string_view json, std::uint64_t seq, std::uint64_t holding) {
     nats::check(natsMsg_Create(&message_, subject.c_str(), nullptr, json.data(), static_cast<int>(json.size())),
                 "NATS message");
     natsMsgHeader_Set(message_, nats::kSeqHeader, std::to_string(seq).c_str());
+    if (holding) natsMsgHeader_Set(message_, nats::kLeaseHeader, std::to_string(holding).c_str());
   }
   ~OutgoingMessage() { natsMsg_Destroy(message_); }
   OutgoingMessage(const OutgoingMessage&) = delete;
@@ -32,9 +37,10 @@ class OutgoingMessage {
 
 }  // namespace
 
-NatsPublisher::NatsPublisher(const NatsConfig& config, std::string run_id)
+NatsPublisher::NatsPublisher(const NatsConfig& config, std::string run_id, std::shared_ptr<const SpeakingRight> right)
     : config_(config),
       run_id_(std::move(run_id)),
+      right_(std::move(right)),
       failures_("[nats]"),
       connection_(config.url, config.name, [](std::string_view event) { spdlog::info("[nats] {}", event); }) {
   thread_ = std::thread([this] { run(); });
@@ -90,9 +96,11 @@ void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uin
 
 void NatsPublisher::publish_now(const std::string& subject, std::string_view json, std::uint64_t seq) {
   if (!connection_.connected()) return;
+  // A status is the active's to give, and only while the lease vouches for it.
+  if (right_ && !right_->may_speak()) return;
   if (!json.empty() && json.back() == '\n') json.remove_suffix(1);
   try {
-    OutgoingMessage message(subject, json, seq);
+    OutgoingMessage message(subject, json, seq, right_ ? right_->revision() : 0);
     if (natsConnection_PublishMsg(connection_.get(), message.get()) == NATS_OK) ++status_published_;
   } catch (const nats::NatsError&) {
     // Out of memory in the client: a status object is not worth more.
@@ -134,6 +142,11 @@ void NatsPublisher::run() {
       failures_.recovered("publishing again");
       continue;
     }
+    if (sent == Sent::Fenced) {
+      // Another instance holds the lease and has published: what waits here is its to send.
+      discard_outbox();
+      continue;
+    }
     ++retries_;
     // Without its stream nothing would ever take the head of the outbox: create it again.
     if (sent == Sent::NoStream) stream_ready = false;
@@ -173,11 +186,33 @@ bool NatsPublisher::ensure_stream() {
   return false;
 }
 
+NatsPublisher::Follows NatsPublisher::learn_last_message() {
+  jsStreamInfo* info = nullptr;
+  if (js_GetStreamInfo(&info, connection_.jetstream(), config_.stream.c_str(), nullptr, nullptr) != NATS_OK)
+    return Follows::Unknown;
+  const std::uint64_t last = info->State.LastSeq;
+  jsStreamInfo_Destroy(info);
+  if (last > 0) {
+    natsMsg* message = nullptr;
+    if (js_GetMsg(&message, connection_.jetstream(), config_.stream.c_str(), last, nullptr, nullptr) != NATS_OK)
+      return Follows::Unknown;
+    const char* value = nullptr;
+    const std::uint64_t token =
+        natsMsgHeader_Get(message, nats::kLeaseHeader, &value) == NATS_OK ? std::strtoull(value, nullptr, 10) : 0;
+    natsMsg_Destroy(message);
+    if (token > right_->revision()) return Follows::Fenced;
+  }
+  last_message_ = last;
+  known_holding_ = right_->revision();
+  return Follows::Known;
+}
+
 NatsPublisher::Sent NatsPublisher::send(const Message& message) {
   natsStatus s = NATS_OK;
   jsErrCode error = static_cast<jsErrCode>(0);
+  const std::uint64_t holding = right_ ? right_->revision() : 0;
   try {
-    OutgoingMessage outgoing(message.subject, message.json, message.seq);
+    OutgoingMessage outgoing(message.subject, message.json, message.seq, holding);
     if (config_.stream.empty()) {
       s = natsConnection_PublishMsg(connection_.get(), outgoing.get());
     } else {
@@ -185,14 +220,40 @@ NatsPublisher::Sent NatsPublisher::send(const Message& message) {
       jsPubOptions_Init(&options);
       options.MsgId = message.id.c_str();
       options.MaxWait = kAcknowledgementWaitMs;
+      if (right_) {
+        // Hot standby: only while the lease vouches for this instance, and only after the
+        // message this holding knows to be the stream's last (JetStream refuses it when
+        // another publisher has added one since).
+        if (!right_->may_speak()) return Sent::Refused;
+        if (known_holding_ != holding) {
+          const Follows follows = learn_last_message();
+          if (follows == Follows::Fenced) return Sent::Fenced;
+          if (follows == Follows::Unknown) return Sent::Refused;
+        }
+        options.ExpectLastSeq = last_message_;
+      }
       jsPubAck* ack = nullptr;
       s = js_PublishMsg(&ack, connection_.jetstream(), outgoing.get(), &options, &error);
+      if (s == NATS_OK && ack && right_) last_message_ = std::max(last_message_, ack->Sequence);
       jsPubAck_Destroy(ack);
     }
   } catch (const nats::NatsError& e) {
     s = e.status();
   }
   if (s == NATS_OK) return Sent::Taken;
+  if (right_ && error == JSStreamWrongLastSequenceErr) {
+    // Another publisher added to the stream: a later holding's token fences this one;
+    // an earlier one's (a stalled active's last words) is followed.
+    ++fenced_;
+    known_holding_ = 0;
+    if (learn_last_message() == Follows::Fenced) {
+      spdlog::error("[nats] fenced: an instance holding the lease after this one has published to {}; "
+                    "this instance publishes nothing more of its outbox",
+                    config_.stream);
+      return Sent::Fenced;
+    }
+    return Sent::Refused;
+  }
   const bool no_stream = !config_.stream.empty() && (s == NATS_NO_RESPONDERS || error == JSStreamNotFoundErr);
   failures_.report(fmt::format("{} not taken by the server: {}{} ({})", message.subject, nats::describe(s),
                                error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : "",
@@ -221,6 +282,7 @@ protocol::NatsStatistics NatsPublisher::statistics() const {
   s.retries = retries_.load();
   s.dropped = dropped_.load();
   s.status_published = status_published_.load();
+  s.fenced = fenced_.load();
   const std::lock_guard lock(mutex_);
   s.queued = outbox_.size();
   return s;

@@ -5,12 +5,16 @@
 // JetStream keeps it once) until it is: a server that goes away and comes back loses
 // none of them. ALIVE and TRACKS objects are published as they come and not kept.
 // Every message carries the stream's JSON object (without its newline) and the header
-// nats::kSeqHeader.
+// nats::kSeqHeader. In hot standby each also carries the holding's fencing token
+// (nats::kLeaseHeader), nothing is published while the lease cannot vouch for this
+// instance, and each kept event asserts the stream's last message it follows, so that a
+// stalled instance that wakes after another took over cannot add to the stream.
 
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -20,15 +24,16 @@
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "nats_connection.hpp"
 #include "repeated_failure.hpp"
+#include "speaking_right.hpp"
 
 namespace kew::daemon {
 
 class NatsPublisher {
  public:
   /// Connects (in the background when no server answers yet) and starts the outbox's
-  /// thread. `run_id` makes message ids unique to this run. Throws nats::NatsError for a
-  /// malformed url.
-  NatsPublisher(const NatsConfig& config, std::string run_id);
+  /// thread. `run_id` makes message ids unique to this run; `right` is hot standby's
+  /// right to speak (null without it). Throws nats::NatsError for a malformed url.
+  NatsPublisher(const NatsConfig& config, std::string run_id, std::shared_ptr<const SpeakingRight> right = nullptr);
   /// Gives the outbox up to `kDrainOnStop` to empty, then stops.
   ~NatsPublisher();
   NatsPublisher(const NatsPublisher&) = delete;
@@ -64,15 +69,24 @@ class NatsPublisher {
   void run();
   bool ensure_stream();
   /// What became of one publication.
-  enum class Sent { Taken, Refused, NoStream };
+  enum class Sent { Taken, Refused, NoStream, Fenced };
   /// NoStream: nothing on the server takes the subject (the stream was deleted, or a
   /// restarted server lost it), so ensure_stream() must run again before a retry.
   Sent send(const Message& message);
+  /// Hot standby: the stream's last message, which the next publication asserts it
+  /// follows, read again for a new holding or after another publisher's message; false
+  /// when the server did not tell. Fenced: that message carries a later holding's token.
+  enum class Follows { Known, Unknown, Fenced };
+  Follows learn_last_message();
   /// Waits `period` or until stopping; true when stopping.
   bool wait(std::chrono::milliseconds period);
 
   NatsConfig config_;
   std::string run_id_;
+  std::shared_ptr<const SpeakingRight> right_;
+  // Outbox thread, hot standby: the holding the last message known belongs to, and it.
+  std::uint64_t known_holding_ = 0;
+  std::uint64_t last_message_ = 0;
   RepeatedFailure failures_;  // outbox thread
   nats::NatsConnection connection_;
   mutable std::mutex mutex_;
@@ -80,7 +94,7 @@ class NatsPublisher {
   std::deque<Message> outbox_;     // guarded by mutex_
   std::uint64_t numbered_ = 0;     // guarded by mutex_
   bool stopping_ = false;          // guarded by mutex_
-  std::atomic<std::uint64_t> published_{0}, retries_{0}, dropped_{0}, status_published_{0};
+  std::atomic<std::uint64_t> published_{0}, retries_{0}, dropped_{0}, status_published_{0}, fenced_{0};
   std::thread thread_;
 };
 

@@ -26,7 +26,7 @@ void FanOut::start() {
 void FanOut::alert(const AlertEvent& event) {
   const StandbyGate::Passage passage = gate_.admit(event);
   const SharedLine line = encode([&](std::string& out) { protocol::append_alert_json(out, event, event.seq); });
-  send_alert(event, line, true, passage == StandbyGate::Passage::Pass);
+  send_alert(event, line, event.seq > journal_floor_, passage == StandbyGate::Passage::Pass);
   if (passage == StandbyGate::Passage::StepDown) tell_role(false);
 }
 
@@ -37,15 +37,22 @@ void FanOut::send_alert(const AlertEvent& event, const SharedLine& line, bool to
 }
 
 void FanOut::acknowledgement(const protocol::Acknowledgement& ack, std::uint64_t seq) {
-  if (!gate_.open()) return;  // a standby's operators acknowledge on the active
+  // A standby's operators acknowledge on the active.
+  if (const StandbyGate::Passage passage = gate_.speak(); passage != StandbyGate::Passage::Pass) {
+    if (passage == StandbyGate::Passage::StepDown) tell_role(false);
+    return;
+  }
   const SharedLine line = encode([&](std::string& out) { protocol::append_ack_json(out, ack, seq); });
   for (const auto& output : outputs_) output->acknowledgement(ack, seq, line);
 }
 
 void FanOut::alive(const AliveEvent& alive) {
+  const StandbyGate::Passage passage = gate_.speak();
+  if (passage == StandbyGate::Passage::StepDown) tell_role(false);
   const SharedLine line = encode([&](std::string& out) { protocol::append_alive_json(out, alive.status, alive.seq); });
   for (const auto& output : outputs_) {
-    if (output->audience() == Audience::OwnClients || (output->audience() == Audience::Shared && gate_.open()))
+    if (output->audience() == Audience::OwnClients ||
+        (output->audience() == Audience::Shared && passage == StandbyGate::Passage::Pass))
       output->alive(alive, line);
   }
 }

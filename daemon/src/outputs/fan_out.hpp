@@ -49,6 +49,10 @@ class FanOut {
   /// Closes the gate (the lease is lost); false when it was closed.
   bool step_down();
 
+  /// Events up to this seq are not written to the journal again (a hot-standby instance
+  /// judging the feed again from the pair's origin computes events its log already has).
+  void set_journal_floor(std::uint64_t seq) { journal_floor_ = seq; }
+
   /// Every output's part of ?STATS and /metrics.
   void report(protocol::ServiceStatistics& statistics) const;
 
@@ -58,6 +62,7 @@ class FanOut {
 
   StandbyGate gate_;
   RoleHandler on_role_;
+  std::uint64_t journal_floor_ = 0;
   std::vector<std::unique_ptr<Output>> outputs_;
 };
 

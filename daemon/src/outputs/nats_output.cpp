@@ -6,8 +6,9 @@
 
 namespace kew::daemon {
 
-NatsOutput::NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline)
-    : publisher_(std::make_unique<NatsPublisher>(config, std::move(run_id))),
+NatsOutput::NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline,
+                       std::shared_ptr<const SpeakingRight> right)
+    : publisher_(std::make_unique<NatsPublisher>(config, std::move(run_id), std::move(right))),
       pipeline_(pipeline),
       description_(fmt::format("NATS: alerts to {}.<zone>{}, status to {}", config.alerts_subject,
                                config.stream.empty() ? ""

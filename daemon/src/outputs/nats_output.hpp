@@ -13,8 +13,10 @@ namespace kew::daemon {
 
 class NatsOutput final : public Output {
  public:
-  /// Connects (see NatsPublisher); `pipeline` (its zones name the subjects) outlives it.
-  NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline);
+  /// Connects (see NatsPublisher); `pipeline` (its zones name the subjects) outlives it;
+  /// `right`: hot standby's right to speak (null without hot standby).
+  NatsOutput(const NatsConfig& config, std::string run_id, const Pipeline& pipeline,
+             std::shared_ptr<const SpeakingRight> right);
 
   std::string_view name() const override { return "nats"; }
   Audience audience() const override { return Audience::Shared; }

@@ -13,14 +13,20 @@ StandbyGate::Passage StandbyGate::admit(const AlertEvent& event) {
     // sends again what its outbox had not published (JetStream keeps each seq once).
     history_.push_back(event);
     if (history_.size() > history_limit_) history_.pop_front();
-    // The lease thread may be stuck in a slow call: speak only while the last renewal
-    // the server took guarantees that nobody else can.
-    if (open_ && !may_speak_()) {
-      open_ = false;
-      return Passage::StepDown;
-    }
   }
-  return open_ && event.seq > floor_ ? Passage::Pass : Passage::Hold;
+  const Passage passage = speak();
+  return passage == Passage::Pass && event.seq <= floor_ ? Passage::Hold : passage;
+}
+
+StandbyGate::Passage StandbyGate::speak() {
+  if (!open_) return Passage::Hold;
+  // The lease thread may be stuck in a slow call, or the whole process stalled: speak
+  // only while the last renewal the server took guarantees that nobody else can.
+  if (hot_standby() && !may_speak_()) {
+    open_ = false;
+    return Passage::StepDown;
+  }
+  return Passage::Pass;
 }
 
 StandbyGate::Takeover StandbyGate::take_over(std::uint64_t published) {

@@ -35,6 +35,9 @@ class StandbyGate {
   };
   /// Keeps `event` for a takeover (hot standby) and says whether it passes.
   Passage admit(const AlertEvent& event);
+  /// Whether anything else the pair shares (a status, an acknowledgement) may pass now:
+  /// open, and the lease still vouches for this instance (else the gate closes).
+  Passage speak();
 
   /// The lease is this instance's; the previous active published up to seq `published`.
   /// Opens the gate and returns the kept events after the floor, to be sent in order;

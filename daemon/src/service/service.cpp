@@ -9,13 +9,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "../nats/hot_standby.hpp"
 #include "../outputs/alert_log_output.hpp"
 #include "../outputs/cat004_output.hpp"
 #include "../outputs/modbus_output.hpp"
 #include "../outputs/nats_output.hpp"
 #include "../outputs/subscriber_output.hpp"
 #include "../outputs/websocket_output.hpp"
+#include "../standby/pair_member.hpp"
 #include "listen_address.hpp"
 #include "logging.hpp"
 #include "reload.hpp"
@@ -57,14 +57,10 @@ Service::Service(Config config, ServiceOptions options)
 
 void Service::open_outputs() {
   StandbyGate gate;
+  // Silent until the lease says otherwise (design §5.9); the pair begins with the run.
   if (config_.nats.hot_standby) {
-    // Silent until the lease says otherwise (design §5.9).
-    standby_ = std::make_unique<HotStandby>(
-        io_, config_.nats,
-        HotStandby::Handlers{[this](std::uint64_t published) { take_over(published); },
-                             [this] { fan_out_->step_down(); },
-                             [this](const std::vector<std::string>& ids) { follow_acknowledgements(ids); }});
-    gate = StandbyGate(config_.nats.standby_history, [this] { return standby_->may_speak(); });
+    speaking_right_ = std::make_shared<SpeakingRight>();
+    gate = StandbyGate(config_.nats.standby_history, [right = speaking_right_] { return right->may_speak(); });
   }
   fan_out_ = std::make_unique<FanOut>(std::move(gate), [this](bool active) {
     if (active) {
@@ -98,7 +94,7 @@ void Service::open_outputs() {
   }
   if (config_.cat004.enabled) fan_out_->add(std::make_unique<Cat004Output>(io_, config_.cat004));
   if (!config_.nats.url.empty())
-    nats_ = &fan_out_->add(std::make_unique<NatsOutput>(config_.nats, continuity_.run_id(), pipeline_));
+    nats_ = &fan_out_->add(std::make_unique<NatsOutput>(config_.nats, continuity_.run_id(), pipeline_, speaking_right_));
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
     modbus.listen = listen_address(modbus.listen, options_.listen_any);
@@ -128,23 +124,22 @@ Service::~Service() {
   // The last events reach the server before the lease goes: a standby that took over
   // earlier would find them unpublished and send them again.
   if (nats_) nats_->close();
-  standby_.reset();
+  pair_.reset();
 }
 
 int Service::run() {
   begin_run();
   subscribers_->start();
-  for (auto& input : inputs_) input->start();
+  if (!pair_) start_inputs();
   if (http_) http_->start();
   spdlog::info("kewd {} serving alerts on port {} ({} inputs)", protocol::release(), subscribers_->port(),
                inputs_.size());
   // Paths as resolved (design §5.7: relative to the working directory kewd started in).
   if (const std::string path = intake_->record_file_path(); !path.empty()) spdlog::info("record file: {}", path);
-  if (standby_)
+  if (pair_)
     spdlog::info("hot standby as {}: alerts are computed, and sent once this instance holds the lease {} of {}",
-                 standby_->instance(), config_.nats.lease_key, config_.nats.lease_bucket);
+                 pair_->instance(), config_.nats.lease_key, config_.nats.lease_bucket);
   if (const std::string state = continuity_.state_path(); !state.empty()) spdlog::info("state file: {}", state);
-  for (const auto& input : inputs_) spdlog::info("{}", describe(*input));
   fan_out_->start();
   wait_for_signal();
   start_housekeeping();
@@ -157,6 +152,11 @@ int Service::run() {
                pipeline_.alerts().counters().opened);
   spdlog::default_logger()->flush();
   return 0;
+}
+
+void Service::start_inputs() {
+  for (auto& input : inputs_) input->start();
+  for (const auto& input : inputs_) spdlog::info("{}", describe(*input));
 }
 
 void Service::start_housekeeping() {
@@ -198,8 +198,25 @@ void Service::begin_run() {
   protocol::append_start_json(start_line_, {continuity_.run_id(), std::chrono::duration<double>(wall).count()},
                               beginning.start_seq);
   if (alert_log_) alert_log_->append(start_line_);
-  for (const AlertEvent& event : beginning.ended) fan_out_->alert(event);
   const Numbering& numbering = beginning.numbering;
+  if (config_.nats.hot_standby) {
+    // The pair's own numbering and open alerts are in its stream: this instance's log
+    // holds only what it computed, and it judges the feed again from the pair's origin.
+    fan_out_->set_journal_floor(numbering.last_seq);
+    pair_ = std::make_unique<PairMember>(
+        io_, config_.nats, pair_feed_stream(config_.inputs), numbering.last_seq, numbering.next_number,
+        speaking_right_, pipeline_, *fan_out_,
+        PairMember::Hooks{[this](const PairOrigin& origin) { begin_pair(origin); },
+                          [this] {
+                            if (modbus_) modbus_->mark_changed();
+                          },
+                          [this](const AlertEvent& event) { on_alert(event); }});
+    spdlog::info("run {}: hot standby: the numbering and the inputs wait for the pair's origin ({} alerts this "
+                 "instance's log left open are the pair's to end)",
+                 continuity_.run_id(), beginning.ended.size());
+    return;
+  }
+  for (const AlertEvent& event : beginning.ended) fan_out_->alert(event);
   pipeline_.alerts().resume(numbering.last_seq, numbering.next_number);
   last_alert_seq_ = numbering.last_seq;
   save_numbering();
@@ -208,35 +225,30 @@ void Service::begin_run() {
                continuity_.run_id(), numbering.last_seq, numbering.next_number, beginning.ended.size());
 }
 
+void Service::begin_pair(const PairOrigin& origin) {
+  if (stopping_) return;
+  pipeline_.alerts().resume(origin.last_seq, origin.next_number);
+  last_alert_seq_ = origin.last_seq;
+  save_numbering();
+  for (auto& input : inputs_)
+    if (input->read_from_stream_sequence(origin.feed_seq)) break;
+  start_inputs();
+}
+
 void Service::save_numbering() {
   continuity_.save({pipeline_.alerts().last_seq(), pipeline_.alerts().next_number()});
 }
 
 ServiceStatus::Conditions Service::conditions() const {
-  return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active()};
+  return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active(),
+          !pair_ || pair_->syncing()};
 }
 
 void Service::on_alert(const AlertEvent& event) {
   last_alert_seq_ = event.seq;
   intake_->alert_emitted();
   fan_out_->alert(event);
-}
-
-void Service::take_over(std::uint64_t published) {
-  if (stopping_) return;
-  const std::size_t sent = fan_out_->take_over(published);
-  spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
-               "{} alerts open",
-               standby_->instance(), published, sent, pipeline_.alerts().active_count());
-}
-
-void Service::follow_acknowledgements(const std::vector<std::string>& ids) {
-  if (fan_out_->active() || stopping_) return;  // the active's own are already applied
-  std::size_t applied = 0;
-  for (const std::string& id : ids) applied += pipeline_.alerts().acknowledge(id).size();
-  if (!applied) return;
-  spdlog::info("standby: {} alerts acknowledged on the active", applied);
-  if (modbus_) modbus_->mark_changed();
+  if (pair_) pair_->own_alert(event);
 }
 
 std::vector<std::string> Service::acknowledge(std::string_view by, std::string_view client,

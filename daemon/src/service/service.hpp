@@ -18,6 +18,7 @@
 #include "../http/metrics.hpp"
 #include "../inputs/inputs.hpp"
 #include "../outputs/fan_out.hpp"
+#include "../standby/pair_origin.hpp"
 #include "continuity.hpp"
 #include "housekeeping.hpp"
 #include "live_views.hpp"
@@ -30,7 +31,8 @@
 namespace kew::daemon {
 
 class AlertLogOutput;
-class HotStandby;
+class PairMember;
+class SpeakingRight;
 class ModbusOutput;
 class NatsOutput;
 class WebSocketOutput;
@@ -66,18 +68,19 @@ class Service {
   void on_report(const TrackReport& report, std::size_t input);
   void on_alert(const AlertEvent& event);
   /// Before the inputs start: the START line, the End ("restart") of every alert the
-  /// last run left open, and the numbering continued (design §4.7).
+  /// last run left open, and the numbering continued (design §4.7). Hot standby: the
+  /// pair's stream, not this instance's log, says what is open; the numbering and the
+  /// inputs wait for the pair's origin (begin_pair).
   void begin_run();
+  /// Hot standby: the pair's origin is known; the inputs start (design §5.9).
+  void begin_pair(const PairOrigin& origin);
+  void start_inputs();
   void save_numbering();
   void start_housekeeping();
   /// What the status needs beyond the feed: the alert log failing, standby.
   ServiceStatus::Conditions conditions() const;
   void tick();
   void alive();
-  /// Hot standby (design §5.9): the lease is this instance's.
-  void take_over(std::uint64_t published);
-  /// Standby: the active acknowledged these alerts.
-  void follow_acknowledgements(const std::vector<std::string>& ids);
   /// Coil 0 written 1 (posted from the Modbus thread), or POST /api/ack, through interface
   /// `by` by `client` ("HOST:PORT" of its socket): every active alert, or only `id`.
   /// Returns the ids acknowledged.
@@ -107,7 +110,8 @@ class Service {
   std::unique_ptr<http::HttpServer> http_;
   std::vector<std::unique_ptr<Input>> inputs_;
   std::unique_ptr<RecordIntake> intake_;
-  std::unique_ptr<HotStandby> standby_;  // hot standby only
+  std::unique_ptr<PairMember> pair_;  // hot standby only, from the start of the run
+  std::shared_ptr<SpeakingRight> speaking_right_;  // hot standby only
   std::unique_ptr<FanOut> fan_out_;
   // The outputs the service also asks for more than events (owned by fan_out_).
   AlertLogOutput* alert_log_ = nullptr;

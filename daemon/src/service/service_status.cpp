@@ -28,7 +28,8 @@ void ServiceStatus::sample(Clock::time_point now) {
 
 protocol::HealthReason ServiceStatus::health(Clock::time_point now, const Conditions& conditions) const {
   if (conditions.alert_log_failing) return protocol::HealthReason::AlertLogFailing;
-  if (conditions.standby) return protocol::HealthReason::Standby;
+  if (conditions.standby)
+    return conditions.syncing ? protocol::HealthReason::StandbySyncing : protocol::HealthReason::Standby;
   return feed_.reason(now);
 }
 

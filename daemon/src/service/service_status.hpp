@@ -21,6 +21,7 @@ class ServiceStatus {
   struct Conditions {
     bool alert_log_failing = false;  ///< the alert log cannot be written
     bool standby = false;            ///< hot standby, not active
+    bool syncing = false;            ///< standby, and not in step with the active
   };
 
   /// `pipeline` outlives this; `track_timeout_s` (s, > 0) makes a silent feed stale.

@@ -214,6 +214,7 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     c.integer("queued", s.queued);
     c.integer("dropped", s.dropped);
     c.integer("status_published", s.status_published);
+    c.integer("fenced", s.fenced);
     if (s.active) c.boolean("active", *s.active);
     c.close();
   }

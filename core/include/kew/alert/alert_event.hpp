@@ -28,6 +28,10 @@ enum class AlertEndReason : std::uint8_t {
   /// Still open in the alert log when kewd stopped (crash, kill or stop): ended by the
   /// next run before any alert of its own (design §4.7), never emitted by the manager.
   Restart,
+  /// Open on the previous active of a hot-standby pair when an instance that was not in
+  /// step with it took over (design §5.9): the new active cannot continue it, so it ends
+  /// it before any event of its own; never emitted by the manager.
+  TakeoverUnsynced,
 };
 
 /// Which prediction found the pair's conflict (design §4.4): the alert says why it exists.
@@ -62,11 +66,12 @@ inline constexpr util::NameTable<AlertState, 3> kAlertStateNames({{
 }});
 constexpr std::string_view to_string(AlertState s) { return kAlertStateNames.name(s); }
 /// The names of an End event's `reason` ("" for None: not an End event).
-inline constexpr util::NameTable<AlertEndReason, 4> kAlertEndReasonNames({{
+inline constexpr util::NameTable<AlertEndReason, 5> kAlertEndReasonNames({{
     {AlertEndReason::None, ""},
     {AlertEndReason::Cleared, "cleared"},
     {AlertEndReason::TrackDropped, "track_dropped"},
     {AlertEndReason::Restart, "restart"},
+    {AlertEndReason::TakeoverUnsynced, "takeover_unsynced"},
 }});
 constexpr std::string_view to_string(AlertEndReason r) { return kAlertEndReasonNames.name(r); }
 

@@ -115,6 +115,12 @@ class AlertManager {
     return it != pairs_.end() && it->second.active;
   }
 
+  /// Forgets the active alert `id` without an event: nobody outside knows it (a
+  /// hot-standby instance out of step computed it, and it takes over unsynced). The pair
+  /// starts afresh: if it stays in conflict, a new alert opens after `confirm`
+  /// evaluations. False when no active alert has that id.
+  bool forget(std::string_view id);
+
   /// Active alerts (their last emitted event), ordered by opening sequence.
   std::vector<AlertEvent> snapshot() const;
   std::size_t active_count() const { return active_; }
@@ -140,8 +146,9 @@ class AlertManager {
 
   /// Continues a numbering begun elsewhere (kewd after a restart, design §4.7): the next
   /// event gets `last_seq` + 1 and the next alert opened `next_number` (0 reads as 1).
-  /// Call before the first evaluation; without it, seq and number start at 1, as
-  /// kew-replay's deterministic output needs.
+  /// Call before the first evaluation, or after events emitted outside the manager (a
+  /// hot-standby takeover's); without it, seq and number start at 1, as kew-replay's
+  /// deterministic output needs.
   void resume(std::uint64_t last_seq, std::uint16_t next_number) {
     seq_ = last_seq;
     next_number_ = next_number == 0 ? 1 : next_number;

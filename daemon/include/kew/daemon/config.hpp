@@ -106,6 +106,9 @@ struct NatsConfig {
   /// key-value bucket lease_bucket; the others compute silently and take over when it dies.
   bool hot_standby = false;
   std::string lease_bucket = "KEW_LEASE";
+  /// Hot standby: the key-value bucket (no TTL) holding the pair's origin under
+  /// lease_key: where the feed and the numbering of the pair's computation begin.
+  std::string pair_bucket = "KEW_PAIR";
   std::string lease_key = "active";
   double lease_ttl_s = 1.5;  ///< a dead active is replaced within 1.25 × this
   std::string instance;      ///< this kewd's name in the lease; "" = HOST-PID

@@ -42,14 +42,18 @@ enum class HealthReason : std::uint8_t {
   AlertLogFailing,
   /// Hot standby: this kewd computes alerts and sends none; another one is active.
   Standby,
+  /// Hot standby, catching up with the active (or out of step with it): it may not take
+  /// over while another instance in step can (design §5.9).
+  StandbySyncing,
 };
-inline constexpr util::NameTable<HealthReason, 6> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 7> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
     {HealthReason::RecordsRefused, "records_refused"},
     {HealthReason::AlertLogFailing, "alert_log_failing"},
     {HealthReason::Standby, "standby"},
+    {HealthReason::StandbySyncing, "standby_syncing"},
 }});
 
 /// Figures of the once-a-second ALIVE object.

@@ -59,6 +59,9 @@ struct NatsStatistics {
   std::uint64_t queued = 0;       ///< events waiting for the server now
   std::uint64_t dropped = 0;      ///< events dropped: more than [nats] outbox waited
   std::uint64_t status_published = 0;  ///< ALIVE and TRACKS objects (not kept)
+  /// Hot standby: publications JetStream refused because another publisher had added to
+  /// the stream since (a stalled active's last words, or this instance fenced).
+  std::uint64_t fenced = 0;
   std::optional<bool> active;          ///< hot standby: holds the lease
 };
 

@@ -1,0 +1,135 @@
+#include "pair_member.hpp"
+
+#include <algorithm>
+
+#include <spdlog/spdlog.h>
+
+namespace kew::daemon {
+
+std::string pair_feed_stream(const std::vector<InputConfig>& inputs) {
+  if (inputs.size() != 1) return {};
+  const InputConfig& feed = inputs.front();
+  return feed.transport == Transport::Nats && !feed.durable.empty() ? feed.stream : std::string();
+}
+
+PairMember::PairMember(boost::asio::io_context& io, const NatsConfig& config, const std::string& feed_stream,
+                       std::uint64_t last_seq, std::uint16_t next_number, std::shared_ptr<SpeakingRight> right,
+                       Pipeline& pipeline, FanOut& fan_out, Hooks hooks)
+    : pipeline_(pipeline), fan_out_(fan_out), hooks_(std::move(hooks)) {
+  if (feed_stream.empty())
+    spdlog::warn("hot standby without one durable NATS feed ([[input]] transport \"nats\" with durable and stream, "
+                 "and no other input): an instance that starts after the active cannot catch up with it exactly");
+  HotStandby::Handlers handlers;
+  handlers.on_origin = [this](const PairOrigin& origin) { on_origin(origin); };
+  handlers.on_acquired = [this](std::uint64_t published) { take_over(published); };
+  handlers.on_lost = [this] { fan_out_.step_down(); };
+  handlers.on_active_alert = [this](const AlertEvent& event) {
+    if (!sync_) return;
+    sync_->active_alert(event);
+    judged();
+  };
+  handlers.on_active_acknowledgement = [this](std::uint64_t seq, std::vector<std::string> ids) {
+    if (!sync_) return;
+    sync_->active_acknowledgement(seq, std::move(ids));
+    apply_due_acknowledgements();
+  };
+  handlers.on_stream_read_up_to = [this](std::uint64_t seq) {
+    if (!sync_) return;
+    sync_->stream_read_up_to(seq);
+    judged();
+  };
+  standby_ = std::make_unique<HotStandby>(io, config, feed_stream, last_seq, next_number, std::move(handlers),
+                                          std::move(right));
+}
+
+PairMember::~PairMember() {
+  stopping_ = true;
+  standby_.reset();
+}
+
+bool PairMember::syncing() const { return !fan_out_.active() && !(sync_ && sync_->in_step()); }
+
+const std::string& PairMember::instance() const { return standby_->instance(); }
+
+void PairMember::on_origin(const PairOrigin& origin) {
+  if (stopping_ || sync_) return;
+  sync_.emplace(origin.last_seq);
+  hooks_.begin(origin);
+  standby_->set_origin_known();
+  judged();
+}
+
+void PairMember::own_alert(const AlertEvent& event) {
+  if (!sync_) return;
+  sync_->own_alert(event);
+  apply_due_acknowledgements();
+  judged();
+}
+
+void PairMember::apply_due_acknowledgements() {
+  std::size_t applied = 0;
+  for (const std::vector<std::string>& ids : sync_->due_acknowledgements()) {
+    if (fan_out_.active()) continue;  // its own, applied when they were made
+    for (const std::string& id : ids) applied += pipeline_.alerts().acknowledge(id).size();
+  }
+  if (!applied) return;
+  spdlog::info("standby: {} alerts acknowledged on the active", applied);
+  if (hooks_.acknowledged) hooks_.acknowledged();
+}
+
+void PairMember::judged() {
+  const StandbySync::State now = sync_->state();
+  if (now == told_) return;
+  told_ = now;
+  standby_->set_in_step(now == StandbySync::State::InStep);
+  if (now == StandbySync::State::InStep)
+    spdlog::info("{}: in step with the active at seq {}: may take over", instance(), sync_->own_seq());
+  else if (now == StandbySync::State::OutOfStep)
+    spdlog::error("{}: out of step with the active: {}; it takes over only when no instance in step is left",
+                  instance(), sync_->departure());
+}
+
+void PairMember::take_over(std::uint64_t published) {
+  if (stopping_ || fan_out_.active()) return;
+  if (!sync_ || !sync_->in_step()) {
+    take_over_unsynced(published);
+    return;
+  }
+  const std::size_t sent = fan_out_.take_over(published);
+  spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
+               "{} alerts open",
+               instance(), published, sent, pipeline_.alerts().active_count());
+}
+
+void PairMember::take_over_unsynced(std::uint64_t published) {
+  // Nothing this instance kept continues the stream: its numbering starts above both.
+  alert::AlertManager& alerts = pipeline_.alerts();
+  std::uint64_t seq = std::max(published, alerts.last_seq());
+  fan_out_.take_over(seq);
+  const std::vector<AlertEvent> theirs = sync_ ? sync_->open_on_active() : std::vector<AlertEvent>{};
+  std::vector<std::string> continued;
+  for (const AlertEvent& mine : alerts.snapshot()) continued.push_back(mine.id);
+  std::size_t ended = 0, forgotten = 0;
+  for (AlertEvent event : theirs) {
+    const auto same = std::find(continued.begin(), continued.end(), event.id);
+    if (same != continued.end()) {
+      continued.erase(same);  // the same alert (its id names the pair and its opening): continued
+      continue;
+    }
+    event.state = AlertState::End;
+    event.end_reason = AlertEndReason::TakeoverUnsynced;
+    event.seq = ++seq;
+    hooks_.emit(event);
+    ++ended;
+  }
+  // Alerts only this instance had were never sent: their next event would be an update
+  // nobody saw open. They open again, under new ids, if their pairs stay in conflict.
+  for (const std::string& id : continued) forgotten += alerts.forget(id) ? 1 : 0;
+  alerts.resume(seq, alerts.next_number());
+  spdlog::error("active now (hot standby {}), unsynced: the previous active published up to seq {}; {} of its "
+                "alerts ended (takeover_unsynced), {} of this instance's own not sent (they open again if their "
+                "conflicts last)",
+                instance(), published, ended, forgotten);
+}
+
+}  // namespace kew::daemon
