@@ -42,14 +42,17 @@ enum class HealthReason : std::uint8_t {
   AlertLogFailing,
   /// Hot standby: this kewd computes alerts and sends none; another one is active.
   Standby,
+  /// A feed's server cannot be reached (a durable NATS feed): its tracks stand still.
+  FeedUnreachable,
 };
-inline constexpr util::NameTable<HealthReason, 6> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 7> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
     {HealthReason::RecordsRefused, "records_refused"},
     {HealthReason::AlertLogFailing, "alert_log_failing"},
     {HealthReason::Standby, "standby"},
+    {HealthReason::FeedUnreachable, "feed_unreachable"},
 }});
 
 /// Figures of the once-a-second ALIVE object.
