@@ -1,7 +1,8 @@
 """kewd on a real NATS server (design §5.9): the NATS input, the alerts kept in JetStream
 for a subscriber that was away, MQTT through nats-server's own listener, bad input on a
-subject, a durable consumer across a restart, a server that goes away and comes back,
-hot standby (a killed active replaced with no event lost or repeated) and zones across
+subject, a durable consumer across a restart, a server that goes away and comes back
+(for the alert publisher, and for two instances reading a live feed through their durable
+consumers: the backlog judged at its own times, design §4.1), hot standby (a killed active replaced with no event lost or repeated) and zones across
 machines (three instances, each serving a band of longitudes, together equal to one).
 
 Run by ctest with a real `nats-server` (Debian's, with JetStream) and `mosquitto_sub`;
@@ -17,8 +18,8 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEW_WATCH, NATS_SERVER, NatsServer, Subscriber, count_lines, generate, nats_next_message,
-                          nats_publish, nats_request, offline_alerts, replay_to, wait_until)
+from kewd_harness import (KEW_WATCH, NATS_SERVER, NatsServer, Subscriber, active_at_end, count_lines, generate,
+                          nats_next_message, nats_publish, nats_request, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase
 
 # The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
@@ -251,6 +252,101 @@ class NatsFaults(NatsCase):
         again = watch(self.nats.url, "--since", "0", "-n", str(kept))
         self.assertEqual(again, expected[len(expected) - kept:])
         self.assertIn("no stream takes it: creating the stream again", kewd.log())
+
+
+# The live tick at its work (every 3 s; kew-replay's records at speed 1 come every few
+# tens of ms, so it never moves the clock while the feed flows), and a lateness bound of
+# 5 s, half the outage, so that a clock moved on by the outage's wall time makes the
+# backlog too late whatever the tick's phase.
+LIVE_FEED = """
+[service]
+alert_listen = "127.0.0.1:0"
+tick_interval_s = 3
+subscriber_queue = 20000
+record_file = "{record_file}"
+
+[tracks]
+max_lateness_s = 5.0
+max_time_jump_s = 5.0
+""" + NATS_INPUT + """nats_url = "{url}"
+durable = "kewd_{name}"
+stream = "KEW_FEED"
+"""
+
+
+class FeedOutage(NatsCase):
+    def test_two_instances_judge_the_backlog_of_a_10_s_outage_at_its_own_times_and_stay_identical(self):
+        recording = self.path("tma60.ndjson")
+        generate(recording, "tma", aircraft=150, duration=60, seed=3)
+        instances = {}
+        for name in ("a", "b"):
+            kewd = self.start(LIVE_FEED.format(url=self.nats.url, name=name,
+                                               record_file=self.path(f"records_{name}.ndjson")))
+            kewd.wait_log("reading kew.feed.tma through the JetStream consumer")
+            instances[name] = (kewd, Subscriber(kewd.alert_port))
+        a, on_a = instances["a"]
+        # A real-time feed; kew-replay's NATS client keeps what it publishes while the
+        # server is away and sends it once it reconnects (a producer that buffers).
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", recording, "--speed", "1"))
+        feeder.start()
+        wait_until(lambda: len(active_at_end(on_a.alert_lines())) >= 3, 40, "conflicts open")
+        before_outage = on_a.alert_lines()
+        open_at_outage = set(active_at_end(before_outage))
+        self.nats.stop()
+        time.sleep(10)
+        self.nats.start()
+        feeder.join()
+        for name, (kewd, _) in instances.items():
+            wait_until(lambda: consumer_done(self.nats.port, f"kewd_{name}"), 180, f"kewd {name} to read the stream")
+        time.sleep(1.0)  # the last alerts reach the subscribers
+        stats = {name: kewd.stats() for name, (kewd, _) in instances.items()}
+        for name, (kewd, _) in instances.items():
+            self.assertEqual(kewd.terminate(), 0)
+        for name, (_, subscriber) in instances.items():
+            subscriber.wait_closed()
+
+        for name in instances:
+            self.assertGreaterEqual(stats[name]["inputs"][0]["connections"], 2, "the server did go away")
+            self.assertNotIn("too_late", stats[name]["rejected"], f"kewd {name}: the backlog is not too late")
+            self.assertEqual(stats[name]["accepted"], stats[name]["records"], f"kewd {name}: {stats[name]['rejected']}")
+        # What reached the stream (a message in flight when the server stopped may not
+        # have), as each instance took it: the same records in the same order.
+        with open(self.path("records_a.ndjson")) as f:
+            records_a = f.read()
+        with open(self.path("records_b.ndjson")) as f:
+            self.assertEqual(f.read(), records_a, "both instances read the same records")
+        with open(self.path("pipeline.toml"), "w") as f:
+            f.write("[tracks]\nmax_lateness_s = 5.0\nmax_time_jump_s = 5.0\n")
+        expected = offline_alerts(self.path("pipeline.toml"), self.path("records_a.ndjson"))
+        self.assertGreater(len(expected), 100)
+        last_t = max(json.loads(line)["t"] for line in records_a.splitlines() if line.startswith("{"))
+
+        def judged_from_records(lines):
+            """The events of the records: after the last one, the live tick moves the clock."""
+            return [line for line in lines if json.loads(line)["t"] <= last_t]
+        alerts_a = judged_from_records(on_a.alert_lines())
+        alerts_b = judged_from_records(instances["b"][1].alert_lines())
+        self.assertEqual(alerts_a, alerts_b, "two instances fed by one stream send the same events")
+        self.assertEqual(alerts_a, expected, "the run without an outage, event for event")
+        dropped = [e for e in map(json.loads, alerts_a) if e.get("reason") == "track_dropped"]
+        self.assertEqual(dropped, [], "no track dropped by the outage")
+        after_outage = {json.loads(line)["id"] for line in alerts_a[len(before_outage):]}
+        self.assertTrue(open_at_outage & after_outage, "a conflict open across the outage goes on after it")
+        for name, (_, subscriber) in instances.items():
+            healths = [alive["health"] for alive in subscriber.objects("ALIVE")]
+            self.assertIn("feed_unreachable", healths, f"kewd {name} said its feed was unreachable")
+            self.assertEqual(healths[-1], "healthy", f"kewd {name} is healthy again")
+
+
+def consumer_done(port, durable):
+    """The JetStream consumer `durable` of KEW_FEED has delivered every message and has
+    every one acknowledged (kewd acknowledges a batch once decoded)."""
+    try:
+        info = json.loads(nats_request(port, f"$JS.API.CONSUMER.INFO.KEW_FEED.{durable}"))
+    except (OSError, AssertionError):
+        return False
+    return info.get("num_pending") == 0 and info.get("num_ack_pending") == 0
 
 
 HOT_STANDBY = """

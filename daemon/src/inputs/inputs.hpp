@@ -13,6 +13,7 @@
 
 #include <boost/asio/io_context.hpp>
 
+#include "source_state.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/decoder.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
@@ -34,6 +35,10 @@ class Input {
   /// JetStream stream (the pair's origin), whatever this input's durable consumer had
   /// taken before. Only a NATS input with `durable` and `stream` can; false for the others.
   virtual bool read_from_stream_sequence(std::uint64_t /*sequence*/) { return false; }
+  /// Called on the I/O thread when an input that knows its source's backlog (a durable
+  /// JetStream consumer) learns its source's state, ordered with the records it delivers;
+  /// other inputs never call it (their source counts as caught up).
+  void set_source_handler(std::function<void(SourceState)> handler) { source_handler_ = std::move(handler); }
   /// The port actually bound (servers and UDP; useful with port 0 in tests).
   virtual std::uint16_t bound_port() const { return 0; }
   /// Figures so far; `rejected` holds ended streams' and the open streams' rejections.
@@ -72,6 +77,7 @@ class Input {
   protocol::DecoderOptions options_;
   ReportHandler handler_;
   std::function<void()> end_handler_;
+  std::function<void(SourceState)> source_handler_;
   /// `rejected`: the rejections of streams that ended; `name` is filled by statistics().
   protocol::InputStatistics figures_;
 };

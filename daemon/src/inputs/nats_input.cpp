@@ -26,6 +26,9 @@ constexpr int kFetchBatch = 256;            // messages per JetStream pull
 constexpr std::int64_t kWaitMs = 200;       // a read waits this long, then looks at stopping_
 constexpr int kBatchesInFlight = 2;         // posted to the I/O thread and not yet taken
 constexpr auto kRetryPeriod = std::chrono::seconds(1);
+// How long the server may take to say what a durable consumer still holds: a server that
+// does not answer within it counts as unreachable (design §4.1, §5.9).
+constexpr std::int64_t kAskWaitMs = 500;
 // JetStream's wait for an acknowledgement before it sends a message again; kewd
 // acknowledges each batch as soon as it has decoded it.
 constexpr std::int64_t kAckWaitNs = 30'000'000'000;
@@ -104,14 +107,22 @@ class NatsInput final : public Input {
     while (!stopping()) {
       if (!subscription) {
         subscription = subscribe();
-        if (!subscription) pause();
+        if (!subscription) {
+          tell(SourceState::Unreachable);
+          pause();
+        }
         continue;
       }
       auto batch = std::make_shared<MessageBatch>();
       const natsStatus status = jetstream() ? fetch(subscription, *batch) : next(subscription, *batch);
-      if (!batch->messages.empty()) post(std::move(batch));
+      const bool delivered = !batch->messages.empty();
+      const std::optional<SourceState> after = delivered ? pending_after(*batch) : std::nullopt;
+      if (delivered) post(std::move(batch));
+      // Posted after the batch: the I/O thread applies its records first.
+      if (after) tell(*after);
       if (status == NATS_OK || status == NATS_TIMEOUT) {
         failures_.recovered("reading again");
+        if (!delivered) tell(ask_source(subscription));
         continue;
       }
       if (status == NATS_SLOW_CONSUMER) {
@@ -123,6 +134,7 @@ class NatsInput final : public Input {
       }
       // Disconnected: the client reconnects and the subscription carries on after it.
       if (!connection_.connected()) {
+        tell(SourceState::Unreachable);
         pause();
         continue;
       }
@@ -130,6 +142,9 @@ class NatsInput final : public Input {
       if (status == NATS_INVALID_SUBSCRIPTION || status == NATS_CONNECTION_CLOSED) {
         natsSubscription_Destroy(subscription);
         subscription = nullptr;
+        tell(SourceState::Unreachable);
+      } else {
+        tell(ask_source(subscription));
       }
       pause();
     }
@@ -211,6 +226,52 @@ class NatsInput final : public Input {
     return false;
   }
 
+  // What a durable consumer's source holds for kewd, for the live tick (design §4.1): only
+  // a JetStream consumer knows; a plain subscription never tells. Changes are posted to
+  // the I/O thread, in order with the batches.
+  void tell(SourceState state) {
+    if (!jetstream() || told_ == state) return;
+    if (told_ == SourceState::Unreachable)
+      spdlog::info("input {}: the NATS server answers again: the live tick resumes once {} is caught up",
+                   config_.name, config_.durable);
+    else if (told_ && state == SourceState::Unreachable)
+      spdlog::warn("input {}: the NATS server cannot be reached: the data clock holds at the last record's time "
+                   "(the stream keeps what is published meanwhile)",
+                   config_.name);
+    told_ = state;
+    asio::post(io_, [this, state] {
+      if (!stopped_ && source_handler_) source_handler_(state);
+    });
+  }
+
+  // The server's count, in the last message of a batch, of the messages still to come.
+  static std::optional<SourceState> pending_after(const MessageBatch& batch) {
+    jsMsgMetaData* meta = nullptr;
+    if (natsMsg_GetMetaData(&meta, batch.messages.back()) != NATS_OK) return std::nullopt;
+    const bool behind = meta->NumPending > 0;
+    jsMsgMetaData_Destroy(meta);
+    return behind ? SourceState::Behind : SourceState::CaughtUp;
+  }
+
+  // After a read that brought nothing: the server's count of what the consumer has not yet
+  // delivered, which also tells whether the server answers at all (a stopped server keeps
+  // the connection open and answers nothing).
+  SourceState ask_source(natsSubscription* subscription) {
+    if (!jetstream()) return SourceState::CaughtUp;
+    jsOptions options;
+    jsOptions_Init(&options);
+    options.Wait = kAskWaitMs;
+    jsConsumerInfo* info = nullptr;
+    const natsStatus s = natsSubscription_GetConsumerInfo(&info, subscription, &options, nullptr);
+    if (s != NATS_OK) {
+      // A server that answers that the consumer is gone holds nothing more for kewd.
+      return s == NATS_NOT_FOUND && connection_.connected() ? SourceState::CaughtUp : SourceState::Unreachable;
+    }
+    const bool behind = info->NumPending > 0;
+    jsConsumerInfo_Destroy(info);
+    return behind ? SourceState::Behind : SourceState::CaughtUp;
+  }
+
   static natsStatus fetch(natsSubscription* subscription, MessageBatch& batch) {
     natsMsgList list{};
     const natsStatus s = natsSubscription_Fetch(&list, subscription, kFetchBatch, kWaitMs, nullptr);
@@ -274,6 +335,7 @@ class NatsInput final : public Input {
   std::atomic<std::uint64_t> dropped_{0};
   RepeatedFailure failures_;  // reader thread
   std::optional<std::uint64_t> start_sequence_;  // set before start(), then the reader thread's
+  std::optional<SourceState> told_;  // reader thread: the last state posted; none yet
 };
 
 }  // namespace

@@ -43,6 +43,7 @@ Service::Service(Config config, ServiceOptions options)
       // A replay's numbering starts at 1 each time and is kept nowhere (design §5.6).
       continuity_(options_.replay ? std::string() : state_directory(config_.service)),
       status_(pipeline_, config_.pipeline.tracks.track_timeout_s),
+      silence_(config_.inputs.size()),
       views_(pipeline_, {[this] { return last_alert_seq_; },
                          [this] { return status_.alive(std::chrono::steady_clock::now(), conditions()); },
                          [this] { return data_clock_now(); }}) {
@@ -116,6 +117,8 @@ void Service::open_inputs() {
       return make_input(io_, input, config_.decoding, [this, i](const TrackReport& r) { on_report(r, i); });
     }));
     if (options_.replay) inputs_.back()->set_end_handler([this] { asio::post(io_, [this] { end_replay(); }); });
+    inputs_.back()->set_source_handler(
+        [this, i](SourceState state) { silence_.source(i, state, std::chrono::steady_clock::now()); });
   }
   intake_ = std::make_unique<RecordIntake>(io_, pipeline_, config_.service, options_.replay, inputs_.size());
 }
@@ -241,7 +244,7 @@ void Service::save_numbering() {
 
 ServiceStatus::Conditions Service::conditions() const {
   return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active(),
-          !pair_ || pair_->syncing()};
+          pair_ && pair_->syncing(), silence_.unreachable()};
 }
 
 void Service::on_alert(const AlertEvent& event) {
@@ -267,26 +270,31 @@ std::vector<std::string> Service::acknowledge(std::string_view by, std::string_v
   return ids;
 }
 
+std::optional<double> Service::silent_s() const {
+  const auto now = std::chrono::steady_clock::now();
+  return silence_.silent_s(status_.seconds_since_applied(now), now);
+}
+
 double Service::data_clock_now() const {
   // Live mode: the data clock runs on with the wall clock between records, so that
-  // tracks of a silent feed time out and kinetic events happen on time. A replay's runs
+  // tracks of a silent feed time out and kinetic events happen on time; a source that is
+  // unreachable or delivering a backlog is not silent (design §4.1). A replay's runs
   // at its speed while the file is read, and stops at its end: the last state stays on
   // show; as fast as possible, only records move it (as in kew-replay).
   const double last = pipeline_.statistics().last_data_time;
   if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return last;
-  const double idle = status_.seconds_since_applied(std::chrono::steady_clock::now()).value_or(0.0);
-  return last + idle * (options_.replay ? options_.replay_speed : 1.0);
+  return last + silent_s().value_or(0.0) * (options_.replay ? options_.replay_speed : 1.0);
 }
 
 void Service::tick() {
   intake_->flush_record_file();
   if (websockets_) websockets_->flush(pipeline_.now(), last_alert_seq_);
-  const std::optional<double> idle = status_.seconds_since_applied(std::chrono::steady_clock::now());
   // While records are accepted, their own times drive the clock; only a feed silent (or
   // wholly refused) for a whole tick moves it on, so its tracks time out.
   // A replay's clock stands still at its end, or when only its records move it.
   if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return;
-  if (idle && *idle >= config_.service.tick_interval_s) pipeline_.advance_to(data_clock_now());
+  const std::optional<double> silent = silent_s();
+  if (silent && *silent >= config_.service.tick_interval_s) pipeline_.advance_to(data_clock_now());
 }
 
 void Service::alive() {

@@ -20,6 +20,7 @@
 #include "../outputs/fan_out.hpp"
 #include "../standby/pair_origin.hpp"
 #include "continuity.hpp"
+#include "feed_silence.hpp"
 #include "housekeeping.hpp"
 #include "live_views.hpp"
 #include "record_intake.hpp"
@@ -96,7 +97,11 @@ class Service {
   /// The replayed file ended: applies what the time guard holds, as kew-replay does at
   /// its end, and keeps serving (or shuts down with exit_at_end).
   void end_replay();
+  /// The data clock as the live tick would set it now: the last record's time plus the
+  /// feed's silence (FeedSilence), scaled by a replay's speed.
   double data_clock_now() const;
+  /// Wall seconds the live tick counts the feed as silent (FeedSilence::silent_s).
+  std::optional<double> silent_s() const;
 
   boost::asio::io_context io_;
   boost::asio::signal_set signals_;
@@ -121,6 +126,7 @@ class Service {
   std::string start_line_;  // this run's START object, for each new subscriber
 
   ServiceStatus status_;
+  FeedSilence silence_;
   LiveViews views_;
   std::uint64_t last_alert_seq_ = 0;
   bool stopping_ = false;

@@ -30,6 +30,7 @@ protocol::HealthReason ServiceStatus::health(Clock::time_point now, const Condit
   if (conditions.alert_log_failing) return protocol::HealthReason::AlertLogFailing;
   if (conditions.standby)
     return conditions.syncing ? protocol::HealthReason::StandbySyncing : protocol::HealthReason::Standby;
+  if (conditions.feed_unreachable) return protocol::HealthReason::FeedUnreachable;
   return feed_.reason(now);
 }
 
@@ -50,7 +51,7 @@ protocol::AlarmSnapshot ServiceStatus::alarm_state(Clock::time_point now, const 
   snapshot.active = pipeline_.alerts().snapshot();
   snapshot.live_tracks = static_cast<std::uint32_t>(pipeline_.live_tracks());
   snapshot.seconds_since_last_record = feed_.seconds_since_accepted(now).value_or(1e9);
-  snapshot.feed_healthy = feed_.reason(now) == protocol::HealthReason::Healthy;
+  snapshot.feed_healthy = !conditions.feed_unreachable && feed_.reason(now) == protocol::HealthReason::Healthy;
   snapshot.degraded = health(now, conditions) != protocol::HealthReason::Healthy;
   snapshot.uptime_s = static_cast<std::uint32_t>(uptime_s(now));
   snapshot.unacknowledged = static_cast<std::uint32_t>(pipeline_.alerts().unacknowledged_count());

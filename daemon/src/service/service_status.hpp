@@ -22,6 +22,7 @@ class ServiceStatus {
     bool alert_log_failing = false;  ///< the alert log cannot be written
     bool standby = false;            ///< hot standby, not active
     bool syncing = false;            ///< standby, and not in step with the active
+    bool feed_unreachable = false;   ///< a durable feed's NATS server cannot be reached
   };
 
   /// `pipeline` outlives this; `track_timeout_s` (s, > 0) makes a silent feed stale.
@@ -34,7 +35,8 @@ class ServiceStatus {
 
   /// The alert log first (the feed's state is also told by register 4 and ALIVE's "t", a
   /// lost record of the alerts by nothing else), then standby (a display connected to a
-  /// standby must not take its silence for a quiet sky), then the feed's.
+  /// standby must not take its silence for a quiet sky), then an unreachable feed (its
+  /// tracks stand still at their last data time), then the feed's.
   protocol::HealthReason health(Clock::time_point now, const Conditions& conditions) const;
   protocol::AliveStatus alive(Clock::time_point now, const Conditions& conditions) const;
   protocol::AlarmSnapshot alarm_state(Clock::time_point now, const Conditions& conditions) const;

@@ -45,8 +45,10 @@ enum class HealthReason : std::uint8_t {
   /// Hot standby, catching up with the active (or out of step with it): it may not take
   /// over while another instance in step can (design §5.9).
   StandbySyncing,
+  /// A feed's server cannot be reached (a durable NATS feed): its tracks stand still.
+  FeedUnreachable,
 };
-inline constexpr util::NameTable<HealthReason, 7> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 8> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
@@ -54,6 +56,7 @@ inline constexpr util::NameTable<HealthReason, 7> kHealthReasonNames({{
     {HealthReason::AlertLogFailing, "alert_log_failing"},
     {HealthReason::Standby, "standby"},
     {HealthReason::StandbySyncing, "standby_syncing"},
+    {HealthReason::FeedUnreachable, "feed_unreachable"},
 }});
 
 /// Figures of the once-a-second ALIVE object.
