@@ -6,7 +6,7 @@ namespace kew::daemon {
 
 AlertLogOutput::AlertLogOutput(const ServiceConfig& config)
     : file_(config.alert_log, config.alert_log_max_bytes, config.alert_log_keep,
-            config.alert_log_sync == AlertLogSync::Every),
+            config.alert_log_sync == AlertLogSync::Every, config.alert_log_queue_bytes),
       sync_(config.alert_log_sync) {}
 
 void AlertLogOutput::alert(const AlertEvent&, const SharedLine& line) { write(*line); }
