@@ -70,9 +70,10 @@ def with_free_ports(config_text):
 class Kewd:
     """One kewd process with its configuration in a temporary directory."""
 
-    def __init__(self, config_text, workdir, extra_args=(), cwd=None, env=None):
+    def __init__(self, config_text, workdir, extra_args=(), cwd=None, env=None, preexec_fn=None):
         """`config_text` None: no -c (kewd --replay's built-in configuration); `cwd`: the
-        directory kewd runs in; `env`: variables added to the environment."""
+        directory kewd runs in; `env`: variables added to the environment; `preexec_fn`:
+        run in the child before kewd (resource limits)."""
         self.workdir = workdir
         self.config_path = os.path.join(workdir, "kew.toml")
         config_args = []
@@ -89,7 +90,7 @@ class Kewd:
         self.process = subprocess.Popen(
             [KEWD, "-N", *config_args, *extra_args],
             stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, cwd=cwd,
-            env={**os.environ, **env} if env else None)
+            env={**os.environ, **env} if env else None, preexec_fn=preexec_fn)
         self._reader = threading.Thread(target=self._read_log, daemon=True)
         self._reader.start()
         self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,
