@@ -224,7 +224,8 @@ void Service::on_alert(const AlertEvent& event) {
 
 void Service::take_over(std::uint64_t published) {
   if (stopping_) return;
-  const std::size_t sent = fan_out_->take_over(published);
+  const std::vector<AlertEvent> active = pipeline_.alerts().snapshot();
+  const std::size_t sent = fan_out_->take_over(published, active, last_alert_seq_);
   spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
                "{} alerts open",
                standby_->instance(), published, sent, pipeline_.alerts().active_count());
