@@ -166,6 +166,31 @@ class NatsInputAndOutput(NatsCase):
         missed = watch(self.nats.url, "--since", str(last_seq), "-n", str(len(expected) - len(seen)))
         self.assertEqual(lines + missed, expected, "what it saw and what it missed are every event, once")
 
+    def test_since_shows_the_end_of_an_alert_opened_before_it(self):
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + NATS_INPUT + DURABLE)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        kewd.wait_log("reading kew.feed.tma through the JetStream consumer kewd_e2e")
+        replay_to(f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "40")
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected), 20, "every event published")
+        # The reader saw every event up to the one before the first End: alerts are open
+        # across it, and one of them ends right after it.
+        events = [json.loads(line) for line in expected]
+        middle = [e["state"] for e in events].index("end") - 1
+        opened = {e["id"] for e in events[:middle + 1] if e["state"] == "new"}
+        ended = {e["id"] for e in events[:middle + 1] if e["state"] == "end"}
+        open_across = opened - ended
+        later = [e for e in events[middle + 1:] if e["id"] in open_across]
+        self.assertTrue([e for e in later if e["state"] == "end"], "alerts open at the seq end after it")
+        self.assertTrue([e for e in later if e["state"] == "update"], "alerts open at the seq change after it")
+        try:
+            missed = watch(self.nats.url, "--since", str(events[middle]["seq"]), "-n", str(len(events) - middle - 1),
+                           timeout=30)
+        except subprocess.TimeoutExpired as e:  # fewer events shown than kept: which ones, below
+            output = e.stdout or ""
+            missed = (output.decode() if isinstance(output, bytes) else output).splitlines(keepends=True)
+        self.assertEqual(missed, expected[middle + 1:], "every event after the seq, ends and updates included")
+
 
 class NatsFaults(NatsCase):
     def test_garbage_on_the_subject_is_counted_and_refused(self):
