@@ -151,6 +151,31 @@ std::uint64_t fencing_token(natsMsg* message) {
   return std::strtoull(value, nullptr, 10);
 }
 
+/// As kewd's stream filters a ?WATCH: an alert opened while reading is shown from its
+/// first event at or above `min_severity`, then to its end. An alert opened before the
+/// first message read (before --since's seq, or before kew-watch started) may have been
+/// shown to the reader already: its End is always shown, and its updates are as those of
+/// an alert opened here.
+bool passes_filter(const kew::AlertEvent& e, kew::Severity min_severity, std::set<std::string>& shown,
+                   std::set<std::string>& hidden) {
+  if (e.state == kew::AlertState::New) {
+    if (e.severity >= min_severity) shown.insert(e.id);
+    else hidden.insert(e.id);
+    return e.severity >= min_severity;
+  }
+  const bool opened_here_unshown = hidden.contains(e.id);
+  if (e.state == kew::AlertState::End) {
+    shown.erase(e.id);
+    hidden.erase(e.id);
+    return !opened_here_unshown;
+  }
+  if (shown.contains(e.id)) return true;
+  if (e.severity < min_severity) return false;
+  hidden.erase(e.id);
+  shown.insert(e.id);
+  return true;
+}
+
 /// kew-watch --nats: the alert events and acknowledgements of `flags.stream`, from the
 /// first after --since (or those published from now on), until -n is reached.
 int watch_nats(const Flags& flags) {
@@ -176,7 +201,8 @@ int watch_nats(const Flags& flags) {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     const kew::Severity min_severity = *kew::kSeverityNames.parse(flags.min_severity);
     kew::protocol::AlertStreamReader reader;
-    std::set<std::string> shown;  // alerts printed: their End is printed whatever its severity
+    std::set<std::string> shown;   // alerts printed: their End is printed whatever its severity
+    std::set<std::string> hidden;  // alerts opened here below the severity asked, not printed so far
     long alerts = 0;
     std::uint64_t latest_token = 0, stale = 0;
     for (;;) {
@@ -207,17 +233,7 @@ int watch_nats(const Flags& flags) {
         continue;
       }
       if (reader.object_class() == StreamObjectClass::Alert) {
-        // As kewd's stream filters a ?WATCH: an alert is shown from its first event at
-        // or above the severity asked, and then to its end.
-        const kew::AlertEvent& e = reader.alert();
-        const bool seen = shown.contains(e.id);
-        if (e.state == kew::AlertState::End) {
-          if (!seen) continue;
-          shown.erase(e.id);
-        } else if (!seen) {
-          if (e.severity < min_severity) continue;
-          shown.insert(e.id);
-        }
+        if (!passes_filter(reader.alert(), min_severity, shown, hidden)) continue;
       }
       if (show(flags, reader, line, flags.nats_url) == Shown::Alert && flags.count > 0 && ++alerts >= flags.count)
         return 0;

@@ -44,8 +44,10 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.alert_log_max_bytes, defaults.service.alert_log_max_bytes);
   EXPECT_EQ(file.service.alert_log_keep, defaults.service.alert_log_keep);
   EXPECT_EQ(file.service.alert_log_sync, defaults.service.alert_log_sync);
+  EXPECT_EQ(file.service.alert_log_queue_bytes, defaults.service.alert_log_queue_bytes);
   EXPECT_EQ(file.service.state_directory, defaults.service.state_directory);
   EXPECT_EQ(file.service.record_file, defaults.service.record_file);
+  EXPECT_EQ(file.service.record_file_queue_bytes, defaults.service.record_file_queue_bytes);
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
   EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
   EXPECT_EQ(file.nats.url, defaults.nats.url);

@@ -9,6 +9,7 @@ environment (set by ctest): KEWD, KEW_REPLAY, KEW_GEN, KEW_WATCH.
 
 import json
 import os
+import random
 import re
 import signal
 import socket
@@ -39,17 +40,20 @@ def wait_until(predicate, timeout_s, what):
 
 
 def free_port():
-    """A loopback port free for both TCP and UDP a moment ago."""
-    for _ in range(100):
-        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as t:
-            t.bind(("127.0.0.1", 0))
-            port = t.getsockname()[1]
-            with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as u:
-                try:
-                    u.bind(("127.0.0.1", port))
-                except OSError:
-                    continue
-            return port
+    """A loopback port free for both TCP and UDP a moment ago, below the kernel's range of
+    ephemeral ports: a server a test stops and starts again on its port (a NATS outage)
+    finds it free, as no outgoing connection and no bind to port 0 is given it meanwhile."""
+    low, _ = (int(x) for x in open("/proc/sys/net/ipv4/ip_local_port_range").read().split())
+    for _ in range(1000):
+        port = random.randrange(10000, max(low, 10001))
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as t, \
+                socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as u:
+            try:
+                t.bind(("127.0.0.1", port))
+                u.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+        return port
     raise AssertionError("no free loopback port")
 
 
@@ -70,9 +74,10 @@ def with_free_ports(config_text):
 class Kewd:
     """One kewd process with its configuration in a temporary directory."""
 
-    def __init__(self, config_text, workdir, extra_args=(), cwd=None, env=None):
+    def __init__(self, config_text, workdir, extra_args=(), cwd=None, env=None, preexec_fn=None):
         """`config_text` None: no -c (kewd --replay's built-in configuration); `cwd`: the
-        directory kewd runs in; `env`: variables added to the environment."""
+        directory kewd runs in; `env`: variables added to the environment; `preexec_fn`:
+        run in the child before kewd (resource limits)."""
         self.workdir = workdir
         self.config_path = os.path.join(workdir, "kew.toml")
         config_args = []
@@ -89,7 +94,7 @@ class Kewd:
         self.process = subprocess.Popen(
             [KEWD, "-N", *config_args, *extra_args],
             stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, cwd=cwd,
-            env={**os.environ, **env} if env else None)
+            env={**os.environ, **env} if env else None, preexec_fn=preexec_fn)
         self._reader = threading.Thread(target=self._read_log, daemon=True)
         self._reader.start()
         self.alert_port = int(wait_until(lambda: self._find_log("alerts on port "), STARTUP_TIMEOUT_S,

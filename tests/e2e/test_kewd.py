@@ -60,8 +60,8 @@ class E2eCase(unittest.TestCase):
             Subscriber.opened.pop().close()
         self._dir.cleanup()
 
-    def start(self, config, *args, env=None):
-        daemon = Kewd(config, self.workdir, args, env=env)
+    def start(self, config, *args, env=None, preexec_fn=None):
+        daemon = Kewd(config, self.workdir, args, env=env, preexec_fn=preexec_fn)
         self.daemons.append(daemon)
         return daemon
 

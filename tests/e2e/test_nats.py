@@ -20,6 +20,7 @@ import urllib.request
 
 from kewd_harness import (KEW_WATCH, NATS_SERVER, NatsServer, Subscriber, active_at_end, count_lines, generate,
                           nats_next_message, nats_publish, nats_request, offline_alerts, replay_to, wait_until)
+from test_http import WebSocket
 from test_kewd import E2eCase
 
 # The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
@@ -166,6 +167,31 @@ class NatsInputAndOutput(NatsCase):
         wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected), 20, "every event published")
         missed = watch(self.nats.url, "--since", str(last_seq), "-n", str(len(expected) - len(seen)))
         self.assertEqual(lines + missed, expected, "what it saw and what it missed are every event, once")
+
+    def test_since_shows_the_end_of_an_alert_opened_before_it(self):
+        kewd = self.start(SERVICE + NATS_OUTPUT.format(url=self.nats.url) + NATS_INPUT + DURABLE)
+        expected = offline_alerts(kewd.config_path, self.recording)
+        kewd.wait_log("reading kew.feed.tma through the JetStream consumer kewd_e2e")
+        replay_to(f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "40")
+        kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: kewd.stats()["nats"]["published"] >= len(expected), 20, "every event published")
+        # The reader saw every event up to the one before the first End: alerts are open
+        # across it, and one of them ends right after it.
+        events = [json.loads(line) for line in expected]
+        middle = [e["state"] for e in events].index("end") - 1
+        opened = {e["id"] for e in events[:middle + 1] if e["state"] == "new"}
+        ended = {e["id"] for e in events[:middle + 1] if e["state"] == "end"}
+        open_across = opened - ended
+        later = [e for e in events[middle + 1:] if e["id"] in open_across]
+        self.assertTrue([e for e in later if e["state"] == "end"], "alerts open at the seq end after it")
+        self.assertTrue([e for e in later if e["state"] == "update"], "alerts open at the seq change after it")
+        try:
+            missed = watch(self.nats.url, "--since", str(events[middle]["seq"]), "-n", str(len(events) - middle - 1),
+                           timeout=30)
+        except subprocess.TimeoutExpired as e:  # fewer events shown than kept: which ones, below
+            output = e.stdout or ""
+            missed = (output.decode() if isinstance(output, bytes) else output).splitlines(keepends=True)
+        self.assertEqual(missed, expected[middle + 1:], "every event after the seq, ends and updates included")
 
 
 class NatsFaults(NatsCase):
@@ -419,15 +445,24 @@ class HotStandby(NatsCase):
         # Its stream continues with the next seq: nothing the dead active had sent, nothing missing.
         self.assertEqual(on_second.alert_lines(), expected[published:])
 
-    def test_an_acknowledgement_on_the_active_stays_after_the_takeover(self):
+    def start_pair(self):
+        """The active a and the standby b, each reading the feed through its consumer."""
         first = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="a"))
         first.wait_log("a holds the lease active: active")
         second = self.start(SERVICE + HOT_STANDBY.format(url=self.nats.url, name="b"))
         for kewd in (first, second):
             kewd.wait_log("reading kew.feed.tma through the JetStream consumer")
+        return first, second
+
+    def publish(self, lines):
+        """Feed lines on the bus, 20 a message."""
+        nats_publish(self.nats.port, "kew.feed.tma", [b"".join(lines[i:i + 20]) for i in range(0, len(lines), 20)])
+
+    def test_an_acknowledgement_on_the_active_stays_after_the_takeover(self):
+        first, second = self.start_pair()
         lines = self.feed_lines()
         half = lines[:len(lines) // 2]
-        nats_publish(self.nats.port, "kew.feed.tma", [b"".join(half[i:i + 20]) for i in range(0, len(half), 20)])
+        self.publish(half)
         for kewd in (first, second):
             kewd.wait_records(len(half))
         self.assertGreater(len(active_alerts(first)), 0, "alerts are open")
@@ -439,6 +474,54 @@ class HotStandby(NatsCase):
         after = {a["id"]: a for a in active_alerts(second)}
         for alert_id in acknowledged:
             self.assertTrue(after[alert_id]["ack"], f"{alert_id} acknowledged on the active stays so")
+
+    def test_a_subscriber_of_the_standby_gets_every_open_alert_at_the_takeover(self):
+        first, second = self.start_pair()
+        # A display on the standby's stream and one on its map, connected before any alert.
+        on_second = Subscriber(second.alert_port)
+        wait_until(lambda: on_second.objects("ALERTS"), 10, "the standby's snapshot")
+        map_client = WebSocket(second.http_port)
+        self.assertEqual(map_client.status, 101)
+        map_client.sock.settimeout(None)
+        map_messages = []  # read as they come (pings answered); batches once a tick, 60 s here
+
+        def read_map():
+            try:
+                while True:
+                    map_messages.append(map_client.message())
+            except (ConnectionError, OSError):
+                pass
+        threading.Thread(target=read_map, daemon=True).start()
+        self.addCleanup(map_client.close)
+        lines = self.feed_lines()
+        half = lines[:len(lines) // 2]
+        self.publish(half)
+        for kewd in (first, second):
+            kewd.wait_records(len(half))
+        open_alerts = {a["id"]: a["seq"] for a in active_alerts(second)}
+        self.assertGreater(len(open_alerts), 0, "alerts are open")
+        self.assertEqual(open_alerts, {a["id"]: a["seq"] for a in active_alerts(first)})
+        first.process.kill()
+        second.wait_log("active now (hot standby b)", timeout_s=30)
+
+        snapshots = wait_until(lambda: len(on_second.objects("ALERTS")) >= 2 and on_second.objects("ALERTS"), 10,
+                               "an ALERTS snapshot at the takeover")
+        self.assertEqual(len(snapshots), 2)
+        self.assertEqual({a["id"]: a["seq"] for a in snapshots[1]["alerts"]}, open_alerts,
+                         "every open alert, as its latest event")
+        # Before the events that follow: the rest of the feed's.
+        rest = lines[len(half):]
+        self.publish(rest)
+        second.wait_records(len(lines))
+        wait_until(lambda: [o for o in on_second.objects("ALERT") if o["seq"] > snapshots[1]["seq"]], 20,
+                   "alert events after the takeover")
+        stream = on_second.objects()
+        at = [i for i, o in enumerate(stream) if o["class"] == "ALERTS"][1]
+        self.assertEqual([o for o in stream[:at] if o["class"] == "ALERT" and o["seq"] > snapshots[1]["seq"]], [])
+        # The map gets the same snapshot in its next batch (the first holds every track and alert).
+        in_batches = wait_until(lambda: [o for m in map_messages[1:] for o in m if o.get("class") == "ALERTS"], 130,
+                                "an ALERTS object on the map's WebSocket")
+        self.assertEqual({a["id"]: a["seq"] for a in in_batches[0]["alerts"]}, open_alerts)
 
 
     def test_a_chain_of_failures_and_restarts_keeps_the_stream_of_the_run_without_failure(self):

@@ -27,8 +27,10 @@ void read_service(TableReader& r, ServiceConfig& s) {
   r.integer("alert_log_max_bytes", s.alert_log_max_bytes, 4096, std::int64_t{1} << 40);
   r.integer("alert_log_keep", s.alert_log_keep, 0, 1000);
   r.choice("alert_log_sync", s.alert_log_sync, kAlertLogSyncNames);
+  r.integer("alert_log_queue_bytes", s.alert_log_queue_bytes, 65536, std::int64_t{1} << 40);
   r.path("state_directory", s.state_directory);
   r.path("record_file", s.record_file);
+  r.integer("record_file_queue_bytes", s.record_file_queue_bytes, 65536, std::int64_t{1} << 40);
   r.boolean("tracks_stream", s.tracks_stream);
   r.number("max_future_s", s.max_future_s, 0.0, 86400.0);
   r.boolean("allow_remote", s.allow_remote);

@@ -6,7 +6,7 @@ namespace kew::daemon {
 
 AlertLogOutput::AlertLogOutput(const ServiceConfig& config)
     : file_(config.alert_log, config.alert_log_max_bytes, config.alert_log_keep,
-            config.alert_log_sync == AlertLogSync::Every),
+            config.alert_log_sync == AlertLogSync::Every, config.alert_log_queue_bytes),
       sync_(config.alert_log_sync) {}
 
 void AlertLogOutput::alert(const AlertEvent&, const SharedLine& line) { write(*line); }
@@ -19,7 +19,9 @@ void AlertLogOutput::append(std::string_view line) { write(line); }
 
 void AlertLogOutput::write(std::string_view line) {
   file_.append(line);
-  file_.flush();
+  // A failing file is retried by housekeeping, once a second: a disk that fails can be
+  // slow to say so, and a retry per event would slow the I/O thread with it.
+  if (!file_.failing()) file_.flush();
 }
 
 void AlertLogOutput::housekeeping() {

@@ -1,7 +1,8 @@
 #pragma once
 // The alert log (design §5.7): every alert event and acknowledgement of this instance, one
 // JSON line each, written per event so that an alert nobody was subscribed to survives a
-// crash; while the file cannot take them, events wait in memory.
+// crash; while the file cannot take them, events wait in memory (the oldest dropped beyond
+// alert_log_queue_bytes) and the file is retried once a second.
 
 #include <string>
 #include <string_view>

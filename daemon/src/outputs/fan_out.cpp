@@ -57,7 +57,7 @@ void FanOut::alive(const AliveEvent& alive) {
   }
 }
 
-std::size_t FanOut::take_over(std::uint64_t published) {
+std::size_t FanOut::take_over(std::uint64_t published, std::span<const AlertEvent> active, std::uint64_t seq) {
   const bool was_open = gate_.open();
   StandbyGate::Takeover takeover = gate_.take_over(published);
   if (was_open) return 0;
@@ -68,6 +68,9 @@ std::size_t FanOut::take_over(std::uint64_t published) {
     const SharedLine line = encode([&](std::string& out) { protocol::append_alert_json(out, event, event.seq); });
     send_alert(event, line, false, true);
   }
+  // This instance's own clients saw nothing of the alerts the previous active sent.
+  for (const auto& output : outputs_)
+    if (output->audience() == Audience::OwnClients) output->resynchronise(active, seq);
   tell_role(true);
   return takeover.to_send.size();
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "output.hpp"
@@ -43,9 +44,11 @@ class FanOut {
   bool hot_standby() const { return gate_.hot_standby(); }
   /// Events up to this seq were published by the previous active (hot standby).
   std::uint64_t floor() const { return gate_.floor(); }
-  /// Opens the gate (the lease is ours; the previous active published up to `published`)
-  /// and sends the kept events after it. Returns how many were sent.
-  std::size_t take_over(std::uint64_t published);
+  /// Opens the gate (the lease is ours; the previous active published up to `published`),
+  /// sends the kept events after it, then `active` (every active alert as of the stream's
+  /// `seq`) to the outputs whose clients were sent no alert event while standby. Returns
+  /// how many events were sent.
+  std::size_t take_over(std::uint64_t published, std::span<const AlertEvent> active, std::uint64_t seq);
   /// Closes the gate (the lease is lost); false when it was closed.
   bool step_down();
 

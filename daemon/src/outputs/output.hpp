@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -55,6 +56,10 @@ class Output {
   virtual void alive(const AliveEvent& alive, const SharedLine& line) = 0;
   /// Hot standby: this instance became the active one (true) or a standby (false).
   virtual void role_changed(bool /*active*/) {}
+  /// Hot standby's takeover, after the kept events and before any later event: `active`
+  /// is every active alert as of `seq`, the view of clients that were sent no alert
+  /// event while standby (design §5.9).
+  virtual void resynchronise(std::span<const AlertEvent> /*active*/, std::uint64_t /*seq*/) {}
   /// Its part of ?STATS and /metrics.
   virtual void report(protocol::ServiceStatistics& /*statistics*/) const {}
 };

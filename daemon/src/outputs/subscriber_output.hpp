@@ -19,6 +19,9 @@ class SubscriberOutput final : public Output {
     server_.broadcast_to_watchers(line);
   }
   void alive(const AliveEvent&, const SharedLine& line) override { server_.broadcast_to_watchers(line); }
+  void resynchronise(std::span<const AlertEvent> active, std::uint64_t seq) override {
+    server_.send_snapshot_to_watchers(active, seq);
+  }
   void report(protocol::ServiceStatistics& statistics) const override {
     statistics.subscribers_now = server_.sessions();
     statistics.subscribers = server_.figures();

@@ -10,6 +10,13 @@ void WebSocketOutput::track_updated(track::TrackSlot slot) {
   updated_.push_back(slot);
 }
 
+void WebSocketOutput::resynchronise(std::span<const AlertEvent> active, std::uint64_t seq) {
+  if (!server_.has_websockets()) return;
+  line_.clear();
+  protocol::append_alerts_snapshot_json(line_, active, seq);
+  server_.push(line_);
+}
+
 void WebSocketOutput::flush(double now, std::uint64_t seq) {
   const bool watched = server_.has_websockets();
   for (const track::TrackSlot slot : updated_) {

@@ -24,6 +24,8 @@ class WebSocketOutput final : public Output {
     server_.push(*line);
   }
   void alive(const AliveEvent&, const SharedLine& line) override { server_.push(*line); }
+  /// An ALERTS object in the next batch: the map replaces its alerts with it.
+  void resynchronise(std::span<const AlertEvent> active, std::uint64_t seq) override;
 
   /// A record updated the track in `slot`: sent at the next flush (only while anyone
   /// watches).

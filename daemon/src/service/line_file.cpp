@@ -101,28 +101,43 @@ void LineFile::rotate() {
 
 void LineFile::append(std::string_view lines) {
   if (lines.empty()) return;
-  if (pending_.size() + lines.size() > max_pending_bytes_) drop_oldest(lines.size());
+  if (pending_bytes() + lines.size() > max_pending_bytes_) drop_oldest(lines.size());
   pending_.append(lines);
-  if (!failing_ && pending_.size() >= kWriteAtBytes) flush();
+  if (!failing_ && pending_bytes() >= kWriteAtBytes) flush();
 }
 
 void LineFile::drop_oldest(std::size_t incoming) {
-  const std::uint64_t total = pending_.size() + incoming;
-  if (pending_.empty() || total <= max_pending_bytes_) return;
-  const std::size_t excess = static_cast<std::size_t>(std::min<std::uint64_t>(total - max_pending_bytes_, pending_.size()));
+  const std::uint64_t total = pending_bytes() + incoming;
+  if (pending_bytes() == 0 || total <= max_pending_bytes_) return;
+  const std::size_t excess =
+      static_cast<std::size_t>(std::min<std::uint64_t>(total - max_pending_bytes_, pending_bytes()));
   // Whole lines only: the cut goes after the line end at or beyond `excess`.
-  const std::size_t end = pending_.find('\n', excess - 1);
+  const std::size_t end = pending_.find('\n', head_ + excess - 1);
   const std::size_t cut = end == std::string::npos ? pending_.size() : end + 1;
-  const auto lines = static_cast<std::uint64_t>(std::count(pending_.begin(), pending_.begin() + static_cast<long>(cut), '\n'));
+  const auto lines = static_cast<std::uint64_t>(
+      std::count(pending_.begin() + static_cast<long>(head_), pending_.begin() + static_cast<long>(cut), '\n'));
   if (dropped_lines_ == 0)
     spdlog::error("{}: more than {} bytes wait for the file: the oldest queued lines are dropped (counted in the "
                   "failure reports)", path_, max_pending_bytes_);
-  pending_.erase(0, cut);
   dropped_lines_ += lines;
+  consume(cut - head_);
+}
+
+void LineFile::consume(std::size_t bytes) {
+  head_ += bytes;
+  // Moving what remains costs at most what was consumed since the last move: constant
+  // time per byte queued, however full the queue (a full disk under heavy traffic).
+  if (head_ == pending_.size()) {
+    pending_.clear();
+    head_ = 0;
+  } else if (head_ >= pending_.size() / 2) {
+    pending_.erase(0, head_);
+    head_ = 0;
+  }
 }
 
 bool LineFile::flush() {
-  if (pending_.empty()) return true;
+  if (pending_bytes() == 0) return true;
   if (truncate_to_ && fd_ >= 0) {
     if (::ftruncate(fd_, static_cast<off_t>(*truncate_to_)) != 0) {
       failing_ = true;
@@ -131,7 +146,7 @@ bool LineFile::flush() {
     }
     truncate_to_.reset();
   }
-  if (fd_ < 0 || (max_bytes_ > 0 && size_ > 0 && size_ + pending_.size() > max_bytes_)) {
+  if (fd_ < 0 || (max_bytes_ > 0 && size_ > 0 && size_ + pending_bytes() > max_bytes_)) {
     try {
       if (fd_ < 0) open();
       else rotate();
@@ -144,10 +159,11 @@ bool LineFile::flush() {
       }
     }
   }
+  const std::string_view queued = std::string_view(pending_).substr(head_);
   std::size_t written = 0;
   int error = 0;
-  while (written < pending_.size()) {
-    const ssize_t n = ::write(fd_, pending_.data() + written, pending_.size() - written);
+  while (written < queued.size()) {
+    const ssize_t n = ::write(fd_, queued.data() + written, queued.size() - written);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       error = n < 0 ? errno : ENOSPC;
@@ -156,9 +172,9 @@ bool LineFile::flush() {
     written += static_cast<std::size_t>(n);
   }
   if (written > 0) unsynced_ = true;
-  if (written == pending_.size()) {
+  if (written == queued.size()) {
     size_ += written;
-    pending_.clear();
+    consume(written);
     if (failing_) {
       spdlog::info("{}: writable again; every queued line written ({} failed attempts, {} lines dropped)", path_,
                    write_errors_, dropped_lines_);
@@ -174,7 +190,8 @@ bool LineFile::flush() {
 }
 
 bool LineFile::keep_whole_lines(std::size_t written) {
-  const std::size_t last_end = written == 0 ? std::string::npos : pending_.rfind('\n', written - 1);
+  const std::string_view queued = std::string_view(pending_).substr(head_);
+  const std::size_t last_end = written == 0 ? std::string::npos : queued.rfind('\n', written - 1);
   const std::size_t whole = last_end == std::string::npos ? 0 : last_end + 1;
   if (whole < written && ::ftruncate(fd_, static_cast<off_t>(size_ + whole)) != 0) {
     // The torn piece stays until a truncation succeeds; nothing is written after it.
@@ -182,7 +199,7 @@ bool LineFile::keep_whole_lines(std::size_t written) {
     report_failure("truncate", std::strerror(errno));
   }
   size_ += whole;
-  pending_.erase(0, whole);
+  consume(whole);
   return !truncate_to_;
 }
 
@@ -190,7 +207,7 @@ bool LineFile::sync() {
   if (fd_ < 0 || !unsynced_) return true;
   if (::fdatasync(fd_) == 0) {
     unsynced_ = false;
-    if (failing_ && pending_.empty() && !truncate_to_) failing_ = false;
+    if (failing_ && pending_bytes() == 0 && !truncate_to_) failing_ = false;
     return true;
   }
   // The written pages may be lost (EIO): say so, and sync again next time.
@@ -205,7 +222,7 @@ void LineFile::report_failure(std::string_view what, std::string_view reason) {
   const auto now = std::chrono::steady_clock::now();
   if (write_errors_ > 1 && now - last_report_ < kReportEvery) return;
   spdlog::error("cannot {} {}: {} ({} failures in all, {} since the last report; {} bytes queued, {} lines dropped)",
-                what, path_, reason, write_errors_, errors_since_report_, pending_.size(),
+                what, path_, reason, write_errors_, errors_since_report_, pending_bytes(),
                 dropped_lines_);
   errors_since_report_ = 0;
   last_report_ = now;

@@ -6,7 +6,9 @@
 // write(2) on an O_APPEND descriptor; when a write is cut short (disk full, quota, I/O
 // error) the piece of a line that reached the file is truncated away, and the lines not
 // written stay queued and are written by the next flush(). The queue is bounded in
-// bytes: beyond the bound the oldest lines are dropped, counted and logged. A torn last
+// bytes: beyond the bound the oldest lines are dropped, counted and logged; a line
+// queued, written or dropped costs constant time however full the queue is, so a file
+// that cannot be written never slows its writer. A torn last
 // line found at open (a crash of another writer, a full disk before this class existed)
 // is cut off too, so that the next line never joins it.
 
@@ -46,7 +48,7 @@ class LineFile {
   std::uint64_t write_errors() const { return write_errors_; }
   /// The last flush left lines queued: the file cannot take them now.
   bool failing() const { return failing_; }
-  std::uint64_t pending_bytes() const { return pending_.size(); }
+  std::uint64_t pending_bytes() const { return pending_.size() - head_; }
   /// Lines dropped from the queue because it reached its bound.
   std::uint64_t dropped_lines() const { return dropped_lines_; }
 
@@ -59,6 +61,8 @@ class LineFile {
   /// line, truncating the file after it. False when the truncation failed.
   bool keep_whole_lines(std::size_t written);
   void drop_oldest(std::size_t incoming);
+  /// The first `bytes` queued are gone (written or dropped).
+  void consume(std::size_t bytes);
   /// Counts a failure; logs it, with the counts, at most every 10 s.
   void report_failure(std::string_view what, std::string_view reason);
 
@@ -69,7 +73,8 @@ class LineFile {
   std::uint64_t max_pending_bytes_;
   int fd_ = -1;
   std::uint64_t size_ = 0;  // bytes of whole lines in the file
-  std::string pending_;     // whole lines not yet in the file
+  std::string pending_;     // from head_: whole lines not yet in the file
+  std::size_t head_ = 0;    // bytes of pending_ already written or dropped
   /// A truncation that failed: the file must be cut to this size before the next write.
   std::optional<std::uint64_t> truncate_to_;
   bool unsynced_ = false;

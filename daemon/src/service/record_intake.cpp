@@ -10,7 +10,8 @@ namespace kew::daemon {
 RecordIntake::RecordIntake(boost::asio::io_context& io, Pipeline& pipeline, const ServiceConfig& config, bool replay,
                            std::size_t inputs)
     : io_(io), pipeline_(pipeline), max_future_s_(config.max_future_s), replay_(replay), figures_(inputs) {
-  if (!config.record_file.empty()) record_file_ = std::make_unique<LineFile>(config.record_file, 0, 0);
+  if (!config.record_file.empty())
+    record_file_ = std::make_unique<LineFile>(config.record_file, 0, 0, false, config.record_file_queue_bytes);
 }
 
 RecordOutcome RecordIntake::take(const TrackReport& report, std::size_t input) {
@@ -55,6 +56,12 @@ void RecordIntake::flush() {
   pipeline_.flush();
   running_since_.reset();
   batch_arrival_.reset();
+}
+
+void RecordIntake::report(protocol::ServiceStatistics& statistics) const {
+  if (!record_file_) return;
+  statistics.record_file_queued_bytes = record_file_->pending_bytes();
+  statistics.record_file_dropped = record_file_->dropped_lines();
 }
 
 void RecordIntake::alert_emitted() {

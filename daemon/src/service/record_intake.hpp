@@ -17,6 +17,7 @@
 #include "line_file.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
 
 namespace kew::daemon {
 
@@ -47,6 +48,8 @@ class RecordIntake {
   void flush_record_file() {
     if (record_file_) record_file_->flush();
   }
+  /// The record file's part of ?STATS (with a record file).
+  void report(protocol::ServiceStatistics& statistics) const;
   /// The record file's path, "" without one.
   std::string record_file_path() const { return record_file_ ? record_file_->path() : std::string(); }
   const InputFigures& figures(std::size_t input) const { return figures_[input]; }

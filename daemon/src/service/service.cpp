@@ -371,6 +371,7 @@ protocol::ServiceStatistics Service::service_statistics() const {
   service.uptime_s = status_.uptime_s(std::chrono::steady_clock::now());
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   fan_out_->report(service);
+  intake_->report(service);
   service.resident_bytes = http::resident_bytes();
   return service;
 }

@@ -222,9 +222,13 @@ void SubscriberSession::handle_request(std::string_view line) {
   if (!watching_) return;
   spdlog::info("subscriber {} watching alerts from {}{}", id_, to_string(watch_.min_severity),
                watch_.tracks ? ", with tracks" : "");
-  // The snapshot restores a reconnecting client's view: every active alert that passes
-  // its filter, and these ids count as sent.
-  std::vector<AlertEvent> active = server_.source().snapshot();
+  send_snapshot(server_.source().snapshot(), server_.source().seq());
+}
+
+void SubscriberSession::send_snapshot(std::span<const AlertEvent> active, std::uint64_t seq) {
+  // The snapshot restores a client's view: every active alert that passes its filter,
+  // and exactly these ids count as sent.
+  alerts_sent_.clear();
   std::vector<const AlertEvent*> shown;
   for (const AlertEvent& e : active) {
     if (e.severity < watch_.min_severity) continue;
@@ -232,7 +236,7 @@ void SubscriberSession::handle_request(std::string_view line) {
     shown.push_back(&e);
   }
   std::string snapshot;
-  protocol::append_alerts_snapshot_json(snapshot, shown, server_.source().seq());
+  protocol::append_alerts_snapshot_json(snapshot, shown, seq);
   enqueue(std::make_shared<const std::string>(std::move(snapshot)));
 }
 
@@ -378,6 +382,12 @@ void SubscriberServer::broadcast_alert(const AlertEvent& event, const Line& line
   // enqueue() never closes a session synchronously, so sessions_ is stable here.
   for (const auto& s : sessions_)
     if (s->wants(event)) s->enqueue(line);
+}
+
+void SubscriberServer::send_snapshot_to_watchers(std::span<const AlertEvent> active, std::uint64_t seq) {
+  // enqueue() never closes a session synchronously, so sessions_ is stable here.
+  for (const auto& s : sessions_)
+    if (s->watching()) s->send_snapshot(active, seq);
 }
 
 void SubscriberServer::broadcast_to_watchers(const Line& line) {

@@ -74,6 +74,9 @@ class SubscriberSession : public std::enable_shared_from_this<SubscriberSession>
   /// Whether an ALERT for `event` passes this session's filter; remembers sent ids so
   /// that the End of an alert the client saw is always sent.
   bool wants(const AlertEvent& event);
+  /// Queues an ALERTS object of the alerts of `active` that pass this session's filter,
+  /// `seq` the stream's sequence number it carries; its ids are then the alerts sent.
+  void send_snapshot(std::span<const AlertEvent> active, std::uint64_t seq);
   std::uint64_t id() const { return id_; }
   bool admin() const { return admin_; }
   std::size_t queued_bytes() const { return queued_bytes_; }
@@ -137,6 +140,9 @@ class SubscriberServer {
   /// An alert event's ALERT line (encoded once by the caller) to the sessions that want
   /// that alert.
   void broadcast_alert(const AlertEvent& event, const Line& line);
+  /// An ALERTS snapshot of `active` (as of `seq`) to every watching session, each through
+  /// its filter: a takeover by a hot standby, whose sessions were sent no alert event.
+  void send_snapshot_to_watchers(std::span<const AlertEvent> active, std::uint64_t seq);
   /// An ALIVE or ACK line to every watching session.
   void broadcast_to_watchers(const Line& line);
   /// Sends a TRACK object to the sessions that asked for tracks.

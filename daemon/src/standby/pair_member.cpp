@@ -95,7 +95,7 @@ void PairMember::take_over(std::uint64_t published) {
     take_over_unsynced(published);
     return;
   }
-  const std::size_t sent = fan_out_.take_over(published);
+  const std::size_t sent = fan_out_.take_over(published, pipeline_.alerts().snapshot(), pipeline_.alerts().last_seq());
   spdlog::warn("active now (hot standby {}): the previous active published up to seq {}; {} later events sent, "
                "{} alerts open",
                instance(), published, sent, pipeline_.alerts().active_count());
@@ -105,27 +105,29 @@ void PairMember::take_over_unsynced(std::uint64_t published) {
   // Nothing this instance kept continues the stream: its numbering starts above both.
   alert::AlertManager& alerts = pipeline_.alerts();
   std::uint64_t seq = std::max(published, alerts.last_seq());
-  fan_out_.take_over(seq);
   const std::vector<AlertEvent> theirs = sync_ ? sync_->open_on_active() : std::vector<AlertEvent>{};
-  std::vector<std::string> continued;
-  for (const AlertEvent& mine : alerts.snapshot()) continued.push_back(mine.id);
-  std::size_t ended = 0, forgotten = 0;
-  for (AlertEvent event : theirs) {
-    const auto same = std::find(continued.begin(), continued.end(), event.id);
-    if (same != continued.end()) {
-      continued.erase(same);  // the same alert (its id names the pair and its opening): continued
-      continue;
-    }
+  std::vector<std::string> only_mine;
+  for (const AlertEvent& mine : alerts.snapshot()) only_mine.push_back(mine.id);
+  std::vector<AlertEvent> to_end;
+  for (const AlertEvent& event : theirs) {
+    const auto same = std::find(only_mine.begin(), only_mine.end(), event.id);
+    // The same alert (its id names the pair and its opening) is continued.
+    if (same != only_mine.end()) only_mine.erase(same);
+    else to_end.push_back(event);
+  }
+  // Alerts only this instance had were never sent: their next event would be an update
+  // nobody saw open. They open again, under new ids, if their pairs stay in conflict.
+  std::size_t forgotten = 0;
+  for (const std::string& id : only_mine) forgotten += alerts.forget(id) ? 1 : 0;
+  fan_out_.take_over(seq, alerts.snapshot(), seq);
+  for (AlertEvent event : to_end) {
     event.state = AlertState::End;
     event.end_reason = AlertEndReason::TakeoverUnsynced;
     event.seq = ++seq;
     hooks_.emit(event);
-    ++ended;
   }
-  // Alerts only this instance had were never sent: their next event would be an update
-  // nobody saw open. They open again, under new ids, if their pairs stay in conflict.
-  for (const std::string& id : continued) forgotten += alerts.forget(id) ? 1 : 0;
   alerts.resume(seq, alerts.next_number());
+  const std::size_t ended = to_end.size();
   spdlog::error("active now (hot standby {}), unsynced: the previous active published up to seq {}; {} of its "
                 "alerts ended (takeover_unsynced), {} of this instance's own not sent (they open again if their "
                 "conflicts last)",

@@ -234,6 +234,8 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
   if (service.alert_log_errors) m.integer("alert_log_errors", *service.alert_log_errors);
   if (service.alert_log_queued_bytes) m.integer("alert_log_queued_bytes", *service.alert_log_queued_bytes);
   if (service.alert_log_dropped) m.integer("alert_log_dropped", *service.alert_log_dropped);
+  if (service.record_file_queued_bytes) m.integer("record_file_queued_bytes", *service.record_file_queued_bytes);
+  if (service.record_file_dropped) m.integer("record_file_dropped", *service.record_file_dropped);
   if (service.resident_bytes) m.integer("resident_bytes", *service.resident_bytes);
   m.close();
   out += '\n';

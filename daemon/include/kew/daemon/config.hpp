@@ -134,10 +134,16 @@ struct ServiceConfig {
   std::uint64_t alert_log_max_bytes = 64ull << 20;
   int alert_log_keep = 5;
   AlertLogSync alert_log_sync = AlertLogSync::Interval;
+  /// Bytes of alert events kept in memory while the alert log cannot be written; beyond,
+  /// the oldest are dropped (counted).
+  std::uint64_t alert_log_queue_bytes = 64ull << 20;
   /// Where kewd keeps what must survive a restart (the last seq and alert number,
   /// design §4.7); "" = the alert log's directory, or none without an alert log.
   std::string state_directory;
   std::string record_file;              ///< canonical NDJSON of every decoded record; "" = none
+  /// Bytes of records kept in memory while the record file cannot be written; beyond,
+  /// the oldest are dropped (counted).
+  std::uint64_t record_file_queue_bytes = 64ull << 20;
   bool tracks_stream = true;            ///< allow WATCH "tracks": true
   /// A record dated more than this after the wall clock is refused ("future_time"), s.
   double max_future_s = 10.0;

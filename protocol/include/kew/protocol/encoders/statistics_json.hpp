@@ -93,6 +93,10 @@ struct ServiceStatistics {
   /// lines dropped because more than the queue's bound waited.
   std::optional<std::uint64_t> alert_log_queued_bytes;
   std::optional<std::uint64_t> alert_log_dropped;
+  /// When a record file is written: bytes of records waiting for it and records dropped
+  /// because more than its queue's bound waited.
+  std::optional<std::uint64_t> record_file_queued_bytes;
+  std::optional<std::uint64_t> record_file_dropped;
   std::optional<std::uint64_t> resident_bytes;    ///< when /proc tells
 };
 
