@@ -18,6 +18,7 @@
 #include "logging.hpp"
 #include "service.hpp"
 #include "kew/config/address.hpp"
+#include "kew/config/nats_servers.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/version.hpp"
@@ -207,6 +208,9 @@ int main(int argc, char** argv) {
     if (!config.service.record_file.empty()) std::printf("record file: %s\n", config.service.record_file.c_str());
     if (const std::string state = kew::daemon::state_directory(config.service); !state.empty())
       std::printf("state directory: %s\n", state.c_str());
+    if (!config.nats.servers.empty())
+      std::printf("nats: %s (%d replicas)\n", kew::config::join_nats_servers(config.nats.servers).c_str(),
+                  config.nats.replicas);
     for (const auto& input : config.inputs)
       if (input.transport == kew::daemon::Transport::File)
         std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());

@@ -15,7 +15,7 @@ constexpr std::int64_t kWaitMs = 200;  // a read waits this long, then looks at 
 AckFollower::AckFollower(const NatsConfig& config, IdsHandler on_ids)
     : config_(config),
       on_ids_(std::move(on_ids)),
-      connection_(config.url, config.name + " acks",
+      connection_(config.servers, config.name + " acks",
                   [](std::string_view event) { spdlog::info("[nats] acknowledgements: {}", event); }) {
   thread_ = std::thread([this] { run(); });
 }

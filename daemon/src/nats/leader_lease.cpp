@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "repeated_failure.hpp"
+#include "stream_replicas.hpp"
 
 namespace kew::daemon {
 
@@ -24,7 +25,7 @@ LeaderLease::LeaderLease(const NatsConfig& config, std::string instance, Handler
       // Every call answered within half the TTL, or given up: a slow server must not
       // keep the thread long past the moment it has to step down (may_speak() covers
       // the rest).
-      connection_(config.url, config.name + " lease",
+      connection_(config.servers, config.name + " lease",
                   [](std::string_view event) { spdlog::info("[nats] lease: {}", event); }, 1.0,
                   config.lease_ttl_s / 2.0) {
   thread_ = std::thread([this] { run(); });
@@ -67,9 +68,15 @@ bool LeaderLease::bind_bucket() {
   kv.TTL = static_cast<std::int64_t>(config_.lease_ttl_s * 1e9);
   // On file: a server restart keeps the bucket (a memory one would be gone with it).
   kv.StorageType = js_FileStorage;
+  kv.Replicas = config_.replicas;
   if (js_CreateKeyValue(&bucket_, connection_.jetstream(), &kv) == NATS_OK) return true;
-  // Made by another instance (or an earlier run) with its own settings.
-  return js_KeyValue(&bucket_, connection_.jetstream(), config_.lease_bucket.c_str()) == NATS_OK;
+  // Made by another instance (or an earlier run) with its own settings; its replicas
+  // follow [nats] replicas.
+  if (js_KeyValue(&bucket_, connection_.jetstream(), config_.lease_bucket.c_str()) != NATS_OK) return false;
+  const std::string scaled = nats::ensure_replicas(connection_.jetstream(), nats::bucket_stream(config_.lease_bucket),
+                                                   config_.replicas);
+  if (!scaled.empty()) spdlog::warn("[nats] lease: {}", scaled);
+  return true;
 }
 
 void LeaderLease::forget_bucket_if_gone(natsStatus status) {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace kew::nats {
 
@@ -43,13 +44,25 @@ struct Options {
   ~Options() { natsOptions_Destroy(options); }
 };
 
+/// The server the connection is on now (of the list, or one its cluster announced).
+std::string connected_url(natsConnection* connection) {
+  char url[256] = "";
+  if (natsConnection_GetConnectedUrl(connection, url, sizeof url) != NATS_OK || url[0] == 0) return "?";
+  return url;
+}
+
 }  // namespace
 
-NatsConnection::NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
-                               double reconnect_wait_s, double request_wait_s)
-    : url_(url), on_event_(std::move(on_event)) {
+NatsConnection::NatsConnection(const std::vector<std::string>& servers, const std::string& name,
+                               EventHandler on_event, double reconnect_wait_s, double request_wait_s)
+    : servers_(fmt::format("{}", fmt::join(servers, ","))), on_event_(std::move(on_event)) {
   Options o;
-  check(natsOptions_SetURL(o.options, url.c_str()), fmt::format("NATS url \"{}\"", url));
+  // A list, never one comma-separated URL: natsOptions_SetURL would take that as one
+  // server and never reach any.
+  std::vector<const char*> urls;
+  for (const std::string& server : servers) urls.push_back(server.c_str());
+  check(natsOptions_SetServers(o.options, urls.data(), static_cast<int>(urls.size())),
+        fmt::format("NATS servers \"{}\"", servers_));
   check(natsOptions_SetName(o.options, name.c_str()), "NATS connection name");
   // For ever: a safety net outlives its bus's restarts.
   check(natsOptions_SetMaxReconnect(o.options, -1), "NATS reconnect");
@@ -69,9 +82,9 @@ NatsConnection::NatsConnection(const std::string& url, const std::string& name, 
   if (status == NATS_OK) {
     ++connects_;
   } else if (status == NATS_NOT_YET_CONNECTED) {
-    if (on_event_) on_event_(fmt::format("no NATS server at {} yet: connecting in the background", url_));
+    if (on_event_) on_event_(fmt::format("no NATS server at {} yet: connecting in the background", servers_));
   } else {
-    throw NatsError(fmt::format("NATS connection to {}", url_), status);
+    throw NatsError(fmt::format("NATS connection to {}", servers_), status);
   }
   jsOptions js_options;
   jsOptions_Init(&js_options);
@@ -111,10 +124,10 @@ void NatsConnection::on_closed(natsConnection*, void* self) {
 
 bool NatsConnection::connected() const { return natsConnection_Status(connection_) == NATS_CONN_STATUS_CONNECTED; }
 
-void NatsConnection::on_connected(natsConnection*, void* self) {
+void NatsConnection::on_connected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
-  if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", connected_url(connection)));
 }
 
 void NatsConnection::on_disconnected(natsConnection*, void* self) {
@@ -122,13 +135,13 @@ void NatsConnection::on_disconnected(natsConnection*, void* self) {
   // Called also when a first connection attempt fails: only a lost connection counts.
   if (c->connects_.load() == 0 || c->closing_) return;
   ++c->disconnects_;
-  if (c->on_event_) c->on_event_(fmt::format("lost the NATS server at {}: reconnecting", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("lost the NATS server: reconnecting to one of {}", c->servers_));
 }
 
-void NatsConnection::on_reconnected(natsConnection*, void* self) {
+void NatsConnection::on_reconnected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
-  if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", connected_url(connection)));
 }
 
 void NatsConnection::on_error(natsConnection*, natsSubscription*, natsStatus status, void* self) {

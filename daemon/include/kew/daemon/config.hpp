@@ -71,17 +71,21 @@ struct InputConfig {
   /// udp, tcp-server: `address` may be a wildcard, an interface or a multicast group
   /// (a real radar's feed); otherwise it must be loopback unless kewd runs --listen-any.
   bool allow_remote = false;
-  /// nats: the server(s), "nats://HOST:PORT" (comma-separated for a cluster); default:
-  /// [nats] url, else nats://127.0.0.1:4222.
-  std::string nats_url;
+  /// nats: the servers of one NATS cluster, "nats://HOST:PORT" each (keys nats_servers,
+  /// or nats_url: one URL or several comma-separated); the client connects to any and
+  /// reconnects to any. Default: [nats]'s servers, else kDefaultNatsUrl.
+  std::vector<std::string> nats_servers;
   /// nats: a JetStream durable consumer of this name reads the subject, so that a
   /// restarted kewd resumes after the last message it took; "" = a plain subscription
   /// (messages sent while kewd is away are not seen).
   std::string durable;
   /// nats with durable: the JetStream stream holding the subject; created for the
-  /// subject when missing (kept `stream_max_age_s`); "" = the stream that holds it.
+  /// subject when missing (kept `stream_max_age_s`, with [nats] replicas); "" = the
+  /// stream that holds it.
   std::string stream;
   double stream_max_age_s = 86400.0;
+  /// nats: replicas of the stream kewd creates ([nats] replicas, copied here; 1–5).
+  int stream_replicas = 1;
 };
 
 /// Where a NATS input connects when neither it nor [nats] names a server.
@@ -90,7 +94,13 @@ inline constexpr std::string_view kDefaultNatsUrl = "nats://127.0.0.1:4222";
 /// [nats]: alert events, acknowledgements and status published on a NATS server (design
 /// §5.9), the events kept in a JetStream stream for subscribers that were away.
 struct NatsConfig {
-  std::string url;  ///< "nats://HOST:PORT" (comma-separated for a cluster); "" = publish nothing
+  /// The servers of one NATS cluster, "nats://HOST:PORT" each (keys servers, or url: one
+  /// URL or several comma-separated); the client connects to any and reconnects to any.
+  /// Empty: publish nothing.
+  std::vector<std::string> servers;
+  /// Replicas (1–5) of what kewd creates in JetStream: the alert stream, the lease bucket
+  /// and the feed streams of durable NATS inputs; an existing one is updated to it.
+  int replicas = 1;
   std::string name = "kewd";                 ///< the connection's name on the server
   std::string alerts_subject = "kew.alerts"; ///< ALERT objects go to <alerts_subject>.<zone>
   std::string acks_subject = "kew.acks";     ///< ACK objects
