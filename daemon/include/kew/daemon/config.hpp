@@ -250,8 +250,22 @@ struct Listener {
 /// udp and tcp-server inputs.
 std::vector<Listener> listeners(const Config& config);
 
+/// The directories systemd creates for kewd.service before it runs kewd (the unit's
+/// LogsDirectory= and StateDirectory=: /var/log/kew, /var/lib/kew), absolute.
+std::vector<std::string> systemd_directories();
+
+struct CheckOptions {
+  bool listen_any = false;  ///< kewd --listen-any
+  /// Directories that systemd creates before kewd starts (systemd_directories() for
+  /// `kewd --check-config`, which may run before the service ever started): one that is
+  /// missing while its parent directory exists passes, with a note. Empty when kewd is
+  /// about to start: what it writes to must exist then.
+  std::vector<std::string> created_by_systemd;
+};
+
 /// What the file alone cannot tell, checked by `kewd --check-config` and again before
-/// kewd starts, so that a file that passes the check does not fail at start. Throws
+/// kewd starts, so that a file that passes the check does not fail at start. Returns
+/// notes on what passed on trust (a directory systemd will create). Throws
 /// config::ConfigError naming the key and its value:
 /// - every listener binds a loopback address unless its table says allow_remote = true
 ///   or `listen_any` (kewd --listen-any);
@@ -259,7 +273,10 @@ std::vector<Listener> listeners(const Config& config);
 /// - alert_log and record_file are distinct, are not directories, and can be written:
 ///   an existing file writable, its directory existing and writable (the alert log
 ///   rotates by renaming in it; a new file is created in it);
-/// - the state directory is a writable directory, or can be created (its parent exists).
-void check_config(const Config& config, bool listen_any);
+/// - the state directory is a writable directory, or can be created (its parent exists);
+/// - a directory of `options.created_by_systemd` may be missing if its parent exists.
+std::vector<std::string> check_config(const Config& config, const CheckOptions& options);
+/// check_config for kewd about to start (nothing created by systemd on trust).
+inline void check_config(const Config& config, bool listen_any) { check_config(config, CheckOptions{listen_any, {}}); }
 
 }  // namespace kew::daemon
