@@ -50,7 +50,9 @@ for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-ge
             /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/kew/aerodromes.csv \
             /usr/share/doc/kew/copyright \
             /usr/share/doc/kew/examples/nats/nats-server.conf \
-            /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf; do
+            /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf \
+            /usr/share/doc/kew/examples/nats/nats-server@.service \
+            /usr/share/doc/kew/examples/nats/cluster/kew-bus-1.conf; do
   grep -qx "$path" <<<"$contents" || fail "$path is not in the package"
 done
 dpkg-deb -f "$deb" Depends | grep -q libjs-leaflet || fail "Depends lacks libjs-leaflet"
