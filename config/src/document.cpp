@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "kew/config/address.hpp"
+#include "kew/config/nats_servers.hpp"
 #include "kew/config/utc_day.hpp"
 
 namespace kew::config {
@@ -88,6 +89,35 @@ void TableReader::host_name_list(std::string_view key, std::vector<std::string>&
                 }
                 return text;
               });
+}
+
+void TableReader::nats_servers(std::string_view key, std::vector<std::string>& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  std::string error;
+  if (const auto* text = node->as_string()) {
+    if (text->get().empty()) {
+      out.clear();
+      return;
+    }
+    std::optional<std::vector<std::string>> servers = parse_nats_servers(text->get(), &error);
+    // The error quotes the entry at fault: the whole string too when it is a list.
+    if (!servers)
+      fail(node, text->get().find(',') == std::string::npos ? fmt::format("{} = {}", key, error)
+                                                           : fmt::format("{} = \"{}\": {}", key, text->get(), error));
+    out = std::move(*servers);
+    return;
+  }
+  const auto* array = node->as_array();
+  if (!array) fail(node, fmt::format("{} must be an array of NATS server URLs (\"nats://HOST:PORT\")", key));
+  std::vector<std::string> servers;
+  for (const toml::node& element : *array) {
+    const auto* text = element.as_string();
+    if (!text) fail(&element, fmt::format("{}: each entry is a NATS server URL (\"nats://HOST:PORT\")", key));
+    if (!valid_nats_server(text->get(), &error)) fail(&element, fmt::format("{}: {}", key, error));
+    servers.push_back(text->get());
+  }
+  out = std::move(servers);
 }
 
 void TableReader::path(std::string_view key, std::string& out) {

@@ -13,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -23,6 +24,7 @@
 #include <fmt/format.h>
 
 #include "kew/config/address.hpp"
+#include "kew/config/nats_servers.hpp"
 #include "nats_connection.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
@@ -36,6 +38,7 @@ using kew::protocol::StreamObjectClass;
 
 constexpr int kUsageError = 64;
 constexpr int kConnectionFailed = 1;
+constexpr int kSubscribeAttempts = 10;  // --nats: JetStream calls, each waiting up to 5 s
 using kew::units::kMetresPerNauticalMile;
 
 struct Flags {
@@ -179,8 +182,14 @@ bool passes_filter(const kew::AlertEvent& e, kew::Severity min_severity, std::se
 /// kew-watch --nats: the alert events and acknowledgements of `flags.stream`, from the
 /// first after --since (or those published from now on), until -n is reached.
 int watch_nats(const Flags& flags) {
+  std::string error;
+  const std::optional<std::vector<std::string>> servers = kew::config::parse_nats_servers(flags.nats_url, &error);
+  if (!servers) {
+    std::fprintf(stderr, "kew-watch: --nats %s\n", error.c_str());
+    return kUsageError;
+  }
   try {
-    kew::nats::NatsConnection connection(flags.nats_url, "kew-watch", [](std::string_view event) {
+    kew::nats::NatsConnection connection(*servers, "kew-watch", [](std::string_view event) {
       std::fprintf(stderr, "kew-watch: %.*s\n", static_cast<int>(event.size()), event.data());
     });
     jsSubOptions options;
@@ -194,8 +203,15 @@ int watch_nats(const Flags& flags) {
       options.Config.DeliverPolicy = js_DeliverNew;
     }
     natsSubscription* raw = nullptr;
-    kew::nats::check(js_SubscribeSync(&raw, connection.jetstream(), ">", nullptr, &options, nullptr),
-                     "JetStream stream " + flags.stream);
+    natsStatus subscribed = NATS_TIMEOUT;
+    // A cluster missing a node may place this reader (an ephemeral consumer) on the node
+    // that is gone and never answer: another try lands on a live one.
+    for (int attempt = 1; attempt <= kSubscribeAttempts && subscribed == NATS_TIMEOUT; ++attempt) {
+      subscribed = js_SubscribeSync(&raw, connection.jetstream(), ">", nullptr, &options, nullptr);
+      if (subscribed == NATS_TIMEOUT && attempt < kSubscribeAttempts)
+        std::fprintf(stderr, "kew-watch: no answer from JetStream to reading %s: trying again\n", flags.stream.c_str());
+    }
+    kew::nats::check(subscribed, "JetStream stream " + flags.stream);
     const std::unique_ptr<natsSubscription, decltype(&natsSubscription_Destroy)> subscription(raw,
                                                                                            natsSubscription_Destroy);
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -259,8 +275,8 @@ int main(int argc, char** argv) {
   app.add_flag("-a,--alive", flags.alive, "print ALIVE status lines too");
   app.add_flag("-t,--tracks", flags.tracks, "ask for TRACK objects too (printed with --json)");
   auto* nats = app.add_option("--nats", flags.nats_url,
-                              "read the alerts kewd publishes on NATS (JetStream) at this URL, nats://HOST:PORT, "
-                              "instead of its stream");
+                              "read the alerts kewd publishes on NATS (JetStream) at this URL, nats://HOST:PORT "
+                              "(a cluster's servers comma-separated), instead of its stream");
   app.add_option("--stream", flags.stream, "with --nats: the JetStream stream of [nats] stream")
       ->default_val(flags.stream)
       ->needs(nats);

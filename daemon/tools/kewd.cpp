@@ -18,6 +18,7 @@
 #include "logging.hpp"
 #include "service.hpp"
 #include "kew/config/address.hpp"
+#include "kew/config/nats_servers.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/version.hpp"
@@ -186,9 +187,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "kewd: %s\n", e.what());
     return kUsageError;
   }
+  std::vector<std::string> notes;
   try {
     // Before starting as well: a file that passes --check-config must not fail at start.
-    kew::daemon::check_config(config, flags.listen_any);
+    // The check alone trusts systemd to create the unit's directories (the package's
+    // configuration is checked before the service ever ran); kewd about to start does not.
+    kew::daemon::CheckOptions check;
+    check.listen_any = flags.listen_any;
+    if (flags.check_config) check.created_by_systemd = kew::daemon::systemd_directories();
+    notes = kew::daemon::check_config(config, check);
   } catch (const kew::config::ConfigError& e) {
     // The check names allow_remote and --listen-any, which a replay overrides and refuses.
     const bool listener = std::string_view(e.what()).find("loopback") != std::string_view::npos;
@@ -207,6 +214,10 @@ int main(int argc, char** argv) {
     if (!config.service.record_file.empty()) std::printf("record file: %s\n", config.service.record_file.c_str());
     if (const std::string state = kew::daemon::state_directory(config.service); !state.empty())
       std::printf("state directory: %s\n", state.c_str());
+    for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
+    if (!config.nats.servers.empty())
+      std::printf("nats: %s (%d replicas)\n", kew::config::join_nats_servers(config.nats.servers).c_str(),
+                  config.nats.replicas);
     for (const auto& input : config.inputs)
       if (input.transport == kew::daemon::Transport::File)
         std::printf("input %s: file %s\n", input.name.c_str(), input.address.c_str());

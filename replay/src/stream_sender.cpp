@@ -30,13 +30,29 @@ std::optional<StreamTarget> parse_stream_target(std::string_view text, std::stri
   } else if (text.starts_with("nats://")) {
     target.protocol = StreamTarget::Protocol::Nats;
     text.remove_prefix(7);
-    const std::size_t slash = text.find('/');
+    // The subject follows the first '/' that is not part of a later server's "nats://".
+    std::size_t slash = text.find('/');
+    while (slash != std::string_view::npos && slash > 0 && text[slash - 1] == ':' && slash + 1 < text.size() &&
+           text[slash + 1] == '/')
+      slash = text.find('/', slash + 2);
     target.subject = slash == std::string_view::npos ? std::string() : std::string(text.substr(slash + 1));
     if (!config::valid_nats_subject(target.subject, false)) {
       if (error) *error = "nats://HOST:PORT/SUBJECT needs a subject to publish to after the port";
       return std::nullopt;
     }
     text = text.substr(0, slash);
+    // A cluster: its servers comma-separated, each HOST:PORT, with or without nats://.
+    for (std::string_view rest = text;;) {
+      const std::size_t comma = rest.find(',');
+      std::string_view server = rest.substr(0, comma);
+      if (server.starts_with("nats://")) server.remove_prefix(7);
+      std::optional<config::HostPort> address = config::parse_host_port(server, error);
+      if (!address) return std::nullopt;
+      target.nats_servers.push_back("nats://" + config::to_string(*address));
+      if (comma == std::string_view::npos) break;
+      rest.remove_prefix(comma + 1);
+    }
+    text = text.substr(0, text.find(','));
   }
   std::optional<config::HostPort> address = config::parse_host_port(text, error);
   if (!address) return std::nullopt;
@@ -85,11 +101,19 @@ StreamFigures pump(MergedRecordings& recordings, double speed, std::size_t batch
 // input that refuses the connection is.
 StreamFigures stream_to_nats(MergedRecordings& recordings, const StreamTarget& target, double speed,
                              std::size_t message_bytes) {
-  const std::string host = target.host.find(':') != std::string::npos ? "[" + target.host + "]" : target.host;
-  const std::string url = "nats://" + host + ":" + std::to_string(target.port);
+  std::string url;  // for messages
+  std::vector<const char*> servers;
+  for (const std::string& server : target.nats_servers) {
+    url += (url.empty() ? "" : ",") + server;
+    servers.push_back(server.c_str());
+  }
+  natsOptions* options = nullptr;
+  natsStatus s = natsOptions_Create(&options);
+  if (s == NATS_OK) s = natsOptions_SetServers(options, servers.data(), static_cast<int>(servers.size()));
   natsConnection* connection = nullptr;
-  if (const natsStatus s = natsConnection_ConnectTo(&connection, url.c_str()); s != NATS_OK)
-    nats_failure("cannot connect to " + url, s);
+  if (s == NATS_OK) s = natsConnection_Connect(&connection, options);
+  natsOptions_Destroy(options);
+  if (s != NATS_OK) nats_failure("cannot connect to " + url, s);
   std::uint64_t messages = 0;
   natsStatus failed = NATS_OK;
   StreamFigures figures = pump(recordings, speed, message_bytes, [&](const std::string& batch) {

@@ -98,7 +98,7 @@ int stream_to(const Options& options, kew::replay::MergedRecordings& recordings)
   std::string error;
   const std::optional<kew::replay::StreamTarget> target = kew::replay::parse_stream_target(options.to, &error);
   if (!target) {
-    std::fprintf(stderr, "kew-replay: --to %s (expected [tcp://|udp://]HOST:PORT or nats://HOST:PORT/SUBJECT)\n",
+    std::fprintf(stderr, "kew-replay: --to %s (expected [tcp://|udp://]HOST:PORT or nats://HOST:PORT[,HOST:PORT...]/SUBJECT)\n",
                  error.c_str());
     return kUsageError;
   }
@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
       CLI::PositiveNumber);
   app.add_flag("--max-speed", options.max_speed, "with --to: send as fast as possible")->excludes(speed);
   app.add_option("--to", options.to,
-                 "stream records to a kewd input: [tcp://|udp://]HOST:PORT, or publish them: nats://HOST:PORT/SUBJECT");
+                 "stream records to a kewd input: [tcp://|udp://]HOST:PORT, or publish them: nats://HOST:PORT/SUBJECT (a cluster: nats://HOST:PORT,HOST:PORT/SUBJECT)");
   app.add_option("--alerts", options.alerts_path, "write ALERT lines here instead of stdout");
   app.add_option("--stats-json", options.stats_path, "write run statistics as one JSON object");
   app.add_flag("--sort", options.sort,

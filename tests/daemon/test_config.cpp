@@ -20,6 +20,7 @@
 #include "kew/config/nats_subject.hpp"
 #include "kew/config/shared_config.hpp"
 #include "kew/config/utc_day.hpp"
+#include "expect_config_error.hpp"
 
 namespace kew::daemon {
 namespace {
@@ -50,7 +51,8 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.service.record_file_queue_bytes, defaults.service.record_file_queue_bytes);
   EXPECT_EQ(file.service.tracks_stream, defaults.service.tracks_stream);
   EXPECT_EQ(file.service.max_future_s, defaults.service.max_future_s);
-  EXPECT_EQ(file.nats.url, defaults.nats.url);
+  EXPECT_EQ(file.nats.servers, defaults.nats.servers);
+  EXPECT_EQ(file.nats.replicas, defaults.nats.replicas);
   EXPECT_EQ(file.nats.name, defaults.nats.name);
   EXPECT_EQ(file.nats.alerts_subject, defaults.nats.alerts_subject);
   EXPECT_EQ(file.nats.acks_subject, defaults.nats.acks_subject);
@@ -261,14 +263,7 @@ lon = 3.0
   EXPECT_FALSE(parse_config("").pipeline.reference.has_value());
 }
 
-void expect_error(const char* text, const char* needle) {
-  try {
-    parse_config(text, "t.toml");
-    ADD_FAILURE() << "accepted: " << text;
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
+using config_test::expect_error;
 
 TEST(Config, RefusesMistakesWithFileAndLine) {
   expect_error("[tracks]\ntimeout = 30\n", "t.toml:2: [tracks] unknown key \"timeout\"");
@@ -406,11 +401,11 @@ nats_url = "nats://127.0.0.1:4223"
   EXPECT_EQ(c.nats.stream, "");
   ASSERT_EQ(c.inputs.size(), 2u);
   EXPECT_EQ(c.inputs[0].transport, Transport::Nats);
-  EXPECT_EQ(c.inputs[0].nats_url, "nats://10.0.0.5:4222");  // [nats] url when the input names none
+  EXPECT_EQ(c.inputs[0].nats_servers, std::vector<std::string>{"nats://10.0.0.5:4222"});  // [nats] url when the input names none
   EXPECT_EQ(c.inputs[0].durable, "kewd_a");
-  EXPECT_EQ(c.inputs[1].nats_url, "nats://127.0.0.1:4223");
-  EXPECT_EQ(parse_config("[[input]]\ntransport = \"nats\"\naddress = \"a\"\n").inputs[0].nats_url,
-            kDefaultNatsUrl);
+  EXPECT_EQ(c.inputs[1].nats_servers, std::vector<std::string>{"nats://127.0.0.1:4223"});
+  EXPECT_EQ(parse_config("[[input]]\ntransport = \"nats\"\naddress = \"a\"\n").inputs[0].nats_servers,
+            std::vector<std::string>{std::string(kDefaultNatsUrl)});
   expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a..b\"\n", "address = \"a..b\" is not a NATS subject");
   expect_error("[[input]]\ntransport = \"nats\"\naddress = \"a.>.b\"\n", "is not a NATS subject");
   expect_error("[nats]\nalerts_subject = \"kew.*\"\n", "is not a NATS subject to publish to");
@@ -559,7 +554,7 @@ hot_standby = true
   EXPECT_TRUE(state_directory(c.service).empty());
   EXPECT_FALSE(c.cat004.enabled);
   EXPECT_FALSE(c.modbus.enabled);
-  EXPECT_TRUE(c.nats.url.empty());  // a replay never reaches the production bus
+  EXPECT_TRUE(c.nats.servers.empty());  // a replay never reaches the production bus
   EXPECT_FALSE(c.nats.hot_standby);
   EXPECT_THROW(check_config(c, false), ConfigError);  // the file's 0.0.0.0 is no longer allowed
   replay.alert_listen = "127.0.0.1:4848";

@@ -706,15 +706,28 @@ class Install(E2eCase):
         config = os.path.join(prefix, "etc", "kew", "kew.toml")
         result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", config],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        # --check-config checks that the alert log can be written: /var/log/kew is the
-        # unit's LogsDirectory, which systemd creates before ExecStartPre runs the check.
-        if os.path.isdir("/var/log/kew"):
-            self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
-        else:
-            self.assertEqual(result.returncode, 64, result.stdout)
-            self.assertIn("its directory /var/log/kew does not exist", result.stderr)
+        # --check-config checks that the alert log can be written: /var/log/kew and
+        # /var/lib/kew are the unit's LogsDirectory and StateDirectory, which systemd
+        # creates at the first start; before it, the check passes and says so.
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         with open(config) as f:
             text = f.read()
+        if not os.path.exists("/var/log/kew"):
+            self.assertIn('note: [service] alert_log = "/var/log/kew/alerts.jsonl": /var/log/kew does not exist yet; '
+                          "systemd creates it when kewd.service starts", result.stdout)
+            # kewd itself, about to start, trusts nothing: outside systemd the directory is missing.
+            started = subprocess.run([os.path.join(prefix, "bin", "kewd"), "-N", "-c", config], stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True, timeout=20)
+            self.assertEqual(started.returncode, 64, started.stdout)
+            self.assertIn("its directory /var/log/kew does not exist", started.stderr)
+        # A directory systemd does not create still fails the check.
+        below = self.path("below.toml")
+        with open(below, "w") as f:
+            f.write(text.replace("/var/log/kew/alerts.jsonl", "/var/log/kew/more/alerts.jsonl"))
+        result = subprocess.run([os.path.join(prefix, "bin", "kewd"), "--check-config", "-c", below],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(result.returncode, 64, result.stdout)
+        self.assertIn("its directory /var/log/kew/more does not exist", result.stderr)
         self.assertIn('alert_log = "/var/log/kew/alerts.jsonl"', text)
         self.assertIn('state_directory = "/var/lib/kew"', text)
         elsewhere = self.path("installed.toml")

@@ -17,24 +17,23 @@ deb=$work/kew_${version}_${arch}.deb
 
 fail() { echo "test_deb: FAIL: $*" >&2; exit 1; }
 
-# The tree as git sees it (tracked and new files, not the build trees), without .git:
-# the revision is handed over instead.
+# The tree as git sees it (tracked and new files, not the build trees), without .git, as
+# a source package is built: kewd then names the package's own version as its revision.
 rm -rf "$work"
 mkdir -p "$work/kew"
 (cd "$here" && git ls-files -z --cached --others --exclude-standard |
    while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
    tar --null -T - -cf -) | tar -C "$work/kew" -xf -
-revision=$(git -C "$here" rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
-[ -z "$(git -C "$here" status --porcelain --untracked-files=no 2>/dev/null)" ] || revision="$revision-dirty"
+revision=debian-$version
 
 # With warnings as errors: the package's build type (dpkg-buildflags: -O2, hardening) is
 # the second one the test command builds. Through ccache (CMake finds it; dpkg-buildpackage
 # and debhelper pass these through): paths below the copy hashed relative to it.
-echo "test_deb: dpkg-buildpackage in $work/kew (revision $revision)"
+echo "test_deb: dpkg-buildpackage in $work/kew (no git: revision $revision expected)"
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
 export CCACHE_BASEDIR=$work/kew
 export CCACHE_NOHASHDIR=true
-(cd "$work/kew" && KEW_REVISION=$revision KEW_WERROR=ON DEB_BUILD_OPTIONS="parallel=$(nproc)" \
+(cd "$work/kew" && KEW_WERROR=ON DEB_BUILD_OPTIONS="parallel=$(nproc)" \
    dpkg-buildpackage -b -us -uc >"$work/build.log" 2>&1) || { tail -40 "$work/build.log"; fail "dpkg-buildpackage"; }
 ! command -v ccache >/dev/null || grep -q "ccache .*-c .*\.cpp" "$work/build.log" ||
   fail "the package was not compiled through ccache (see $work/build.log)"
@@ -51,7 +50,9 @@ for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-ge
             /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/kew/aerodromes.csv \
             /usr/share/doc/kew/copyright \
             /usr/share/doc/kew/examples/nats/nats-server.conf \
-            /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf; do
+            /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf \
+            /usr/share/doc/kew/examples/nats/nats-server@.service \
+            /usr/share/doc/kew/examples/nats/cluster/kew-bus-1.conf; do
   grep -qx "$path" <<<"$contents" || fail "$path is not in the package"
 done
 dpkg-deb -f "$deb" Depends | grep -q libjs-leaflet || fail "Depends lacks libjs-leaflet"
@@ -63,7 +64,7 @@ grep -qx /etc/kew/kew.toml "$control/conffiles" || fail "/etc/kew/kew.toml is no
 grep -q 'deb-systemd-helper' "$control/postinst" || fail "postinst does not enable the unit"
 grep -q 'purge' "$control/postrm" || fail "postrm does not clean up on purge"
 # The package's version is the release the binaries report (debian/changelog and
-# project(VERSION) in CMakeLists.txt move together), with the revision it was built from.
+# project(VERSION) in CMakeLists.txt move together), and, built without git, its revision.
 dpkg-deb -x "$deb" "$work/root"
 # The package builds without tests, so its kewd carries no test hook (docs/testing.md).
 ! grep -q KEWD_TEST_STALL_FILE "$work/root/usr/bin/kewd" || fail "the packaged kewd contains a test hook"
@@ -101,9 +102,15 @@ fi
 [ "$(dpkg-query -W -f='${Conffiles}' kew | awk '{print $1}')" = /etc/kew/kew.toml ] ||
   fail "dpkg-query Conffiles: $(dpkg-query -W -f='${Conffiles}' kew)"
 # The configuration's alert log and state live in the unit's LogsDirectory and
-# StateDirectory, which systemd creates before ExecStartPre runs this same check; without
-# systemd as PID 1 they are made here as it would (and must go on purge).
-[ -d /run/systemd/system ] || mkdir -p /var/log/kew /var/lib/kew
+# StateDirectory, which systemd creates at the first start. Without systemd as PID 1 the
+# service never started: the check passes before them, saying so; then they are made here
+# as systemd would (and must go on purge).
+if [ ! -d /run/systemd/system ]; then
+  checked=$(kewd --check-config -c /etc/kew/kew.toml) || fail "kewd --check-config before the first start"
+  grep -q "^note: .*/var/log/kew does not exist yet; systemd creates it" <<<"$checked" ||
+    fail "kewd --check-config before the first start does not say systemd creates /var/log/kew: $checked"
+  mkdir -p /var/log/kew /var/lib/kew
+fi
 checked=$(kewd --check-config -c /etc/kew/kew.toml) || fail "kewd --check-config -c /etc/kew/kew.toml"
 # The installed kewd reads the installed aerodrome table by default.
 grep -q "^aerodromes file: /usr/share/kew/aerodromes.csv " <<<"$checked" ||

@@ -34,5 +34,22 @@ TEST(StreamTarget, ANatsTargetNeedsASubjectToPublishTo) {
   EXPECT_FALSE(parse_stream_target("nats://127.0.0.1/kew.feed", &error));    // no port
 }
 
+TEST(StreamTarget, ANatsTargetNamesEveryServerOfACluster) {
+  const auto one = parse_stream_target("nats://127.0.0.1:4222/kew.feed");
+  ASSERT_TRUE(one);
+  EXPECT_EQ(one->nats_servers, std::vector<std::string>{"nats://127.0.0.1:4222"});
+  const auto three = parse_stream_target("nats://127.0.0.1:4222,nats://127.0.0.1:4223,[::1]:4224/kew.feed");
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->nats_servers,
+            (std::vector<std::string>{"nats://127.0.0.1:4222", "nats://127.0.0.1:4223", "nats://[::1]:4224"}));
+  EXPECT_EQ(three->host, "127.0.0.1");
+  EXPECT_EQ(three->port, 4222);
+  EXPECT_EQ(three->subject, "kew.feed");
+  std::string error;
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1:4222,/kew.feed", &error));
+  EXPECT_FALSE(parse_stream_target("nats://127.0.0.1:4222,127.0.0.1/kew.feed", &error));  // no port
+  EXPECT_NE(error.find("127.0.0.1"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace kew::replay

@@ -50,14 +50,37 @@ void check_distinct_ports(const Config& c, const std::vector<Listener>& all) {
   }
 }
 
+/// The configuration being checked, with what the check accepts on trust.
+struct Check {
+  const Config& config;
+  const CheckOptions& options;
+  std::vector<std::string> notes;
+
+  /// `directory` is missing, systemd creates it before kewd starts, and it can (its
+  /// parent exists): noted, with `key` and `value` the setting that needs it.
+  bool left_to_systemd(const fs::path& directory, std::string_view key, const std::string& value) {
+    const fs::path normal = directory.lexically_normal();
+    bool listed = false;
+    for (const std::string& d : options.created_by_systemd) listed = listed || fs::path(d).lexically_normal() == normal;
+    std::error_code ec;
+    if (!listed || fs::exists(fs::symlink_status(normal, ec)) || !fs::is_directory(normal.parent_path(), ec))
+      return false;
+    notes.push_back(fmt::format("{} = \"{}\": {} does not exist yet; systemd creates it when kewd.service starts",
+                                key, value, normal.string()));
+    return true;
+  }
+};
+
 /// `path` is a file kewd appends to; `renames`: it also renames and removes it (rotation).
-void check_writable(const Config& c, std::string_view key, const std::string& path, bool renames) {
+void check_writable(Check& check, std::string_view key, const std::string& path, bool renames) {
+  const Config& c = check.config;
   if (path.empty()) return;
   const auto fail = [&](std::string_view why) { refuse(c, fmt::format("{} = \"{}\" {}", key, path, why)); };
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (fs::is_directory(status)) fail("is a directory");
   const fs::path directory = fs::path(path).parent_path();
+  if (check.left_to_systemd(directory, key, path)) return;
   if (!fs::is_directory(directory, ec))
     fail(fs::exists(directory, ec) ? fmt::format("cannot be created: {} is not a directory", directory.string())
                                    : fmt::format("cannot be created: its directory {} does not exist", directory.string()));
@@ -72,9 +95,11 @@ void check_writable(const Config& c, std::string_view key, const std::string& pa
 
 /// kewd creates the state directory when it is missing (a plain run; systemd creates
 /// StateDirectory=kew), so its parent must exist then.
-void check_state_directory(const Config& c) {
+void check_state_directory(Check& check) {
+  const Config& c = check.config;
   const std::string directory = state_directory(c.service);
   if (directory.empty()) return;
+  if (check.left_to_systemd(directory, "[service] state_directory", directory)) return;
   const auto fail = [&](std::string_view why) {
     refuse(c, fmt::format("[service] state_directory = \"{}\" {}", directory, why));
   };
@@ -104,16 +129,20 @@ std::vector<Listener> listeners(const Config& c) {
   return all;
 }
 
-void check_config(const Config& c, bool listen_any) {
+std::vector<std::string> systemd_directories() { return {KEW_SYSTEMD_LOGS_DIRECTORY, KEW_SYSTEMD_STATE_DIRECTORY}; }
+
+std::vector<std::string> check_config(const Config& c, const CheckOptions& options) {
   const std::vector<Listener> all = listeners(c);
-  for (const Listener& l : all) check_listen_address(c, l, listen_any);
+  for (const Listener& l : all) check_listen_address(c, l, options.listen_any);
   check_distinct_ports(c, all);
-  check_writable(c, "[service] alert_log", c.service.alert_log, true);
-  check_writable(c, "[service] record_file", c.service.record_file, false);
-  check_state_directory(c);
+  Check check{c, options, {}};
+  check_writable(check, "[service] alert_log", c.service.alert_log, true);
+  check_writable(check, "[service] record_file", c.service.record_file, false);
+  check_state_directory(check);
   if (!c.service.alert_log.empty() && c.service.alert_log == c.service.record_file)
     refuse(c, fmt::format("[service] record_file = \"{}\" is the alert log too: give each its own file",
                           c.service.record_file));
+  return std::move(check.notes);
 }
 
 }  // namespace kew::daemon

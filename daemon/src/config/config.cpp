@@ -91,8 +91,21 @@ void stream_name(TableReader& r, std::string_view key, std::string& out) {
            fmt::format("{} = \"{}\": a JetStream name has no '.', '*', '>', '/', '\\' or space", key, out));
 }
 
+/// `url_key` (one URL, or several comma-separated) or `list_key` (an array), not both.
+void server_list(TableReader& r, std::string_view url_key, std::string_view list_key, std::vector<std::string>& out) {
+  std::vector<std::string> from_url, from_list;
+  r.nats_servers(url_key, from_url);
+  r.nats_servers(list_key, from_list);
+  if (!from_url.empty() && !from_list.empty())
+    r.fail(r.node(list_key), fmt::format("give {} or {}, not both", list_key, url_key));
+  if (!from_url.empty()) out = std::move(from_url);
+  if (!from_list.empty()) out = std::move(from_list);
+}
+
 void read_nats(TableReader& r, NatsConfig& n) {
-  r.string("url", n.url);
+  server_list(r, "url", "servers", n.servers);
+  // JetStream keeps at most five copies of a stream.
+  r.integer("replicas", n.replicas, 1, 5);
   r.string("name", n.name);
   subject(r, "alerts_subject", n.alerts_subject, false);
   subject(r, "acks_subject", n.acks_subject, false);
@@ -112,7 +125,8 @@ void read_nats(TableReader& r, NatsConfig& n) {
   r.number("lease_ttl_s", n.lease_ttl_s, 0.2, 60.0);
   r.string("instance", n.instance);
   r.integer("standby_history", n.standby_history, 16, 10'000'000);
-  if (n.hot_standby && n.url.empty()) r.fail(r.node("hot_standby"), "hot_standby needs url: the lease is on NATS");
+  if (n.hot_standby && n.servers.empty())
+    r.fail(r.node("hot_standby"), "hot_standby needs url or servers: the lease is on NATS");
   // A new active learns from the stream what the last one published.
   if (n.hot_standby && n.stream.empty())
     r.fail(r.node("hot_standby"), "hot_standby needs stream: a takeover reads the last event sent from it");
@@ -125,7 +139,7 @@ void read_input(TableReader& r, InputConfig& in) {
   if (in.transport == Transport::File) r.path("address", in.address);
   else if (in.transport == Transport::Nats) subject(r, "address", in.address, true);
   else r.address("address", in.address);
-  r.string("nats_url", in.nats_url);
+  server_list(r, "nats_url", "nats_servers", in.nats_servers);
   stream_name(r, "durable", in.durable);
   stream_name(r, "stream", in.stream);
   r.number("stream_max_age_s", in.stream_max_age_s, 1.0, 10.0 * 365 * 86400);
@@ -154,6 +168,7 @@ void read_input(TableReader& r, InputConfig& in) {
   only_for("pace", Transport::File);
   only_for("speed", Transport::File);
   only_for("nats_url", Transport::Nats);
+  only_for("nats_servers", Transport::Nats);
   only_for("durable", Transport::Nats);
   only_for("stream", Transport::Nats);
   only_for("stream_max_age_s", Transport::Nats);
@@ -183,9 +198,12 @@ Config read_config(const config::Document& document) {
         r.fail(nullptr, "name \"" + input.name + "\" is the name of input " + std::to_string(k + 1) + " already");
     c.inputs.push_back(std::move(input));
   });
-  for (InputConfig& input : c.inputs)
-    if (input.transport == Transport::Nats && input.nats_url.empty())
-      input.nats_url = c.nats.url.empty() ? std::string(kDefaultNatsUrl) : c.nats.url;
+  for (InputConfig& input : c.inputs) {
+    if (input.transport != Transport::Nats) continue;
+    if (input.nats_servers.empty())
+      input.nats_servers = c.nats.servers.empty() ? std::vector<std::string>{std::string(kDefaultNatsUrl)} : c.nats.servers;
+    input.stream_replicas = c.nats.replicas;
+  }
   return c;
 }
 

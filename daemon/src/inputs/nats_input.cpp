@@ -14,6 +14,7 @@
 
 #include "nats_connection.hpp"
 #include "repeated_failure.hpp"
+#include "stream_replicas.hpp"
 
 namespace kew::daemon {
 
@@ -51,7 +52,7 @@ class NatsInput final : public Input {
   NatsInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
       : Input(std::move(config), std::move(options), std::move(handler)),
         io_(io),
-        connection_(config_.nats_url, "kewd input " + config_.name,
+        connection_(config_.nats_servers, "kewd input " + config_.name,
                     [name = config_.name](std::string_view event) { spdlog::info("input {}: {}", name, event); }),
         failures_("input " + config_.name) {
     decoder_ = make_stream_decoder();
@@ -213,15 +214,23 @@ class NatsInput final : public Input {
     stream.SubjectsLen = 1;
     stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
     stream.Storage = js_FileStorage;
+    stream.Replicas = config_.stream_replicas;
     jsStreamInfo* info = nullptr;
     jsErrCode error = static_cast<jsErrCode>(0);
     const natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
     jsStreamInfo_Destroy(info);
     if (s == NATS_OK) {
-      spdlog::info("input {}: created the JetStream stream {} for {}", config_.name, config_.stream, config_.address);
+      spdlog::info("input {}: created the JetStream stream {} for {} ({} replicas)", config_.name, config_.stream,
+                   config_.address, config_.stream_replicas);
       return true;
     }
-    if (error == kStreamNameInUse) return true;  // made by an earlier run or the operator
+    if (error == kStreamNameInUse) {
+      // Made by an earlier run or the operator: its subjects and limits stay theirs, its
+      // replicas follow [nats] replicas.
+      const std::string scaled = nats::ensure_replicas(connection_.jetstream(), config_.stream, config_.stream_replicas);
+      if (!scaled.empty()) spdlog::warn("input {}: {}", config_.name, scaled);
+      return true;
+    }
     failures_.report(fmt::format("cannot create the JetStream stream {}: {}", config_.stream, nats::describe(s)));
     return false;
   }

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "repeated_failure.hpp"
+#include "stream_replicas.hpp"
 
 namespace kew::daemon {
 
@@ -26,7 +27,7 @@ LeaderLease::LeaderLease(const NatsConfig& config, std::string instance, Handler
       // Every call answered within half the TTL, or given up: a slow server must not
       // keep the thread long past the moment it has to step down (may_speak() covers
       // the rest).
-      connection_(config.url, config.name + " lease",
+      connection_(config.servers, config.name + " lease",
                   [](std::string_view event) { spdlog::info("[nats] lease: {}", event); }, 1.0,
                   config.lease_ttl_s / 2.0) {
   thread_ = std::thread([this] { run(); });
@@ -58,7 +59,10 @@ bool LeaderLease::bind_bucket() {
   if (bucket_) return true;
   if (!connection_.connected()) return false;
   // The key expires lease_ttl_s after its last renewal.
-  bucket_ = nats::bind_key_value(connection_.jetstream(), config_.lease_bucket, config_.lease_ttl_s);
+  std::string scaled;
+  bucket_ = nats::bind_key_value(connection_.jetstream(), config_.lease_bucket, config_.lease_ttl_s, config_.replicas,
+                                 scaled);
+  if (!scaled.empty()) spdlog::warn("[nats] lease: {}", scaled);
   return bucket_ != nullptr;
 }
 

@@ -1,10 +1,13 @@
 #include "nats_connection.hpp"
 
+#include "stream_replicas.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace kew::nats {
 
@@ -34,17 +37,19 @@ std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_
   return seq;
 }
 
-kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s) {
+kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s, int replicas, std::string& scaled) {
   kvConfig kv;
   kvConfig_Init(&kv);
   kv.Bucket = name.c_str();
   kv.History = 1;
   kv.TTL = static_cast<std::int64_t>(ttl_s * 1e9);
   kv.StorageType = js_FileStorage;
+  kv.Replicas = replicas;
   kvStore* bucket = nullptr;
   if (js_CreateKeyValue(&bucket, jetstream, &kv) == NATS_OK) return bucket;
-  if (js_KeyValue(&bucket, jetstream, name.c_str()) == NATS_OK) return bucket;
-  return nullptr;
+  if (js_KeyValue(&bucket, jetstream, name.c_str()) != NATS_OK) return nullptr;
+  scaled = ensure_replicas(jetstream, bucket_stream(name), replicas);
+  return bucket;
 }
 
 namespace {
@@ -56,13 +61,25 @@ struct Options {
   ~Options() { natsOptions_Destroy(options); }
 };
 
+/// The server the connection is on now (of the list, or one its cluster announced).
+std::string connected_url(natsConnection* connection) {
+  char url[256] = "";
+  if (natsConnection_GetConnectedUrl(connection, url, sizeof url) != NATS_OK || url[0] == 0) return "?";
+  return url;
+}
+
 }  // namespace
 
-NatsConnection::NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
-                               double reconnect_wait_s, double request_wait_s)
-    : url_(url), on_event_(std::move(on_event)) {
+NatsConnection::NatsConnection(const std::vector<std::string>& servers, const std::string& name,
+                               EventHandler on_event, double reconnect_wait_s, double request_wait_s)
+    : servers_(fmt::format("{}", fmt::join(servers, ","))), on_event_(std::move(on_event)) {
   Options o;
-  check(natsOptions_SetURL(o.options, url.c_str()), fmt::format("NATS url \"{}\"", url));
+  // A list, never one comma-separated URL: natsOptions_SetURL would take that as one
+  // server and never reach any.
+  std::vector<const char*> urls;
+  for (const std::string& server : servers) urls.push_back(server.c_str());
+  check(natsOptions_SetServers(o.options, urls.data(), static_cast<int>(urls.size())),
+        fmt::format("NATS servers \"{}\"", servers_));
   check(natsOptions_SetName(o.options, name.c_str()), "NATS connection name");
   // For ever: a safety net outlives its bus's restarts.
   check(natsOptions_SetMaxReconnect(o.options, -1), "NATS reconnect");
@@ -82,9 +99,9 @@ NatsConnection::NatsConnection(const std::string& url, const std::string& name, 
   if (status == NATS_OK) {
     ++connects_;
   } else if (status == NATS_NOT_YET_CONNECTED) {
-    if (on_event_) on_event_(fmt::format("no NATS server at {} yet: connecting in the background", url_));
+    if (on_event_) on_event_(fmt::format("no NATS server at {} yet: connecting in the background", servers_));
   } else {
-    throw NatsError(fmt::format("NATS connection to {}", url_), status);
+    throw NatsError(fmt::format("NATS connection to {}", servers_), status);
   }
   jsOptions js_options;
   jsOptions_Init(&js_options);
@@ -124,10 +141,10 @@ void NatsConnection::on_closed(natsConnection*, void* self) {
 
 bool NatsConnection::connected() const { return natsConnection_Status(connection_) == NATS_CONN_STATUS_CONNECTED; }
 
-void NatsConnection::on_connected(natsConnection*, void* self) {
+void NatsConnection::on_connected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
-  if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", connected_url(connection)));
 }
 
 void NatsConnection::on_disconnected(natsConnection*, void* self) {
@@ -135,13 +152,13 @@ void NatsConnection::on_disconnected(natsConnection*, void* self) {
   // Called also when a first connection attempt fails: only a lost connection counts.
   if (c->connects_.load() == 0 || c->closing_) return;
   ++c->disconnects_;
-  if (c->on_event_) c->on_event_(fmt::format("lost the NATS server at {}: reconnecting", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("lost the NATS server: reconnecting to one of {}", c->servers_));
 }
 
-void NatsConnection::on_reconnected(natsConnection*, void* self) {
+void NatsConnection::on_reconnected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
-  if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", c->url_));
+  if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", connected_url(connection)));
 }
 
 void NatsConnection::on_error(natsConnection*, natsSubscription*, natsStatus status, void* self) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nats/nats.h>
 
@@ -44,10 +45,12 @@ void check(natsStatus status, std::string_view what);
 std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_t stream_seq);
 
 /// The key-value bucket `name` on file (a server restart keeps it), keeping one value per
-/// key, its values removed `ttl_s` seconds after their last write (0: never): made when
-/// missing, else bound as it is (another instance or an earlier run made it). Null when
-/// the server did not answer.
-kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s);
+/// key, its values removed `ttl_s` seconds after their last write (0: never), on
+/// `replicas` servers (1–5): made when missing, else bound as it is (another instance or
+/// an earlier run made it) and scaled to `replicas`, `scaled` then saying what was done
+/// or why it could not be (ensure_replicas, stream_replicas.hpp). Null when the server
+/// did not answer.
+kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s, int replicas, std::string& scaled);
 
 /// "no such stream", "timeout", …: the text of a status and the client's last error.
 std::string describe(natsStatus status);
@@ -55,13 +58,14 @@ std::string describe(natsStatus status);
 class NatsConnection {
  public:
   using EventHandler = std::function<void(std::string_view)>;
-  /// Connects to `url` ("nats://HOST:PORT", several comma-separated for a cluster) naming
-  /// the connection `name` on the server. Returns at once when no server answers: the
-  /// client keeps trying every `reconnect_wait_s` seconds (> 0), then and after any later
-  /// loss. Throws NatsError for a malformed URL or a client that cannot start.
+  /// Connects to one of `servers` ("nats://HOST:PORT" each, the servers of one cluster;
+  /// not empty) naming the connection `name` on the server. Returns at once when no
+  /// server answers: the client keeps trying every `reconnect_wait_s` seconds (> 0), then
+  /// and after any later loss, each listed server (and those the cluster announces) in
+  /// turn. Throws NatsError for a malformed URL or a client that cannot start.
   /// `request_wait_s` (> 0): how long a JetStream call waits for the server's answer;
   /// it is also the ping interval, so that a silent server is noticed that soon.
-  NatsConnection(const std::string& url, const std::string& name, EventHandler on_event,
+  NatsConnection(const std::vector<std::string>& servers, const std::string& name, EventHandler on_event,
                  double reconnect_wait_s = 1.0, double request_wait_s = 5.0);
   /// Closes, and returns once the client will call nothing of this object any more.
   ~NatsConnection();
@@ -74,16 +78,17 @@ class NatsConnection {
   /// Connections made (the first one included) and lost so far.
   std::uint64_t connects() const { return connects_.load(); }
   std::uint64_t disconnects() const { return disconnects_.load(); }
-  const std::string& url() const { return url_; }
+  /// The servers, comma-separated (for messages).
+  const std::string& servers() const { return servers_; }
 
  private:
-  static void on_connected(natsConnection*, void* self);
+  static void on_connected(natsConnection* connection, void* self);
   static void on_disconnected(natsConnection*, void* self);
-  static void on_reconnected(natsConnection*, void* self);
+  static void on_reconnected(natsConnection* connection, void* self);
   static void on_error(natsConnection*, natsSubscription*, natsStatus, void* self);
   static void on_closed(natsConnection*, void* self);
 
-  std::string url_;
+  std::string servers_;
   EventHandler on_event_;
   natsConnection* connection_ = nullptr;
   jsCtx* jetstream_ = nullptr;

@@ -42,7 +42,7 @@ NatsPublisher::NatsPublisher(const NatsConfig& config, std::string run_id, std::
       run_id_(std::move(run_id)),
       right_(std::move(right)),
       failures_("[nats]"),
-      connection_(config.url, config.name, [](std::string_view event) { spdlog::info("[nats] {}", event); }) {
+      connection_(config.servers, config.name, [](std::string_view event) { spdlog::info("[nats] {}", event); }) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -166,18 +166,29 @@ bool NatsPublisher::ensure_stream() {
   stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
   stream.MaxBytes = static_cast<std::int64_t>(config_.stream_max_bytes);
   stream.Storage = js_FileStorage;
+  stream.Replicas = config_.replicas;
   jsStreamInfo* info = nullptr;
   jsErrCode error = static_cast<jsErrCode>(0);
   natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
   if (s != NATS_OK && error == kStreamNameInUse) {
-    // Kept from an earlier run: its limits follow this configuration.
+    // Kept from an earlier run: its limits and replicas follow this configuration.
     error = static_cast<jsErrCode>(0);
     s = js_UpdateStream(&info, connection_.jetstream(), &stream, nullptr, &error);
+    if (s != NATS_OK) {
+      // It exists: alerts go on into it as it is, and the operator is told what differs.
+      failures_.report(fmt::format("the JetStream stream {} cannot take this configuration ({}, {}; {} replicas): "
+                                   "{}{}; publishing to it as it is",
+                                   config_.stream, alerts, config_.acks_subject, config_.replicas,
+                                   nats::describe(s),
+                                   error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
+      jsStreamInfo_Destroy(info);
+      return true;
+    }
   }
   jsStreamInfo_Destroy(info);
   if (s == NATS_OK) {
-    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {})", config_.stream, alerts,
-                 config_.acks_subject);
+    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {}; {} replicas)", config_.stream, alerts,
+                 config_.acks_subject, config_.replicas);
     return true;
   }
   failures_.report(fmt::format("cannot create the JetStream stream {}: {}{} (events wait in the outbox)",

@@ -33,7 +33,7 @@ PairFollower::PairFollower(const NatsConfig& config, std::string feed_stream, st
       last_seq_(last_seq),
       next_number_(next_number),
       handlers_(std::move(handlers)),
-      connection_(config.url, config.name + " pair",
+      connection_(config.servers, config.name + " pair",
                   [](std::string_view event) { spdlog::info("[nats] pair: {}", event); }) {
   thread_ = std::thread([this] { run(); });
 }
@@ -69,7 +69,9 @@ bool PairFollower::bind_bucket() {
   if (bucket_) return true;
   if (!connection_.connected()) return false;
   // Without a TTL: the pair's origin lasts as long as the pair.
-  bucket_ = nats::bind_key_value(connection_.jetstream(), config_.pair_bucket, 0.0);
+  std::string scaled;
+  bucket_ = nats::bind_key_value(connection_.jetstream(), config_.pair_bucket, 0.0, config_.replicas, scaled);
+  if (!scaled.empty()) spdlog::warn("[nats] pair: {}", scaled);
   return bucket_ != nullptr;
 }
 

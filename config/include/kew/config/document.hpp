@@ -70,6 +70,10 @@ class TableReader {
   void ip_list(std::string_view key, std::vector<std::string>& out);
   /// A list of host names (["kew.example"]): letters, digits, '-' and '.', kept lower-case.
   void host_name_list(std::string_view key, std::vector<std::string>& out);
+  /// NATS servers: an array of URLs (["nats://h1:4222", "nats://h2:4222"]), or one string
+  /// of comma-separated URLs, each checked with valid_nats_server (nats_servers.hpp); an
+  /// error quotes the entry and says what is wrong. "" and [] name none (out empty).
+  void nats_servers(std::string_view key, std::vector<std::string>& out);
   /// A file path that belongs with the configuration file (a table it names, as [regions]
   /// geojson): a relative path is resolved against the directory of the file being read
   /// (`origin`), kept absolute and normalised. "" stays "".

@@ -71,17 +71,21 @@ struct InputConfig {
   /// udp, tcp-server: `address` may be a wildcard, an interface or a multicast group
   /// (a real radar's feed); otherwise it must be loopback unless kewd runs --listen-any.
   bool allow_remote = false;
-  /// nats: the server(s), "nats://HOST:PORT" (comma-separated for a cluster); default:
-  /// [nats] url, else nats://127.0.0.1:4222.
-  std::string nats_url;
+  /// nats: the servers of one NATS cluster, "nats://HOST:PORT" each (keys nats_servers,
+  /// or nats_url: one URL or several comma-separated); the client connects to any and
+  /// reconnects to any. Default: [nats]'s servers, else kDefaultNatsUrl.
+  std::vector<std::string> nats_servers;
   /// nats: a JetStream durable consumer of this name reads the subject, so that a
   /// restarted kewd resumes after the last message it took; "" = a plain subscription
   /// (messages sent while kewd is away are not seen).
   std::string durable;
   /// nats with durable: the JetStream stream holding the subject; created for the
-  /// subject when missing (kept `stream_max_age_s`); "" = the stream that holds it.
+  /// subject when missing (kept `stream_max_age_s`, with [nats] replicas); "" = the
+  /// stream that holds it.
   std::string stream;
   double stream_max_age_s = 86400.0;
+  /// nats: replicas of the stream kewd creates ([nats] replicas, copied here; 1–5).
+  int stream_replicas = 1;
 };
 
 /// Where a NATS input connects when neither it nor [nats] names a server.
@@ -90,7 +94,13 @@ inline constexpr std::string_view kDefaultNatsUrl = "nats://127.0.0.1:4222";
 /// [nats]: alert events, acknowledgements and status published on a NATS server (design
 /// §5.9), the events kept in a JetStream stream for subscribers that were away.
 struct NatsConfig {
-  std::string url;  ///< "nats://HOST:PORT" (comma-separated for a cluster); "" = publish nothing
+  /// The servers of one NATS cluster, "nats://HOST:PORT" each (keys servers, or url: one
+  /// URL or several comma-separated); the client connects to any and reconnects to any.
+  /// Empty: publish nothing.
+  std::vector<std::string> servers;
+  /// Replicas (1–5) of what kewd creates in JetStream: the alert stream, the lease bucket
+  /// and the feed streams of durable NATS inputs; an existing one is updated to it.
+  int replicas = 1;
   std::string name = "kewd";                 ///< the connection's name on the server
   std::string alerts_subject = "kew.alerts"; ///< ALERT objects go to <alerts_subject>.<zone>
   std::string acks_subject = "kew.acks";     ///< ACK objects
@@ -249,8 +259,22 @@ struct Listener {
 /// udp and tcp-server inputs.
 std::vector<Listener> listeners(const Config& config);
 
+/// The directories systemd creates for kewd.service before it runs kewd (the unit's
+/// LogsDirectory= and StateDirectory=: /var/log/kew, /var/lib/kew), absolute.
+std::vector<std::string> systemd_directories();
+
+struct CheckOptions {
+  bool listen_any = false;  ///< kewd --listen-any
+  /// Directories that systemd creates before kewd starts (systemd_directories() for
+  /// `kewd --check-config`, which may run before the service ever started): one that is
+  /// missing while its parent directory exists passes, with a note. Empty when kewd is
+  /// about to start: what it writes to must exist then.
+  std::vector<std::string> created_by_systemd;
+};
+
 /// What the file alone cannot tell, checked by `kewd --check-config` and again before
-/// kewd starts, so that a file that passes the check does not fail at start. Throws
+/// kewd starts, so that a file that passes the check does not fail at start. Returns
+/// notes on what passed on trust (a directory systemd will create). Throws
 /// config::ConfigError naming the key and its value:
 /// - every listener binds a loopback address unless its table says allow_remote = true
 ///   or `listen_any` (kewd --listen-any);
@@ -258,7 +282,10 @@ std::vector<Listener> listeners(const Config& config);
 /// - alert_log and record_file are distinct, are not directories, and can be written:
 ///   an existing file writable, its directory existing and writable (the alert log
 ///   rotates by renaming in it; a new file is created in it);
-/// - the state directory is a writable directory, or can be created (its parent exists).
-void check_config(const Config& config, bool listen_any);
+/// - the state directory is a writable directory, or can be created (its parent exists);
+/// - a directory of `options.created_by_systemd` may be missing if its parent exists.
+std::vector<std::string> check_config(const Config& config, const CheckOptions& options);
+/// check_config for kewd about to start (nothing created by systemd on trust).
+inline void check_config(const Config& config, bool listen_any) { check_config(config, CheckOptions{listen_any, {}}); }
 
 }  // namespace kew::daemon

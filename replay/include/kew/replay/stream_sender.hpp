@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "kew/replay/recording_reader.hpp"
 
@@ -19,12 +20,16 @@ struct StreamTarget {
   std::string host;
   std::uint16_t port = 0;
   std::string subject;  ///< NATS only
+  /// NATS only: the servers of one cluster, "nats://HOST:PORT" each; the first is also
+  /// `host` and `port`.
+  std::vector<std::string> nats_servers;
 };
 
 /// "tcp://HOST:PORT", "udp://HOST:PORT", "nats://HOST:PORT/SUBJECT" or "HOST:PORT" (TCP),
 /// HOST:PORT as config::parse_host_port reads it (IPv6 in brackets, port 1–65535), the
-/// subject one to publish to (config::valid_nats_subject). Returns nullopt when
-/// malformed, with `*error` (when given) saying why.
+/// subject one to publish to (config::valid_nats_subject). NATS may name several servers
+/// of one cluster, comma-separated: "nats://h1:4222,h2:4222/SUBJECT" (each may repeat
+/// "nats://"). Returns nullopt when malformed, with `*error` (when given) saying why.
 std::optional<StreamTarget> parse_stream_target(std::string_view text, std::string* error = nullptr);
 
 struct StreamFigures {
