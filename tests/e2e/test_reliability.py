@@ -150,6 +150,68 @@ class Health(E2eCase):
         self.assertGreater(kewd.stats()["rejected"]["future_time"], 10)
 
 
+    def test_datagrams_the_kernel_drops_are_counted_and_make_kewd_degraded(self):
+        # The I/O thread held in a batch by the test hook stands for a kewd slower than its
+        # feed: the socket's receive buffer fills and the kernel drops the rest.
+        stall = self.path("stall")
+        kewd = self.start(UDP_FEED, env={"KEWD_TEST_STALL_FILE": stall})
+        watcher = Subscriber(kewd.alert_port)
+        target = ("127.0.0.1", kewd.input_port("feed"))
+        sender = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(sender.close)
+        start = time.time()
+
+        def feed_until(predicate, timeout_s, what):
+            """Sends a record of now every 0.25 s until `predicate` holds."""
+            deadline = time.monotonic() + timeout_s
+            while not predicate():
+                self.assertLess(time.monotonic(), deadline, f"timed out after {timeout_s} s waiting for {what}")
+                sender.sendto(lines([head_on("A", time.time(), start)]), target)
+                time.sleep(0.25)
+
+        def health():
+            alive = watcher.objects("ALIVE")
+            return alive[-1]["health"] if alive else None
+
+        def dropped():
+            return kewd.stats()["inputs"][0].get("datagrams_dropped", 0)
+
+        feed_until(lambda: health() == "healthy", 15, "ALIVE to say healthy")
+        self.assertEqual(dropped(), 0)
+        open(stall, "w").close()
+        sender.sendto(lines([head_on("A", time.time(), start)]), target)
+        kewd.wait_log("test hook: the pipeline is stalled")
+        # 20,000 datagrams of 1.4 kB (comment lines, skipped by the decoder): several times
+        # what a receive buffer of the kernel's largest default holds.
+        padding = b"# " + b"x" * 1400 + b"\n"
+        for _ in range(20000):
+            sender.sendto(padding, target)
+        os.unlink(stall)
+        kewd.wait_log("test hook: the pipeline runs again")
+        # The kernel tells its count with the first datagram it queues after the drops.
+        feed_until(lambda: dropped() > 0, 20, "?STATS to count the datagrams the kernel dropped")
+        feed_until(lambda: health() == "input_dropping", 10, "ALIVE to say input_dropping")
+        self.assertTrue(watcher.objects("ALIVE")[-1]["degraded"])
+        self.assertLess(dropped(), 20000)
+        with urllib.request.urlopen(f"http://127.0.0.1:{kewd.http_port}/metrics", timeout=5) as response:
+            metrics = response.read().decode()
+        self.assertRegex(metrics, r'kew_input_datagrams_dropped_total{input="feed"} [1-9][0-9]*\n')
+        # No more drops for 10 ALIVE intervals: healthy again.
+        feed_until(lambda: health() == "healthy", 30, "ALIVE to say healthy again")
+
+
+UDP_FEED = """
+[service]
+alert_listen = "127.0.0.1:0"
+
+[[input]]
+name = "feed"
+format = "ndjson"
+transport = "udp"
+address = "127.0.0.1:0"
+"""
+
+
 def feed_with(service="", feed="", rest=""):
     """FEED with extra [service] keys, extra keys of its input, then more tables."""
     head, table = FEED.split("[[input]]")
