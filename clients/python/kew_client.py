@@ -306,8 +306,8 @@ class Alive:
     degraded: bool
     """health is not "healthy"."""
     health: str
-    """"healthy", "no_data", "feed_stale", "records_refused", "alert_log_failing", "standby" or
-    "feed_unreachable"."""
+    """"healthy", "no_data", "feed_stale", "records_refused", "input_dropping", "alert_log_failing",
+    "standby" or "feed_unreachable"."""
     release: Optional[str] = None
     revision: Optional[str] = None
 

@@ -135,6 +135,7 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.modbus.table_entries, defaults.modbus.table_entries);
   EXPECT_EQ(file.modbus.read_only, defaults.modbus.read_only);
   EXPECT_EQ(file.modbus.max_connections, defaults.modbus.max_connections);
+  EXPECT_EQ(file.modbus.silent_per_address, defaults.modbus.silent_per_address);
   EXPECT_EQ(file.modbus.allow_remote, defaults.modbus.allow_remote);
   EXPECT_EQ(file.modbus.acknowledge_from, defaults.modbus.acknowledge_from);
   EXPECT_EQ(file.service.allow_remote, defaults.service.allow_remote);
@@ -194,6 +195,8 @@ coverage_radius_km = 2500
   EXPECT_THROW(parse_config("[pipeline]\nthreads = 300\n"), ConfigError);
   EXPECT_THROW(parse_config("[service]\nsilent_per_address = 0\n"), ConfigError);
   EXPECT_THROW(parse_config("[http]\nsilent_per_address = 0\n"), ConfigError);
+  EXPECT_THROW(parse_config("[modbus]\nsilent_per_address = 0\n"), ConfigError);
+  EXPECT_EQ(parse_config("[modbus]\nsilent_per_address = 2\n").modbus.silent_per_address, 2);
   EXPECT_EQ(parse_config("[service]\nsilent_per_address = 2\n[http]\nsilent_per_address = 9\n").http.silent_per_address,
             9u);
   EXPECT_THROW(parse_config("[pipeline]\nbatch_records = 0\n"), ConfigError);

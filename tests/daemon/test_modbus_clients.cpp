@@ -272,10 +272,20 @@ TEST_F(WithPymodbus, SilentAndGarbageClientsDoNotBlockOthers) {
   EXPECT_GE(s.server->stats().connections_dropped, 1u);
 }
 
+/// Reads input register 0 on `client` and waits for the answer: a panel, no longer silent.
+void poll_once(RawClient& client) {
+  client.send({0x00, 0x01, 0x00, 0x00, 0x00, 0x06, 0x01, 0x04, 0x00, 0x00, 0x00, 0x01});
+  ASSERT_EQ(client.receive(11).size(), 11u);
+}
+
 TEST_F(WithPymodbus, ConnectionLimitIsEnforced) {
   RunningServer s(false, 2);
+  // Two panels that have been answered hold the slots: neither is silent, so neither gives
+  // way to a newcomer (they are quiet far less than half the idle time-out).
   RawClient first(s.port());
   RawClient second(s.port());
+  poll_once(first);
+  poll_once(second);
   ASSERT_TRUE(wait_for([&] { return s.server->stats().connections_open == 2; }));
 
   const CommandResult refused = client(s, "read-input-registers 0 1");
@@ -287,6 +297,24 @@ TEST_F(WithPymodbus, ConnectionLimitIsEnforced) {
   const CommandResult served = client(s, "read-input-registers 0 1");
   EXPECT_EQ(served.exit_code, 0) << served.output;
   EXPECT_EQ(json_values(served.output), (std::vector<long>{1}));
+}
+
+// A silent client (no complete request yet) gives way to a newcomer at once, the
+// longest-silent first, by the rule every listener follows (design §6.6): a flood of
+// connections that reconnect before any of them is a second old cannot keep a panel out.
+TEST_F(WithPymodbus, ANewcomerReplacesTheLongestSilentClientAtOnce) {
+  RunningServer s(false, 2);
+  RawClient longest_silent(s.port());
+  ASSERT_TRUE(wait_for([&] { return s.server->stats().connections_open == 1; }));
+  RawClient silent(s.port());
+  ASSERT_TRUE(wait_for([&] { return s.server->stats().connections_open == 2; }));
+
+  const CommandResult served = client(s, "read-input-registers 0 1");
+  EXPECT_EQ(served.exit_code, 0) << served.output;
+  EXPECT_EQ(json_values(served.output), (std::vector<long>{1}));
+  EXPECT_TRUE(longest_silent.closed_by_peer());
+  EXPECT_EQ(s.server->stats().rejected.count("modbus_evicted"), 1u);
+  EXPECT_EQ(s.server->stats().connections_refused, 0u);
 }
 
 }  // namespace

@@ -149,6 +149,67 @@ class Health(E2eCase):
                                 first["registers"]["seconds_since_last_record"] + 2)
         self.assertGreater(kewd.stats()["rejected"]["future_time"], 10)
 
+    def test_datagrams_the_kernel_drops_are_counted_and_make_kewd_degraded(self):
+        # The I/O thread held in a batch by the test hook stands for a kewd slower than its
+        # feed: the socket's receive buffer fills and the kernel drops the rest.
+        stall = self.path("stall")
+        kewd = self.start(UDP_FEED, env={"KEWD_TEST_STALL_FILE": stall})
+        watcher = Subscriber(kewd.alert_port)
+        target = ("127.0.0.1", kewd.input_port("feed"))
+        sender = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.addCleanup(sender.close)
+        start = time.time()
+
+        def feed_until(predicate, timeout_s, what):
+            """Sends a record of now every 0.25 s until `predicate` holds."""
+            deadline = time.monotonic() + timeout_s
+            while not predicate():
+                self.assertLess(time.monotonic(), deadline, f"timed out after {timeout_s} s waiting for {what}")
+                sender.sendto(lines([head_on("A", time.time(), start)]), target)
+                time.sleep(0.25)
+
+        def health():
+            alive = watcher.objects("ALIVE")
+            return alive[-1]["health"] if alive else None
+
+        def dropped():
+            return kewd.stats()["inputs"][0].get("datagrams_dropped", 0)
+
+        feed_until(lambda: health() == "healthy", 15, "ALIVE to say healthy")
+        self.assertEqual(dropped(), 0)
+        open(stall, "w").close()
+        sender.sendto(lines([head_on("A", time.time(), start)]), target)
+        kewd.wait_log("test hook: the pipeline is stalled")
+        # 20,000 datagrams of 1.4 kB (comment lines, skipped by the decoder): several times
+        # what a receive buffer of the kernel's largest default holds.
+        padding = b"# " + b"x" * 1400 + b"\n"
+        for _ in range(20000):
+            sender.sendto(padding, target)
+        os.unlink(stall)
+        kewd.wait_log("test hook: the pipeline runs again")
+        # The kernel tells its count with the first datagram it queues after the drops.
+        feed_until(lambda: dropped() > 0, 20, "?STATS to count the datagrams the kernel dropped")
+        feed_until(lambda: health() == "input_dropping", 10, "ALIVE to say input_dropping")
+        self.assertTrue(watcher.objects("ALIVE")[-1]["degraded"])
+        self.assertLess(dropped(), 20000)
+        with urllib.request.urlopen(f"http://127.0.0.1:{kewd.http_port}/metrics", timeout=5) as response:
+            metrics = response.read().decode()
+        self.assertRegex(metrics, r'kew_input_datagrams_dropped_total{input="feed"} [1-9][0-9]*\n')
+        # No more drops for 10 ALIVE intervals: healthy again.
+        feed_until(lambda: health() == "healthy", 30, "ALIVE to say healthy again")
+
+
+UDP_FEED = """
+[service]
+alert_listen = "127.0.0.1:0"
+
+[[input]]
+name = "feed"
+format = "ndjson"
+transport = "udp"
+address = "127.0.0.1:0"
+"""
+
 
 def feed_with(service="", feed="", rest=""):
     """FEED with extra [service] keys, extra keys of its input, then more tables."""
@@ -342,14 +403,49 @@ class Connections(E2eCase):
         python = pymodbus_python()
         if python is None:
             self.skipTest("python3-pymodbus is not installed: the Modbus connections were NOT checked")
-        kewd, port = self.start_with_modbus()
+        # One address may hold every slot here, so that the 8 silent clients fill them.
+        kewd, port = self.start_with_modbus("silent_per_address = 8\n")
         self.silent(port, 8)
         wait_until(lambda: kewd.stats()["modbus"]["connections_open"] == 8, 10, "every Modbus slot taken")
-        # The panel replaces the client quiet longest (at least 1 s): it retries until then.
+        # The panel replaces the longest-silent client.
         wait_until(lambda: self.modbus(python, port, "read-input-registers", "0", "1")["ok"], 30,
                    "the panel to be served")
         stats = kewd.stats()["modbus"]
         self.assertGreaterEqual(stats["rejected"].get("modbus_evicted", 0), 1, stats)
+
+    def test_a_polling_panel_is_answered_under_a_flood_of_reconnecting_silent_connections(self):
+        python = pymodbus_python()
+        if python is None:
+            self.skipTest("python3-pymodbus is not installed: the Modbus connections were NOT checked")
+        kewd, port = self.start_with_modbus()  # max_connections 8, silent_per_address 4
+        # A scanner on another address: 24 connections that say nothing, each closed after
+        # 0.1-0.5 s and opened again at once, three times the slots.
+        stop = threading.Event()
+
+        def flood(seed):
+            pause = 0.1 + (seed % 5) * 0.1
+            while not stop.is_set():
+                try:
+                    with socket.create_connection(("127.0.0.1", port), timeout=2, source_address=("127.0.0.2", 0)):
+                        stop.wait(pause)
+                except OSError:
+                    stop.wait(0.05)
+
+        threads = [threading.Thread(target=flood, args=(i,), daemon=True) for i in range(24)]
+        for t in threads:
+            t.start()
+        self.addCleanup(lambda: [t.join(5) for t in threads])
+        self.addCleanup(stop.set)
+        wait_until(lambda: kewd.stats()["modbus"]["accepted"] >= 24, 10, "the flood to be under way")
+        # The panel polls once a second, each poll on a new connection as mbpoll does.
+        answered = 0
+        for _ in range(10):
+            began = time.monotonic()
+            answered += bool(self.modbus(python, port, "read-input-registers", "0", "1")["ok"])
+            time.sleep(max(0.0, 1.0 - (time.monotonic() - began)))
+        stats = kewd.stats()["modbus"]
+        self.assertGreaterEqual(answered, 9, stats)
+        self.assertGreater(stats["rejected"].get("modbus_evicted", 0), 0, stats)
 
     def test_idle_modbus_clients_are_closed(self):
         kewd, port = self.start_with_modbus("idle_timeout_s = 1\n")

@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const kew::daemon::Config config = kew::daemon::parse_config(text, "fuzz.toml");
     // What the reader accepted obeys its own ranges.
     if (config.service.max_subscribers < 1 || config.http.max_connections < 1 ||
-        config.service.silent_per_address < 1 || config.http.silent_per_address < 1)
+        config.service.silent_per_address < 1 || config.http.silent_per_address < 1 ||
+        config.modbus.silent_per_address < 1)
       std::abort();
   } catch (const kew::config::ConfigError& e) {
     if (std::string_view(e.what()).empty()) std::abort();  // a refusal always says why

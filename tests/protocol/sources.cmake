@@ -15,5 +15,6 @@ set(KEW_PROTOCOL_TESTS
   test_opensky.cpp
   test_readsb.cpp
   test_sbs.cpp
+  test_text_field_rules.cpp
 )
 list(TRANSFORM KEW_PROTOCOL_TESTS PREPEND ${PROJECT_SOURCE_DIR}/tests/protocol/)

@@ -140,7 +140,7 @@ TEST(NdjsonDecoder, BadLinesAreCountedByReasonWithTheirLineNumberAndLaterLinesDe
       "{\"t\":1,\"id\":7,\"lat\":1,\"lon\":2,\"alt_ft\":3}\n" +                  // 5 wrong_type
       "{\"t\":1,\"id\":\"A\",\"lat\":91,\"lon\":2,\"alt_ft\":3}\n" +             // 6 lat range
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":-180.5,\"alt_ft\":3}\n" +         // 7 lon range
-      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"gs_kt\":-1}\n" + // 8 gs range
+      "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"gs_kt\":-1}\n" + // 8 decoded
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3,\"sq\":\"7800\"}\n" +  // 9 bad sq
       "{\"t\":1,\"id\":\"\",\"lat\":1,\"lon\":2,\"alt_ft\":3}\n" +               // 10 bad_id
       "{\"t\":1e999,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt_ft\":3}\n" +          // 11 bad_number
@@ -156,23 +156,25 @@ TEST(NdjsonDecoder, BadLinesAreCountedByReasonWithTheirLineNumberAndLaterLinesDe
       good +                                                                     // 21
       "{\"t\":1,\"id\":\"A\",\"lat\":1,\"lon\":2,\"alt";                         // 22 truncated
   const auto reports = decode_all(*decoder, input);
-  ASSERT_EQ(reports.size(), 2u);
-  EXPECT_EQ(reports[1].id, "OK");
+  ASSERT_EQ(reports.size(), 3u);
+  // A bad optional field is the track table's to drop (design §4.3): the line is decoded.
+  EXPECT_EQ(reports[1].gs_kt, -1.0);
+  EXPECT_EQ(reports[2].id, "OK");
   const Rejections& r = decoder->rejections();
   EXPECT_EQ(r.by_reason(), (test::Counts{{"bad_address", 3}, {"bad_id", 1}, {"bad_json", 3},
                                           {"bad_mode3a", 1}, {"bad_number", 1},
-                                          {"gs_out_of_range", 1}, {"lat_out_of_range", 1},
+                                          {"lat_out_of_range", 1},
                                           {"line_too_long", 1}, {"lon_out_of_range", 1},
                                           {"missing_field", 1}, {"truncated", 1},
                                           {"wrong_type", 5}}));
-  ASSERT_EQ(messages.size(), 20u);
+  ASSERT_EQ(messages.size(), 19u);
   EXPECT_NE(messages[0].find("line 2"), std::string::npos) << messages[0];
   EXPECT_NE(messages[1].find("line 3"), std::string::npos) << messages[1];
   EXPECT_NE(messages[1].find("alt_ft"), std::string::npos) << messages[1];
-  EXPECT_NE(messages[10].find("line 12"), std::string::npos) << messages[10];
-  EXPECT_NE(messages[15].find("line 17"), std::string::npos) << messages[15];
-  EXPECT_NE(messages[15].find("addr"), std::string::npos) << messages[15];
-  EXPECT_NE(messages[19].find("line 22"), std::string::npos) << messages[19];
+  EXPECT_NE(messages[9].find("line 12"), std::string::npos) << messages[9];
+  EXPECT_NE(messages[14].find("line 17"), std::string::npos) << messages[14];
+  EXPECT_NE(messages[14].find("addr"), std::string::npos) << messages[14];
+  EXPECT_NE(messages[18].find("line 22"), std::string::npos) << messages[18];
 }
 
 TEST(NdjsonDecoder, OverlongLineSplitAcrossFeedsIsSkippedToItsNewline) {

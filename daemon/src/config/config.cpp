@@ -54,6 +54,7 @@ void read_modbus(TableReader& r, ModbusConfig& m) {
   r.boolean("read_only", m.read_only);
   r.integer("max_connections", m.max_connections, 1, 256);
   r.number("idle_timeout_s", m.idle_timeout_s, 0.1, 3600.0);
+  r.integer("silent_per_address", m.silent_per_address, 1, 256);
   r.boolean("allow_remote", m.allow_remote);
   r.ip_list("acknowledge_from", m.acknowledge_from);
 }

@@ -97,6 +97,10 @@ void write_inputs(Exposition& e, const std::vector<InputMetrics>& inputs) {
       e.sample("kew_records_rejected_total", {{"input", in.name}, {"reason", reason}}, num(n));
   e.family("kew_input_received_bytes_total", "counter", "Bytes received by each input.");
   for (const InputMetrics& in : inputs) e.sample("kew_input_received_bytes_total", {{"input", in.name}}, num(in.bytes));
+  e.family("kew_input_datagrams_dropped_total", "counter",
+           "Datagrams the kernel dropped before kewd read them (UDP inputs: the receive buffer was full).");
+  for (const InputMetrics& in : inputs)
+    e.sample("kew_input_datagrams_dropped_total", {{"input", in.name}}, num(in.datagrams_dropped));
   e.family("kew_input_last_record_timestamp_seconds", "gauge",
            "Wall-clock time (Unix seconds) each input last delivered a decoded record; absent before the first.");
   for (const InputMetrics& in : inputs)

@@ -39,6 +39,7 @@ struct InputMetrics {
   std::string name;
   std::uint64_t records = 0;  ///< decoded
   std::uint64_t bytes = 0;
+  std::uint64_t datagrams_dropped = 0;  ///< by the kernel before kewd read them (UDP)
   /// Its decoders' refusals and the pipeline's refusals of its records, by reason.
   Rejections rejected;
   std::optional<double> last_record_unix_s;  ///< wall clock of its last decoded record

@@ -15,6 +15,7 @@
 
 #include "nats_input.hpp"
 #include "accept_guard.hpp"
+#include "udp_receiver.hpp"
 #include "kew/config/address.hpp"
 #include "kew/config/utc_day.hpp"
 #include "kew/replay/pacer.hpp"
@@ -58,7 +59,7 @@ Endpoint resolve_endpoint(asio::io_context& io, const std::string& address) {
 class UdpInput final : public Input {
  public:
   UdpInput(asio::io_context& io, InputConfig config, protocol::DecoderOptions options, ReportHandler handler)
-      : Input(std::move(config), std::move(options), std::move(handler)), socket_(io), buffer_(65536) {
+      : Input(std::move(config), std::move(options), std::move(handler)), socket_(io), buffer_(kMaxDatagramBytes) {
     const udp::endpoint endpoint = resolve_endpoint<udp::endpoint>(io, config_.address);
     socket_.open(endpoint.protocol());
     socket_.set_option(udp::socket::reuse_address(true));
@@ -74,6 +75,7 @@ class UdpInput final : public Input {
     } else {
       socket_.bind(endpoint);
     }
+    receiver_.emplace(socket_.native_handle());
     decoder_ = make_stream_decoder();
   }
   void start() override { receive(); }
@@ -85,25 +87,47 @@ class UdpInput final : public Input {
   std::uint16_t bound_port() const override { return socket_.local_endpoint().port(); }
 
  private:
+  // The largest UDP payload; a longer datagram cannot exist, one cut by a smaller
+  // buffer would be counted oversized.
+  static constexpr std::size_t kMaxDatagramBytes = 65536;
+  // Datagrams read per wake-up: a flood on one input leaves the I/O thread to the other
+  // handlers between rounds.
+  static constexpr std::size_t kDatagramsPerRound = 64;
+
   void add_open_stream_rejections(Rejections& out) const override {
     if (decoder_ && socket_.is_open()) out.merge(decoder_->rejections());
   }
+  std::uint64_t datagrams_dropped() const override { return receiver_ ? receiver_->dropped() : 0; }
   void receive() {
-    socket_.async_receive_from(asio::buffer(buffer_), sender_, [this](const boost::system::error_code& ec, std::size_t n) {
-      if (ec == asio::error::operation_aborted) return;
-      if (ec == asio::error::message_size) {
-        ++figures_.oversized_datagrams;
-      } else if (!ec) {
-        // Each datagram is one message, decoded alone: one sender's garbage or missing
-        // final newline never joins another's next datagram.
-        feed_message(*decoder_, buffer_.data(), n);
-      }
+    socket_.async_wait(udp::socket::wait_read, [this](const boost::system::error_code& ec) {
+      if (ec == asio::error::operation_aborted || !socket_.is_open()) return;
+      if (!ec) read_waiting_datagrams();
       if (socket_.is_open()) receive();
     });
   }
+  void read_waiting_datagrams() {
+    for (std::size_t round = 0; round < kDatagramsPerRound && socket_.is_open(); ++round) {
+      std::size_t n = 0;
+      switch (receiver_->receive(buffer_, n)) {
+        case UdpReceiver::Outcome::Datagram:
+          // Each datagram is one message, decoded alone: one sender's garbage or missing
+          // final newline never joins another's next datagram.
+          feed_message(*decoder_, buffer_.data(), n);
+          break;
+        case UdpReceiver::Outcome::Truncated:
+          ++figures_.oversized_datagrams;
+          break;
+        case UdpReceiver::Outcome::Empty:
+          return;
+        case UdpReceiver::Outcome::Failed:
+          // An ICMP error queued on the socket and the like: the next read goes on.
+          break;
+      }
+    }
+  }
 
   udp::socket socket_;
-  udp::endpoint sender_;
+  std::optional<UdpReceiver> receiver_;  // reads socket_, set once it is bound
   std::vector<char> buffer_;
   std::unique_ptr<protocol::Decoder> decoder_;
 };

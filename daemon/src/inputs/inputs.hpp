@@ -45,10 +45,14 @@ class Input {
   protocol::InputStatistics statistics() const {
     protocol::InputStatistics s = figures_;
     s.name = config_.name;
+    s.datagrams_dropped = datagrams_dropped();
     add_open_stream_rejections(s.rejected);
     add_live_figures(s);
     return s;
   }
+  /// UDP: datagrams the kernel dropped before kewd could read them (its receive buffer
+  /// was full), as known so far; other transports lose none there.
+  virtual std::uint64_t datagrams_dropped() const { return 0; }
 
  protected:
   Input(InputConfig config, protocol::DecoderOptions options, ReportHandler handler)

@@ -15,12 +15,14 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
 
 #include "libmodbus_context.hpp"
 #include "kew/config/address.hpp"
+#include "slot_policy.hpp"
 
 namespace kew::daemon {
 namespace {
@@ -93,6 +95,7 @@ struct Client {
   protocol::MbapFramer framer;
   Clock::time_point last_request;
   std::string peer;          ///< "HOST:PORT", for acknowledgements and logs
+  std::string address;       ///< the peer's HOST alone, as the slot policy compares them
   bool may_write = true;     ///< in acknowledge_from, or that list is empty
   bool requested = false;    ///< has completed a request (a panel, not a silent socket)
 };
@@ -244,7 +247,8 @@ class ModbusServer::Impl {
       if (fd < 0) break;
       accept_backoff_ = kAcceptBackoff;
       const Clock::time_point now = Clock::now();
-      if (clients_.size() >= static_cast<std::size_t>(config_.max_connections)) evict_oldest_idle(now);
+      const config::HostPort peer = peer_of(fd);
+      make_room(peer.host, now);
       std::erase_if(clients_, [](const Client& c) { return !c.socket.valid(); });
       std::lock_guard lock(stats_mutex_);
       if (clients_.size() >= static_cast<std::size_t>(config_.max_connections)) {
@@ -254,10 +258,9 @@ class ModbusServer::Impl {
         continue;
       }
       ++stats_.connections_accepted;
-      const config::HostPort peer = peer_of(fd);
       const auto& allowed = config_.acknowledge_from;
       const bool may_write = allowed.empty() || std::find(allowed.begin(), allowed.end(), peer.host) != allowed.end();
-      clients_.push_back(Client{UniqueFd(fd), {}, now, config::to_string(peer), may_write});
+      clients_.push_back(Client{UniqueFd(fd), {}, now, config::to_string(peer), peer.host, may_write});
     }
     if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
       // The connection stays in the backlog; try again later, not at once.
@@ -268,25 +271,34 @@ class ModbusServer::Impl {
     }
   }
 
-  /// Makes room for a new client: drops the client quiet longest among those that never
-  /// completed a request and are quiet kEvictableAfter; else the one quiet longest if
-  /// quiet half the idle timeout. A panel that polls every few seconds is never evicted
-  /// by a burst of connections (review finding).
-  void evict_oldest_idle(Clock::time_point now) {
-    const auto quietest = [&](bool silent_only) {
-      auto best = clients_.end();
-      for (auto it = clients_.begin(); it != clients_.end(); ++it) {
-        if (silent_only && it->requested) continue;
-        if (best == clients_.end() || it->last_request < best->last_request) best = it;
-      }
-      return best;
-    };
-    if (auto silent = quietest(true); silent != clients_.end() && now - silent->last_request >= kEvictableAfter) {
-      drop(*silent, "modbus_evicted");
+  /// Makes room for a new client from `address` by the rule every listener follows
+  /// (design §6.6, slot_policy.hpp): a client that has completed no request is silent
+  /// since it connected; one address holds at most silent_per_address silent clients,
+  /// and when every slot is taken the longest-silent client of the address holding the
+  /// most gives way. A client once answered is a panel and never silent: a reconnecting
+  /// flood cannot push it out. When every slot holds one, the one quiet longest gives way
+  /// if quiet half the idle timeout, so that clients which asked once and went quiet do
+  /// not hold every slot for the whole idle timeout.
+  void make_room(std::string_view address, Clock::time_point now) {
+    std::vector<SlotHolder> holders;
+    holders.reserve(clients_.size());
+    std::size_t open = 0;
+    for (const Client& c : clients_) {
+      holders.push_back({c.address, c.socket.valid() && !c.requested, c.last_request});
+      open += c.socket.valid() ? 1 : 0;
+    }
+    const bool every_slot_taken = open >= static_cast<std::size_t>(config_.max_connections);
+    if (const auto i = connection_to_evict(holders, address, static_cast<std::size_t>(config_.silent_per_address),
+                                               every_slot_taken)) {
+      drop(clients_[*i], "modbus_evicted");
       return;
     }
-    if (auto oldest = quietest(false); oldest != clients_.end() && now - oldest->last_request >= idle_timeout_ / 2)
-      drop(*oldest, "modbus_evicted");
+    if (!every_slot_taken) return;
+    auto quietest = clients_.end();
+    for (auto it = clients_.begin(); it != clients_.end(); ++it) {
+      if (it->socket.valid() && (quietest == clients_.end() || it->last_request < quietest->last_request)) quietest = it;
+    }
+    if (quietest != clients_.end() && now - quietest->last_request >= idle_timeout_ / 2) drop(*quietest, "modbus_evicted");
   }
 
   void drop_idle_clients(Clock::time_point now) {

@@ -2,8 +2,8 @@
 
 namespace kew::daemon {
 
-void FeedHealth::sample(std::uint64_t offered, std::uint64_t accepted) {
-  history_[samples_ % history_.size()] = {offered, accepted};
+void FeedHealth::sample(std::uint64_t offered, std::uint64_t accepted, std::uint64_t input_losses) {
+  history_[samples_ % history_.size()] = {offered, accepted, input_losses};
   ++samples_;
 }
 
@@ -19,6 +19,12 @@ protocol::HealthReason FeedHealth::reason(Clock::time_point now) const {
     const std::uint64_t offered = newest.offered - oldest.offered;
     const std::uint64_t accepted = newest.accepted - oldest.accepted;
     if (offered >= kMinOffered && 2 * accepted < offered) return HealthReason::RecordsRefused;
+  }
+  if (samples_ >= 1) {
+    // Counted from zero at the start: a loss before the first sample counts too.
+    const std::uint64_t losses_before =
+        samples_ > kWindow ? history_[(samples_ - 1 - kWindow) % history_.size()].input_losses : 0;
+    if (history_[(samples_ - 1) % history_.size()].input_losses > losses_before) return HealthReason::InputDropping;
   }
   return HealthReason::Healthy;
 }

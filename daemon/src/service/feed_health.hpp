@@ -1,7 +1,8 @@
 #pragma once
 // Whether kewd's picture of the traffic can be trusted (design §6.6). A safety net that
-// has silently stopped seeing traffic is worse than one that says so: every interface
-// (ALIVE, Modbus discrete inputs 4-5 and register 4, CAT004 Alive) reports this verdict.
+// has silently stopped seeing traffic, or some of it, is worse than one that says so:
+// every interface (ALIVE, Modbus discrete inputs 4-5 and register 4, CAT004 Alive)
+// reports this verdict.
 
 #include "kew/protocol/encoders/alert_json.hpp"
 
@@ -24,9 +25,10 @@ class FeedHealth {
   void accepted(Clock::time_point now) { last_accepted_ = now; }
 
   /// At every ALIVE (once a second by default): the running totals of records offered to
-  /// the pipeline and accepted by it. The last kWindow samples judge "most records
-  /// refused".
-  void sample(std::uint64_t offered, std::uint64_t accepted);
+  /// the pipeline and accepted by it, and of the datagrams and messages the inputs lost
+  /// before kewd read them. The last kWindow samples judge "most records refused" and
+  /// "an input is dropping": a loss keeps the verdict for kWindow samples.
+  void sample(std::uint64_t offered, std::uint64_t accepted, std::uint64_t input_losses);
 
   protocol::HealthReason reason(Clock::time_point now) const;
 
@@ -41,7 +43,7 @@ class FeedHealth {
   double stale_after_s_;
   std::optional<Clock::time_point> last_accepted_;
   struct Totals {
-    std::uint64_t offered = 0, accepted = 0;
+    std::uint64_t offered = 0, accepted = 0, input_losses = 0;
   };
   std::array<Totals, kWindow + 1> history_{};  // running totals, oldest overwritten
   std::size_t samples_ = 0;

@@ -299,7 +299,12 @@ void Service::tick() {
 
 void Service::alive() {
   const auto now = std::chrono::steady_clock::now();
-  status_.sample(now);
+  std::uint64_t input_losses = 0;
+  for (const auto& input : inputs_) {
+    const protocol::InputStatistics figures = input->statistics();
+    input_losses += figures.datagrams_dropped + figures.messages_dropped;
+  }
+  status_.sample(now, input_losses);
   fan_out_->alive({status_.alive(now, conditions()), data_clock_now(), last_alert_seq_});
 }
 
@@ -383,7 +388,8 @@ std::string Service::metrics_text() const {
   for (std::size_t i = 0; i < service.inputs.size(); ++i) {
     const protocol::InputStatistics& in = service.inputs[i];
     const RecordIntake::InputFigures& figures = intake_->figures(i);
-    http::InputMetrics metrics{in.name, in.reports, in.bytes, in.rejected, figures.last_record_unix_s};
+    http::InputMetrics metrics{in.name, in.reports, in.bytes, in.datagrams_dropped, in.rejected,
+                               figures.last_record_unix_s};
     metrics.rejected.merge(figures.pipeline_refused);
     m.inputs.push_back(std::move(metrics));
   }

@@ -9,7 +9,7 @@ ServiceStatus::ServiceStatus(const Pipeline& pipeline, double track_timeout_s)
       started_unix_s_(std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()),
       last_sample_(started_) {}
 
-void ServiceStatus::sample(Clock::time_point now) {
+void ServiceStatus::sample(Clock::time_point now, std::uint64_t input_losses) {
   const double span = std::chrono::duration<double>(now - last_sample_).count();
   const PipelineStatistics s = pipeline_.statistics();
   const std::uint64_t updates = pipeline_.kinetic_statistics().updates;
@@ -23,7 +23,7 @@ void ServiceStatus::sample(Clock::time_point now) {
   // Targets on the ground are left out by configuration, not refused for a fault: a
   // receiver beside an airport at night sees mostly those and is healthy.
   const std::uint64_t on_ground = pipeline_.rejections().count(track::kRefusalNames.name(track::Refusal::OnGround));
-  feed_.sample(s.records - on_ground, s.accepted);
+  feed_.sample(s.records - on_ground, s.accepted, input_losses);
 }
 
 protocol::HealthReason ServiceStatus::health(Clock::time_point now, const Conditions& conditions) const {

@@ -30,8 +30,10 @@ class ServiceStatus {
 
   /// A record was applied now.
   void record_applied(Clock::time_point now) { feed_.accepted(now); }
-  /// Once per ALIVE: the rates since the last sample, and the feed's share of refusals.
-  void sample(Clock::time_point now);
+  /// Once per ALIVE: the rates since the last sample, the feed's share of refusals, and
+  /// `input_losses`, the datagrams and messages every input has lost before kewd read
+  /// them since the start.
+  void sample(Clock::time_point now, std::uint64_t input_losses);
 
   /// The alert log first (the feed's state is also told by register 4 and ALIVE's "t", a
   /// lost record of the alerts by nothing else), then standby (a display connected to a

@@ -193,6 +193,7 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     i.integer("connections_idle", input.connections_idle);
     i.integer("accept_failures", input.accept_failures);
     i.integer("oversized_datagrams", input.oversized_datagrams);
+    i.integer("datagrams_dropped", input.datagrams_dropped);
     i.integer("messages_dropped", input.messages_dropped);
     i.rejections("rejected", input.rejected);
     i.close();

@@ -136,13 +136,15 @@ class OpenskyCsvDecoder final : public text::LineDecoder {
   }
 
   /// An optional numeric column through `convert`; false when present but not a number.
+  /// NaN and infinities are numbers here: check_report() refuses a non-finite time or
+  /// altitude, the track table drops a non-finite velocity field (design §4.3).
   bool optional_number(std::size_t column, double (*convert)(double),
                        std::optional<double>& out) const {
     out.reset();
     const std::string_view text = field(column);
     if (text.empty()) return true;
     double value = 0;
-    if (!text::parse_finite_double(text, value)) return false;
+    if (!text::parse_double(text, value)) return false;
     out = convert(value);
     return true;
   }

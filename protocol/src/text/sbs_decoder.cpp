@@ -84,12 +84,13 @@ bool parse_sbs_time(std::string_view date, std::string_view time, double& second
   return true;
 }
 
-/// An optional numeric field: empty → nullopt; false when present but not a number.
+/// An optional numeric field: empty → nullopt; false when present but not a number. NaN
+/// and infinities are numbers here: the track table drops such a field (design §4.3).
 bool parse_optional(std::string_view field, std::optional<double>& out) {
   out.reset();
   if (text::trim(field).empty()) return true;
   double value = 0;
-  if (!text::parse_finite_double(field, value)) return false;
+  if (!text::parse_double(field, value)) return false;
   out = value;
   return true;
 }

@@ -14,14 +14,21 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-bool parse_finite_double(std::string_view s, double& out) {
+bool parse_double(std::string_view s, double& out) {
   s = trim(s);
   if (s.empty()) return false;
   // from_chars refuses a leading '+', which some CSV writers emit.
   if (s.front() == '+') s.remove_prefix(1);
   double value = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(value)) return false;
+  if (ec != std::errc() || end != s.data() + s.size()) return false;
+  out = value;
+  return true;
+}
+
+bool parse_finite_double(std::string_view s, double& out) {
+  double value = 0;
+  if (!parse_double(s, value) || !std::isfinite(value)) return false;
   out = value;
   return true;
 }
@@ -110,6 +117,21 @@ void clear_report(TrackReport& report) {
   report.track_end = false;
 }
 
+namespace {
+
+/// See check_report(): one turn either way is a convention, further is no angle.
+void bring_track_angle_into_one_turn(std::optional<double>& track) {
+  constexpr double kTurn = 360.0;
+  if (!track || !(*track >= -kTurn && *track < 2 * kTurn)) return;
+  double angle = *track;
+  if (angle < 0.0) angle += kTurn;
+  // Also a tiny negative angle, whose sum with 360 rounds to exactly 360.
+  if (angle >= kTurn) angle -= kTurn;
+  track = angle;
+}
+
+}  // namespace
+
 LineResult check_report(TrackReport& report) {
   if (report.id.empty()) return problem("bad_id", "empty id");
   if (!std::isfinite(report.t)) return problem("bad_number", "time is not finite");
@@ -118,21 +140,7 @@ LineResult check_report(TrackReport& report) {
   if (!std::isfinite(report.lon_deg) || report.lon_deg < -180.0 || report.lon_deg > 180.0)
     return problem("lon_out_of_range", fmt::format("lon {} outside [-180, 180]", report.lon_deg));
   if (!std::isfinite(report.alt_ft)) return problem("bad_number", "altitude is not finite");
-  if (report.gs_kt && (!std::isfinite(*report.gs_kt) || *report.gs_kt < 0.0))
-    return problem("gs_out_of_range", fmt::format("ground speed {} kt < 0", *report.gs_kt));
-  if (report.vr_fpm && !std::isfinite(*report.vr_fpm))
-    return problem("bad_number", "vertical rate is not finite");
-  if (report.trk_deg) {
-    double track = *report.trk_deg;
-    if (!std::isfinite(track)) return problem("bad_number", "track angle is not finite");
-    if (track < 0.0 || track >= 360.0) {
-      track = std::fmod(track, 360.0);
-      if (track < 0.0) track += 360.0;
-      // fmod of a tiny negative value plus 360 rounds to exactly 360.
-      if (track >= 360.0) track = 0.0;
-      report.trk_deg = track;
-    }
-  }
+  bring_track_angle_into_one_turn(report.trk_deg);
   return std::nullopt;
 }
 

@@ -36,8 +36,11 @@ inline double unchanged(double value) { return value; }
 /// Removes ASCII spaces and tabs (and a CR) at both ends.
 std::string_view trim(std::string_view s);
 
-/// Parses the whole of `s` (surrounding blanks allowed) as a finite decimal number.
-/// False for empty text, trailing garbage, NaN and infinities.
+/// Parses the whole of `s` (surrounding blanks allowed) as a decimal number, "nan" and
+/// "inf" included. False for empty text and trailing garbage.
+bool parse_double(std::string_view s, double& out);
+
+/// parse_double(), and false for NaN and infinities.
 bool parse_finite_double(std::string_view s, double& out);
 
 /// A 24-bit ICAO address as 6 hex digits, optionally prefixed by '~' (readsb and
@@ -68,11 +71,14 @@ std::int64_t days_from_civil(std::int64_t year, unsigned month, unsigned day);
 /// reusing one report allocates nothing per record.
 void clear_report(TrackReport& report);
 
-/// The checks every decoded report passes before it leaves a decoder: non-empty id,
-/// finite time and altitude, latitude in [-90, 90], longitude in [-180, 180], ground
-/// speed finite and >= 0, finite vertical rate. A finite track angle is wrapped into
-/// [0, 360) (sources use -180..180 too). Plausibility (absurd speeds, time order) is the
-/// track table's business, not the decoder's.
+/// The checks every decoded report passes before it leaves a decoder, on its required
+/// fields only: non-empty id, finite time and altitude, latitude in [-90, 90], longitude
+/// in [-180, 180]. The optional fields are passed on as the source gave them: a negative
+/// or non-finite speed, an absurd vertical rate cost only that field, which the track
+/// table drops and counts in fields_dropped (design §4.3). A track angle within one turn
+/// of [0, 360), that is in [-360, 720) (sources use -180..180, some write 360 for north),
+/// is brought into [0, 360); any other one is left as it is, never wrapped, and dropped
+/// there as out of range.
 LineResult check_report(TrackReport& report);
 
 }  // namespace kew::protocol::text

@@ -178,6 +178,9 @@ struct ModbusConfig {
   int max_connections = 8;
   /// A client that completes no request for this long is disconnected, s.
   double idle_timeout_s = 10.0;
+  /// Clients that have completed no request one address may hold (at least 1); one more
+  /// from it closes its longest-silent.
+  int silent_per_address = 4;
   bool allow_remote = false;  ///< `listen` may be other than loopback
   /// Client addresses (canonical_ip form) whose writes are served; empty: every client.
   std::vector<std::string> acknowledge_from;

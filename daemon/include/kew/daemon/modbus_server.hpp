@@ -19,12 +19,14 @@ namespace kew::daemon {
 
 class ModbusServer {
  public:
-  /// When every slot is taken, a new client replaces the quietest client that has never
-  /// completed a request, if quiet at least this long, else the quietest of all if quiet
-  /// half of `config.idle_timeout_s` (a panel polling every few seconds is never the one);
-  /// silent connections then cannot lock the panel out, and a client that completes no
-  /// request for `config.idle_timeout_s` is closed.
-  static constexpr std::chrono::seconds kEvictableAfter{1};
+  /// Connections follow the rule of every listener (design §6.6, slot_policy.hpp): a
+  /// client that has completed no request is silent; one address holds at most
+  /// `config.silent_per_address` silent clients (one more closes its own longest-silent),
+  /// and when every slot is taken a new client replaces the longest-silent client of the
+  /// address holding the most, else, every slot holding an answered client, the quietest
+  /// of all if quiet half of `config.idle_timeout_s`. A client that completes no request
+  /// for `config.idle_timeout_s` is closed. Silent or reconnecting floods thus never lock
+  /// a panel out.
   /// Out of descriptors, accepting pauses this long at first, doubling up to 1 s.
   static constexpr std::chrono::milliseconds kAcceptBackoff{100};
 

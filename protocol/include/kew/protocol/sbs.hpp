@@ -22,7 +22,8 @@
 //
 // Rejection reasons: malformed_line, ignored_message_type, bad_address, bad_time,
 // bad_number, no_position, no_altitude, lat_out_of_range, lon_out_of_range,
-// gs_out_of_range, address_table_full, line_too_long, truncated.
+// address_table_full, line_too_long, truncated. Velocity fields out of their range (NaN
+// included) are passed on, for the track table to drop (design §4.3).
 
 #include <cstddef>
 #include <memory>

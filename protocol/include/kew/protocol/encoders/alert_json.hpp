@@ -47,12 +47,16 @@ enum class HealthReason : std::uint8_t {
   StandbySyncing,
   /// A feed's server cannot be reached (a durable NATS feed): its tracks stand still.
   FeedUnreachable,
+  /// An input lost data before kewd read it (UDP datagrams the kernel dropped, NATS
+  /// messages the client dropped) in the last seconds.
+  InputDropping,
 };
-inline constexpr util::NameTable<HealthReason, 8> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 9> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
     {HealthReason::RecordsRefused, "records_refused"},
+    {HealthReason::InputDropping, "input_dropping"},
     {HealthReason::AlertLogFailing, "alert_log_failing"},
     {HealthReason::Standby, "standby"},
     {HealthReason::StandbySyncing, "standby_syncing"},

@@ -29,6 +29,7 @@ struct InputStatistics {
   std::uint64_t connections_idle = 0;     ///< closed: no byte for idle_timeout_s
   std::uint64_t accept_failures = 0;      ///< accept() failed (out of descriptors, ...)
   std::uint64_t oversized_datagrams = 0;
+  std::uint64_t datagrams_dropped = 0;    ///< UDP: dropped by the kernel, the receive buffer full
   std::uint64_t messages_dropped = 0;     ///< NATS: dropped by the client while kewd fell behind
   Rejections rejected;                    ///< its decoders' rejections
 };
