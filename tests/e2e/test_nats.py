@@ -390,6 +390,15 @@ durable = "kewd_{name}"
 stream = "KEW_FEED"
 """
 
+# Hot standby fed by UDP on each instance (radar delivered to both hosts): the lease and
+# the alert stream are on the bus, the feed is not.
+BUS_AWAY = """
+[nats]
+url = "{url}"
+hot_standby = true
+instance = "{name}"
+""" + UDP_INPUT
+
 
 class HotStandby(NatsCase):
     def test_the_standby_takes_over_a_killed_active_and_no_event_is_lost_or_repeated(self):
@@ -611,6 +620,57 @@ class HotStandby(NatsCase):
         self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
         published = int(second.wait_log("active now (hot standby b)").split("published up to seq ")[1].split(";")[0])
         self.assertEqual(on_second.alert_lines(), expected[published:])
+
+
+    def test_the_bus_away_for_10_s_leaves_the_active_serving_its_other_outputs(self):
+        """Every NATS server down for 10 s mid-conflict: the active's TCP stream goes on
+        with every event (a lost bus is not a lost lease: nobody can take the key while
+        no server answers), the standby stays silent, and when the server is back the
+        active keeps the lease and JetStream receives every event once."""
+        config = {name: SERVICE + BUS_AWAY.format(url=self.nats.url, name=name) for name in "ab"}
+        first = self.start(config["a"])
+        first.wait_log("a holds the lease active: active")
+        second = self.start(config["b"])
+        second.wait_log("hot standby as b")
+        expected = offline_alerts(first.config_path, self.recording)
+        on_first = Subscriber(first.alert_port)
+        on_second = Subscriber(second.alert_port)
+        # Radar delivered to both hosts (multicast in a real centre): each instance is fed.
+        feeders = [threading.Thread(target=replay_to, args=(
+            f"udp://127.0.0.1:{kewd.input_port('udp')}", self.recording, "--speed", "4")) for kewd in (first, second)]
+        for feeder in feeders:
+            feeder.start()
+        wait_until(lambda: len(on_first.alert_lines()) >= len(expected) // 4, 60, "alerts from the active")
+        self.nats.stop()
+        stopped = time.monotonic()
+        # Past two lease TTLs (1.5 s each) the lease has expired on the server.
+        time.sleep(3.0)
+        late = len(on_first.alert_lines())
+        time.sleep(max(0.0, 10.0 - (time.monotonic() - stopped)))
+        during = len(on_first.alert_lines()) - late
+        print(f"\n{during} alert events on the active's stream from 3 to 10 s into the outage")
+        self.assertGreater(during, 0, "the active's stream went on while the bus was away")
+        stats = first.stats()["nats"]
+        self.assertTrue(stats["active"] and stats["bus_away"] and not stats["connected"], stats)
+        self.assertNotEqual(on_first.objects("ALIVE")[-1]["health"], "standby")
+        self.nats.start()
+        for feeder in feeders:
+            feeder.join()
+        first.wait_records(count_lines(self.recording))
+        wait_until(lambda: len(on_first.alert_lines()) >= len(expected), 30, "every alert on the active's stream")
+        self.assertEqual(on_first.alert_lines(), expected, "the active's stream is the run without failure")
+        wait_until(lambda: first.stats()["nats"]["published"] >= len(expected) and first.stats()["nats"]["queued"] == 0,
+                   60, "the outbox emptied once the lease was renewed")
+        stats = first.stats()["nats"]
+        self.assertTrue(stats["active"] and not stats["bus_away"], stats)
+        self.assertEqual(stats["dropped"], 0)
+        self.assertFalse(second.stats()["nats"]["active"])
+        self.assertEqual(on_second.alert_lines(), [], "the standby said nothing")
+        self.assertEqual(on_second.objects("ALIVE")[-1]["health"], "standby")
+        self.assertNotIn("active now", second.log())
+        self.assertIn("still active for the outputs that need no bus", first.log())
+        kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
+        self.assertEqual(kept, expected, "JetStream holds every event once, in order")
 
 
 def stream_messages(port, stream="KEW_ALERTS"):

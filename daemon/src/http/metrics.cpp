@@ -184,9 +184,13 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
     e.single("kew_nats_dropped_total", "counter", "Events dropped from a full NATS outbox.", num(n.dropped));
     e.single("kew_nats_fenced_total", "counter",
              "Hot standby: publications refused because another publisher had added to the stream.", num(n.fenced));
-    if (n.active)
+    if (n.active) {
       e.single("kew_standby_active", "gauge", "Hot standby: 1 while this kewd holds the lease and sends alerts.",
                *n.active ? 1.0 : 0.0);
+      e.single("kew_standby_bus_away", "gauge",
+               "Hot standby: 1 while this active kewd reaches no NATS server and serves the other outputs alone.",
+               n.bus_away ? 1.0 : 0.0);
+    }
   }
   if (!s.http) return;
   const HttpStatistics& h = *s.http;

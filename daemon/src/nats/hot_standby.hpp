@@ -45,8 +45,6 @@ class HotStandby {
   void set_in_step(bool in_step) { in_step_ = in_step; }
   /// The pair's origin is known: the lease may be taken (unsynced at worst). Thread-safe.
   void set_origin_known() { origin_known_ = true; }
-  /// See LeaderLease::may_speak(). Thread-safe.
-  bool may_speak() const { return lease_->may_speak(); }
   const std::string& instance() const { return instance_; }
 
  private:

@@ -27,9 +27,9 @@ LeaderLease::LeaderLease(const NatsConfig& config, std::string instance, Handler
       // Every call answered within half the TTL, or given up: a slow server must not
       // keep the thread long past the moment it has to step down (may_speak() covers
       // the rest).
-      connection_(config.servers, config.name + " lease",
-                  [](std::string_view event) { spdlog::info("[nats] lease: {}", event); }, 1.0,
-                  config.lease_ttl_s / 2.0) {
+      connection_(
+          config.servers, config.name + " lease", [](std::string_view event) { spdlog::info("[nats] lease: {}", event); },
+          1.0, config.lease_ttl_s / 2.0, [this](bool up) { on_link(up); }) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -42,7 +42,7 @@ LeaderLease::~LeaderLease() {
   thread_.join();
   // The standby need not wait for the TTL; but a lease that may have passed to another
   // instance is not this one's to delete.
-  if (bucket_ && active_ && may_speak()) {
+  if (bucket_ && active_ && right_->may_publish()) {
     kvStore_Delete(bucket_, config_.lease_key.c_str());
     spdlog::info("[nats] lease {} given up by {}", config_.lease_key, instance_);
   }
@@ -51,8 +51,34 @@ LeaderLease::~LeaderLease() {
 
 bool LeaderLease::wait(Clock::duration period) {
   std::unique_lock lock(mutex_);
-  stop_.wait_for(lock, period, [this] { return stopping_; });
+  stop_.wait_for(lock, period, [this] { return stopping_ || bus_back_; });
+  bus_back_ = false;
   return stopping_;
+}
+
+void LeaderLease::on_link(bool up) {
+  if (!up) {
+    right_->bus_lost(Clock::now());
+    return;
+  }
+  {
+    const std::lock_guard lock(mutex_);
+    bus_back_ = true;
+  }
+  stop_.notify_all();
+}
+
+LeaderLease::Retake LeaderLease::take_again(std::uint64_t& taken) {
+  const natsStatus s = kvStore_Create(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
+                                      static_cast<int>(instance_.size()));
+  if (s == NATS_OK) return Retake::Taken;
+  kvEntry* entry = nullptr;
+  const natsStatus got = kvStore_Get(&entry, bucket_, config_.lease_key.c_str());
+  const bool another = got == NATS_OK && instance_ != kvEntry_ValueString(entry);
+  kvEntry_Destroy(entry);
+  if (another) return Retake::Another;
+  forget_bucket_if_gone(s);
+  return Retake::NoAnswer;
 }
 
 bool LeaderLease::bind_bucket() {
@@ -177,12 +203,39 @@ void LeaderLease::run() {
         lost = true;
       }
     }
+    if (lost && right_->bus_away()) {
+      // The key expired on the servers while none answered: unless another instance
+      // has taken it since, the same holding goes on under the key taken again (a new,
+      // higher fencing token); the servers not answering yet, it stays away.
+      switch (take_again(taken)) {
+        case Retake::Taken:
+          holding = taken;
+          s = NATS_OK;
+          lost = false;
+          spdlog::warn("[nats] {} took the lease {} again when the bus came back (fencing token {})", instance_,
+                       config_.lease_key, holding);
+          break;
+        case Retake::NoAnswer:
+          lost = false;
+          break;
+        case Retake::Another:
+          break;
+      }
+    }
     if (s == NATS_OK) {
+      failures.recovered("lease renewed");
       revision = taken;
       renewed_ = sent;
       speak_until(holding, sent);
     } else {
       forget_bucket_if_gone(s);
+      if (!lost && right_->bus_away()) {
+        // Nobody can take the key while no server answers: the outputs that need no bus
+        // go on; NATS publication waits for the renewal (SpeakingRight::may_publish).
+        failures.report(fmt::format("no NATS server answers ({}): still active for the outputs that need no bus",
+                                    nats::describe(s)));
+        continue;
+      }
       // A stalled process may wake with its clock telling little time has passed (a
       // paused virtual machine): the server's word ends the holding at once.
       if (lost || Clock::now() - renewed_ >= ttl - period) {
@@ -191,7 +244,7 @@ void LeaderLease::run() {
         active_ = false;
         right_->release();
         spdlog::error("[nats] {} could not renew the lease {} ({}): standby", instance_, config_.lease_key,
-                      nats::describe(s));
+                      lost ? "another instance holds it, or it expired" : nats::describe(s));
         handlers_.on_lost();
       }
     }

@@ -8,6 +8,12 @@
 // key) steps down before anyone else can take over, so two never speak at once. A clean stop deletes the
 // key: the standby takes over at its next try. Only an instance in step with the pair
 // tries at once; one out of step waits until the key has stayed free for a whole TTL.
+//
+// Losing every server is not losing the lease: the key lives on the servers, and nobody
+// can take it while none answers. An active whose servers all go away while its last
+// renewal vouches for it stays active for the outputs that do not need NATS
+// (SpeakingRight::bus_away) and, as soon as a server answers, renews its key, or takes
+// it again when it expired meanwhile, or steps down when another instance holds it.
 
 #include <atomic>
 #include <chrono>
@@ -54,11 +60,6 @@ class LeaderLease {
   LeaderLease& operator=(const LeaderLease&) = delete;
 
   bool active() const { return active_.load(); }
-  /// Active, and still within the time the last renewal the server took guarantees that
-  /// no other instance can hold the lease (its send time + lease_ttl_s − a renewal
-  /// period). The service checks it before sending anything, so that a lease thread
-  /// stuck in a slow call cannot let two instances speak at once.
-  bool may_speak() const { return right_->may_speak(); }
   const std::string& instance() const { return instance_; }
 
  private:
@@ -72,7 +73,14 @@ class LeaderLease {
   void forget_bucket_if_gone(natsStatus status);
   /// Out of step: whether the lease has been free for a whole TTL (checked each period).
   bool free_for_a_ttl();
-  /// Waits `period` or until stopping; true when stopping.
+  /// The connection's news: a lost bus (SpeakingRight::bus_lost), or a server answering
+  /// again (the lease thread wakes to renew at once). On the client's threads.
+  void on_link(bool up);
+  /// After the bus came back without the key: creates it again (`taken` its revision),
+  /// or finds another instance holding it, or no server answering yet.
+  enum class Retake : std::uint8_t { Taken, Another, NoAnswer };
+  Retake take_again(std::uint64_t& taken);
+  /// Waits `period`, or until stopping (true) or a server answers again.
   bool wait(std::chrono::steady_clock::duration period);
 
   NatsConfig config_;
@@ -87,6 +95,7 @@ class LeaderLease {
   std::mutex mutex_;
   std::condition_variable stop_;
   bool stopping_ = false;  // guarded by mutex_
+  bool bus_back_ = false;  // guarded by mutex_: a server answers again, renew at once
   std::thread thread_;
 };
 

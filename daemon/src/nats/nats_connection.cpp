@@ -71,8 +71,9 @@ std::string connected_url(natsConnection* connection) {
 }  // namespace
 
 NatsConnection::NatsConnection(const std::vector<std::string>& servers, const std::string& name,
-                               EventHandler on_event, double reconnect_wait_s, double request_wait_s)
-    : servers_(fmt::format("{}", fmt::join(servers, ","))), on_event_(std::move(on_event)) {
+                               EventHandler on_event, double reconnect_wait_s, double request_wait_s,
+                               LinkHandler on_link)
+    : servers_(fmt::format("{}", fmt::join(servers, ","))), on_event_(std::move(on_event)), on_link_(std::move(on_link)) {
   Options o;
   // A list, never one comma-separated URL: natsOptions_SetURL would take that as one
   // server and never reach any.
@@ -144,6 +145,7 @@ bool NatsConnection::connected() const { return natsConnection_Status(connection
 void NatsConnection::on_connected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
+  if (c->on_link_) c->on_link_(true);
   if (c->on_event_) c->on_event_(fmt::format("connected to NATS at {}", connected_url(connection)));
 }
 
@@ -152,12 +154,14 @@ void NatsConnection::on_disconnected(natsConnection*, void* self) {
   // Called also when a first connection attempt fails: only a lost connection counts.
   if (c->connects_.load() == 0 || c->closing_) return;
   ++c->disconnects_;
+  if (c->on_link_) c->on_link_(false);
   if (c->on_event_) c->on_event_(fmt::format("lost the NATS server: reconnecting to one of {}", c->servers_));
 }
 
 void NatsConnection::on_reconnected(natsConnection* connection, void* self) {
   auto* c = static_cast<NatsConnection*>(self);
   ++c->connects_;
+  if (c->on_link_) c->on_link_(true);
   if (c->on_event_) c->on_event_(fmt::format("reconnected to NATS at {}", connected_url(connection)));
 }
 

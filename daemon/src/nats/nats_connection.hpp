@@ -58,6 +58,9 @@ std::string describe(natsStatus status);
 class NatsConnection {
  public:
   using EventHandler = std::function<void(std::string_view)>;
+  /// Told true when a server is reached (first or again), false when the one in use is
+  /// lost; on the client's own threads.
+  using LinkHandler = std::function<void(bool up)>;
   /// Connects to one of `servers` ("nats://HOST:PORT" each, the servers of one cluster;
   /// not empty) naming the connection `name` on the server. Returns at once when no
   /// server answers: the client keeps trying every `reconnect_wait_s` seconds (> 0), then
@@ -66,7 +69,7 @@ class NatsConnection {
   /// `request_wait_s` (> 0): how long a JetStream call waits for the server's answer;
   /// it is also the ping interval, so that a silent server is noticed that soon.
   NatsConnection(const std::vector<std::string>& servers, const std::string& name, EventHandler on_event,
-                 double reconnect_wait_s = 1.0, double request_wait_s = 5.0);
+                 double reconnect_wait_s = 1.0, double request_wait_s = 5.0, LinkHandler on_link = {});
   /// Closes, and returns once the client will call nothing of this object any more.
   ~NatsConnection();
   NatsConnection(const NatsConnection&) = delete;
@@ -90,6 +93,7 @@ class NatsConnection {
 
   std::string servers_;
   EventHandler on_event_;
+  LinkHandler on_link_;
   natsConnection* connection_ = nullptr;
   jsCtx* jetstream_ = nullptr;
   std::atomic<std::uint64_t> connects_{0};

@@ -97,7 +97,7 @@ void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uin
 void NatsPublisher::publish_now(const std::string& subject, std::string_view json, std::uint64_t seq) {
   if (!connection_.connected()) return;
   // A status is the active's to give, and only while the lease vouches for it.
-  if (right_ && !right_->may_speak()) return;
+  if (right_ && !right_->may_publish()) return;
   if (!json.empty() && json.back() == '\n') json.remove_suffix(1);
   try {
     OutgoingMessage message(subject, json, seq, right_ ? right_->revision() : 0);
@@ -235,7 +235,7 @@ NatsPublisher::Sent NatsPublisher::send(const Message& message) {
         // Hot standby: only while the lease vouches for this instance, and only after the
         // message this holding knows to be the stream's last (JetStream refuses it when
         // another publisher has added one since).
-        if (!right_->may_speak()) return Sent::Refused;
+        if (!right_->may_publish()) return Sent::Refused;
         if (known_holding_ != holding) {
           const Follows follows = learn_last_message();
           if (follows == Follows::Fenced) return Sent::Fenced;
@@ -294,6 +294,7 @@ protocol::NatsStatistics NatsPublisher::statistics() const {
   s.dropped = dropped_.load();
   s.status_published = status_published_.load();
   s.fenced = fenced_.load();
+  s.bus_away = right_ && right_->bus_away();
   const std::lock_guard lock(mutex_);
   s.queued = outbox_.size();
   return s;

@@ -76,6 +76,8 @@ bool PairFollower::bind_bucket() {
 }
 
 std::optional<PairFollower::StreamBounds> PairFollower::bounds(const std::string& stream) {
+  // No durable feed (a feed on UDP or TCP to each instance): nothing to start it from.
+  if (stream.empty()) return StreamBounds{};
   jsStreamInfo* info = nullptr;
   jsErrCode error = static_cast<jsErrCode>(0);
   const natsStatus s = js_GetStreamInfo(&info, connection_.jetstream(), stream.c_str(), nullptr, &error);

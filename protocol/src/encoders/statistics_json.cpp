@@ -216,7 +216,10 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     c.integer("dropped", s.dropped);
     c.integer("status_published", s.status_published);
     c.integer("fenced", s.fenced);
-    if (s.active) c.boolean("active", *s.active);
+    if (s.active) {
+      c.boolean("active", *s.active);
+      c.boolean("bus_away", s.bus_away);
+    }
     c.close();
   }
   if (service.modbus) {

@@ -64,6 +64,9 @@ struct NatsStatistics {
   /// the stream since (a stalled active's last words, or this instance fenced).
   std::uint64_t fenced = 0;
   std::optional<bool> active;          ///< hot standby: holds the lease
+  /// Hot standby: active with every NATS server away (the lease unconfirmed; the outputs
+  /// that need no bus go on, NATS publication waits).
+  bool bus_away = false;
 };
 
 struct ModbusStatistics {
