@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -91,6 +93,36 @@ TEST(ModbusSockets, ThrowingCallbackDoesNotStopTheServer) {
   c.send(write);
   EXPECT_EQ(c.receive(write.size()), write);
   EXPECT_EQ(server.stats().rejected.count("modbus_acknowledge_callback_failed"), 1u);
+}
+
+TEST(ModbusSockets, AStatePublishedAsActiveIsNotServedOnceTheInstanceMayNotSpeak) {
+  // A hot-standby active stalled past its lease: its server thread may run before its
+  // I/O thread steps down, and must not answer from (nor acknowledge) the active's state.
+  daemon::ModbusConfig config;
+  config.listen = kew::testing::free_loopback_address();
+  config.table_entries = kTableEntries;
+  auto may_speak = std::make_shared<std::atomic<bool>>(true);
+  auto acknowledgements = std::make_shared<std::atomic<int>>(0);
+  daemon::ModbusServer server(config, [acknowledgements](const std::string&) { ++*acknowledgements; });
+  server.set_speaking_check([may_speak] { return may_speak->load(); });
+  server.publish(known_snapshot(), true);
+  server.start();
+  RawClient c(server.bound_port());
+  c.send(request(1, {0x04, 0x00, 0x01, 0x00, 0x01}));  // register 1: active alerts
+  EXPECT_EQ(c.receive(11), (std::vector<std::uint8_t>{0, 1, 0, 0, 0, 5, 1, 0x04, 2, 0, 3}));
+
+  *may_speak = false;
+  c.send(request(2, {0x04, 0x00, 0x01, 0x00, 0x01}));
+  EXPECT_EQ(c.receive(9), (std::vector<std::uint8_t>{0, 2, 0, 0, 0, 3, 1, 0x84, 0x06}));
+  c.send(request(3, {0x05, 0x00, 0x00, 0xFF, 0x00}));  // acknowledge: refused too
+  EXPECT_EQ(c.receive(9), (std::vector<std::uint8_t>{0, 3, 0, 0, 0, 3, 1, 0x85, 0x06}));
+  EXPECT_EQ(*acknowledgements, 0);
+  EXPECT_EQ(server.stats().rejected.count("modbus_not_speaking"), 2u);
+
+  // The standby's own state is served whatever the lease says.
+  server.publish(known_snapshot(), false);
+  c.send(request(4, {0x04, 0x00, 0x01, 0x00, 0x01}));
+  EXPECT_EQ(c.receive(11), (std::vector<std::uint8_t>{0, 4, 0, 0, 0, 5, 1, 0x04, 2, 0, 3}));
 }
 
 TEST(ModbusSockets, StopClosesEveryConnection) {

@@ -161,11 +161,14 @@ class ModbusServer::Impl {
     modbus_.close_listener();
   }
 
-  void publish(const protocol::AlarmSnapshot& snapshot) {
+  void publish(const protocol::AlarmSnapshot& snapshot, bool as_active) {
     std::lock_guard lock(snapshot_mutex_);
     published_ = snapshot;
+    published_as_active_ = as_active;
     ++published_generation_;
   }
+
+  void set_speaking_check(ModbusServer::SpeakingCheck check) { speaking_check_ = std::move(check); }
 
   std::uint16_t bound_port() const { return modbus_.bound_port(); }
 
@@ -231,6 +234,7 @@ class ModbusServer::Impl {
       std::lock_guard lock(snapshot_mutex_);
       if (published_generation_ != served_generation_) {
         current_ = published_;
+        current_as_active_ = published_as_active_;
         served_generation_ = published_generation_;
         snapshot_changed = true;
       }
@@ -347,6 +351,11 @@ class ModbusServer::Impl {
     if (!protocol::modbus_unit_is_ours(unit, config_.unit_id)) {
       verdict.exception = protocol::ModbusException::GatewayTargetFailedToRespond;
       verdict.reason = "modbus_unit_id_mismatch";
+    } else if (current_as_active_ && speaking_check_ && !speaking_check_()) {
+      // Woken from a stall after the lease passed on: what this snapshot says (and an
+      // acknowledgement of it) is no longer this instance's to give.
+      verdict.exception = protocol::ModbusException::ServerDeviceBusy;
+      verdict.reason = "modbus_not_speaking";
     } else if (!client.may_write && !pdu.empty() && protocol::modbus_function_writes(pdu[0])) {
       // Refused like a write to a read-only map (the function is not available to it).
       verdict.exception = protocol::ModbusException::IllegalFunction;
@@ -414,10 +423,15 @@ class ModbusServer::Impl {
   // Written by publish(), read by the server thread.
   mutable std::mutex snapshot_mutex_;
   protocol::AlarmSnapshot published_;
+  bool published_as_active_ = false;  // guarded by snapshot_mutex_
   std::uint64_t published_generation_ = 0;
+
+  // Set before start().
+  ModbusServer::SpeakingCheck speaking_check_;
 
   // The server thread's own state.
   protocol::AlarmSnapshot current_;
+  bool current_as_active_ = false;
   std::uint64_t served_generation_ = 0;
   std::uint16_t heartbeat_ = 0;
   Clock::time_point next_heartbeat_;
@@ -439,7 +453,10 @@ ModbusServer::~ModbusServer() = default;
 void ModbusServer::set_reporter(Rejections::Reporter reporter) { impl_->set_reporter(std::move(reporter)); }
 void ModbusServer::start() { impl_->start(); }
 void ModbusServer::stop() { impl_->stop(); }
-void ModbusServer::publish(const protocol::AlarmSnapshot& snapshot) { impl_->publish(snapshot); }
+void ModbusServer::publish(const protocol::AlarmSnapshot& snapshot, bool as_active) {
+  impl_->publish(snapshot, as_active);
+}
+void ModbusServer::set_speaking_check(SpeakingCheck check) { impl_->set_speaking_check(std::move(check)); }
 std::uint16_t ModbusServer::bound_port() const { return impl_->bound_port(); }
 protocol::ModbusStatistics ModbusServer::stats() const { return impl_->stats(); }
 

@@ -5,10 +5,11 @@
 namespace kew::daemon {
 
 ModbusOutput::ModbusOutput(const ModbusConfig& config, ModbusServer::AcknowledgeHandler on_acknowledge,
-                           StateSource state)
+                           StateSource state, ModbusServer::SpeakingCheck may_speak)
     : server_(std::make_unique<ModbusServer>(config, std::move(on_acknowledge))),
       state_(std::move(state)),
       unit_id_(config.unit_id) {
+  server_->set_speaking_check(std::move(may_speak));
   server_->set_reporter([](std::string_view reason, std::string_view message) {
     spdlog::warn("modbus: refused a request ({}){}{}", reason, message.empty() ? "" : ": ", message);
   });
@@ -20,7 +21,13 @@ void ModbusOutput::acknowledgement(const protocol::Acknowledgement&, std::uint64
 
 void ModbusOutput::role_changed(bool active) {
   changed_ = true;
-  if (!active || started_) return;
+  active_ = active;
+  if (!active) {
+    // The standby's state at once: a panel is told "standby" rather than "busy".
+    if (started_) publish_now();
+    return;
+  }
+  if (started_) return;
   publish_now();
   server_->start();
   started_ = true;
@@ -33,7 +40,7 @@ void ModbusOutput::publish() {
 }
 
 void ModbusOutput::publish_now() {
-  server_->publish(state_());
+  server_->publish(state_(), active_);
   changed_ = false;
   last_publish_ = std::chrono::steady_clock::now();
 }

@@ -21,7 +21,11 @@ class ModbusOutput final : public Output {
   static constexpr auto kPublishPeriod = std::chrono::milliseconds(200);
 
   /// Binds (see ModbusServer); `on_acknowledge` is called on the server thread.
-  ModbusOutput(const ModbusConfig& config, ModbusServer::AcknowledgeHandler on_acknowledge, StateSource state);
+  /// `may_speak`: hot standby's right to speak (SpeakingRight::may_speak), asked by the
+  /// server thread before it answers from a state published while active; empty without
+  /// hot standby.
+  ModbusOutput(const ModbusConfig& config, ModbusServer::AcknowledgeHandler on_acknowledge, StateSource state,
+               ModbusServer::SpeakingCheck may_speak = {});
 
   std::string_view name() const override { return "modbus"; }
   Audience audience() const override { return Audience::Shared; }
@@ -47,6 +51,7 @@ class ModbusOutput final : public Output {
   StateSource state_;
   int unit_id_;
   bool started_ = false;
+  bool active_ = false;
   bool changed_ = true;
   std::chrono::steady_clock::time_point last_publish_{};
 };

@@ -103,7 +103,9 @@ void Service::open_outputs() {
       return std::make_unique<ModbusOutput>(
           modbus,
           [this](const std::string& client) { asio::post(io_, [this, client] { acknowledge("modbus", client); }); },
-          [this] { return status_.alarm_state(std::chrono::steady_clock::now(), conditions()); });
+          [this] { return status_.alarm_state(std::chrono::steady_clock::now(), conditions()); },
+          speaking_right_ ? ModbusServer::SpeakingCheck([right = speaking_right_] { return right->may_speak(); })
+                          : ModbusServer::SpeakingCheck());
     }));
   }
 }

@@ -49,9 +49,19 @@ class ModbusServer {
   ModbusServer(const ModbusServer&) = delete;
   ModbusServer& operator=(const ModbusServer&) = delete;
 
+  /// Hot standby: whether this instance may still speak (SpeakingRight::may_speak),
+  /// asked on the server thread before answering from a snapshot published as active.
+  using SpeakingCheck = std::function<bool()>;
+
   /// Where the messages of refusals go (rate-limited as kew::Rejections does); called on
   /// the server thread. Set it before start().
   void set_reporter(Rejections::Reporter reporter);
+
+  /// Set it before start(). While the snapshot served was published `as_active` and
+  /// `check` says no (a stalled instance whose lease has passed to another), every request
+  /// is answered SERVER DEVICE BUSY (exception 6) and counted (`modbus_not_speaking`)
+  /// until a snapshot published as standby replaces it.
+  void set_speaking_check(SpeakingCheck check);
 
   /// Spawns the server thread; the heartbeat starts at 0. A second call does nothing.
   void start();
@@ -60,8 +70,9 @@ class ModbusServer {
   void stop();
 
   /// Replaces the served state with a copy of `snapshot`. Thread-safe; clients see it from
-  /// their next request on.
-  void publish(const protocol::AlarmSnapshot& snapshot);
+  /// their next request on. `as_active`: published by the active instance of a
+  /// hot-standby pair (see set_speaking_check()).
+  void publish(const protocol::AlarmSnapshot& snapshot, bool as_active = false);
 
   /// The TCP port actually bound (the configured one, or the ephemeral one for port 0).
   std::uint16_t bound_port() const;

@@ -113,6 +113,9 @@ enum class ModbusException : std::uint8_t {
   IllegalFunction = 0x01,
   IllegalDataAddress = 0x02,
   IllegalDataValue = 0x03,
+  /// Answered while the state kew last published came from an active hot-standby
+  /// instance that may no longer speak (design §5.9): ask the other instance.
+  ServerDeviceBusy = 0x06,
   /// Answered to a unit id that is not kew's (the server is addressed by IP; see
   /// check_modbus_unit).
   GatewayTargetFailedToRespond = 0x0B,
