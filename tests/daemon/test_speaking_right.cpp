@@ -69,5 +69,31 @@ TEST(SpeakingRight, AReleasedHoldingIsNotKeptByTheBusAway) {
   EXPECT_FALSE(right.bus_away()) << "a new holding starts with the bus answering";
 }
 
+TEST(SpeakingRight, AHoldingTheOutputsFoundNotVouchingStaysLapsedWhateverARenewalSays) {
+  // The gate shuts on the first false; a renewal the server takes a moment later (it had
+  // not expired the key yet) must not keep a lease whose outputs are shut.
+  SpeakingRight right;
+  right.hold(3, at(1.125));
+  EXPECT_TRUE(right.keep_speaking(at(1.0)));
+  EXPECT_FALSE(right.lapsed());
+  EXPECT_FALSE(right.keep_speaking(at(4.5)));
+  EXPECT_TRUE(right.lapsed());
+  right.hold(3, at(5.5));  // the late renewal
+  EXPECT_TRUE(right.lapsed()) << "the lease thread gives the holding up";
+  right.release();
+  EXPECT_FALSE(right.lapsed());
+  // Not held: nothing lapses.
+  EXPECT_FALSE(right.keep_speaking(at(6.0)));
+  EXPECT_FALSE(right.lapsed());
+}
+
+TEST(SpeakingRight, TheBusAwayIsNoLapse) {
+  SpeakingRight right;
+  right.hold(3, at(1.125));
+  right.bus_lost(at(0.5));
+  EXPECT_TRUE(right.keep_speaking(at(9.0)));
+  EXPECT_FALSE(right.lapsed());
+}
+
 }  // namespace
 }  // namespace kew::daemon

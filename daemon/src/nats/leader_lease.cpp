@@ -183,6 +183,18 @@ void LeaderLease::run() {
       handlers_.on_acquired(*last);
       continue;
     }
+    if (right_->lapsed()) {
+      // The outputs found the holding not vouching (a stall, a slow answer) and shut:
+      // renewing it would keep the lease with nobody speaking. Let it expire; an instance
+      // in step (this one too) takes it then.
+      active_ = false;
+      right_->release();
+      spdlog::error("[nats] {} gives the lease {} up: its outputs stopped when the last renewal stopped vouching "
+                    "for it; standby",
+                    instance_, config_.lease_key);
+      handlers_.on_lost();
+      continue;
+    }
     natsStatus s = kvStore_Update(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
                                   static_cast<int>(instance_.size()), revision);
     bool lost = false;  // the server says so: another holds the key, or it expired

@@ -11,6 +11,11 @@
 // the servers), so the outputs that do not need NATS keep speaking (may_speak) while
 // NATS publication waits for a renewal (may_publish). The first answer decides: the
 // holding renewed or taken again, or given up when another instance holds it.
+//
+// A lapse seen by the outputs ends the holding: the gate in front of the outputs closes
+// when it finds that the right no longer vouches (keep_speaking), and a renewal the
+// server takes a moment later must not leave the lease held by an instance whose outputs
+// are shut; the lease thread gives the holding up when it finds it lapsed.
 
 #include <atomic>
 #include <chrono>
@@ -31,6 +36,7 @@ class SpeakingRight {
   void release() {
     revision_ = 0;
     bus_away_ = false;
+    lapsed_ = false;
   }
 
   /// Every server was lost at `at`: while the holding vouched for that moment, the
@@ -46,6 +52,17 @@ class SpeakingRight {
   bool may_speak(Clock::time_point now = Clock::now()) const {
     return may_publish(now) || bus_away();
   }
+  /// may_speak(), for the one gate in front of the outputs, which closes on a false: a
+  /// holding found not vouching is marked lapsed (see lapsed()).
+  bool keep_speaking(Clock::time_point now = Clock::now()) {
+    if (may_speak(now)) return true;
+    if (revision_.load() != 0) lapsed_ = true;
+    return false;
+  }
+  /// The outputs stopped on this holding: the lease thread is to give it up, whatever a
+  /// later renewal says. Cleared by release().
+  bool lapsed() const { return lapsed_.load(); }
+
   /// Publication on the bus: held, and the last renewal still vouches for now.
   bool may_publish(Clock::time_point now = Clock::now()) const {
     return revision_.load() != 0 && ns(now) < until_ns_.load();
@@ -61,6 +78,7 @@ class SpeakingRight {
   std::atomic<std::uint64_t> revision_{0};
   std::atomic<std::int64_t> until_ns_{0};
   std::atomic<bool> bus_away_{false};
+  std::atomic<bool> lapsed_{false};
 };
 
 }  // namespace kew::daemon

@@ -61,7 +61,7 @@ void Service::open_outputs() {
   // Silent until the lease says otherwise (design §5.9); the pair begins with the run.
   if (config_.nats.hot_standby) {
     speaking_right_ = std::make_shared<SpeakingRight>();
-    gate = StandbyGate(config_.nats.standby_history, [right = speaking_right_] { return right->may_speak(); });
+    gate = StandbyGate(config_.nats.standby_history, [right = speaking_right_] { return right->keep_speaking(); });
   }
   fan_out_ = std::make_unique<FanOut>(std::move(gate), [this](bool active) {
     if (active) {
