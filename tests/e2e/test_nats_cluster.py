@@ -371,8 +371,17 @@ class HotStandbyOnCluster(ClusterCase):
         kewd["b"].wait_log("b: in step with the active", timeout_s=30)
         expected = offline_alerts(kewd["a"].config_path, recording)
         self.assertGreater(len(expected), 200, "the scenario must keep alerts open through both failures")
-        wait_until(lambda: all(cluster.current_replicas(group) == 3 for group in PAIR_GROUPS), 60,
-                   "every stream and feed consumer of the pair on three current replicas")
+
+        def caught_up(what):
+            """Waits until every stream and feed consumer of the pair has three current
+            replicas; a failure names those that have not."""
+            try:
+                wait_until(lambda: all(cluster.current_replicas(group) == 3 for group in PAIR_GROUPS), 60, what)
+            except AssertionError as e:
+                behind = {group: cluster.current_replicas(group) for group in PAIR_GROUPS}
+                raise AssertionError(f"{e}; current replicas: {behind}") from None
+
+        caught_up("every stream and feed consumer of the pair on three current replicas")
         subscribers = {name: Subscriber(kewd[name].alert_port) for name in "ab"}
         feeder = AcknowledgedFeed(cluster, "kew.feed.tma", recording, speed=4)
         feeder.start()
@@ -415,8 +424,7 @@ class HotStandbyOnCluster(ClusterCase):
         wait_until(lambda: published() >= len(expected) // 5, 120, "a fifth of the events published")
         first = lose("KEW_ALERTS")
         cluster.restart(first[0])
-        wait_until(lambda: all(cluster.current_replicas(group) == 3 for group in PAIR_GROUPS), 60,
-                   f"node{first[0]} back: every stream and feed consumer of the pair on three current replicas")
+        caught_up(f"node{first[0]} back: every stream and feed consumer of the pair on three current replicas")
         wait_until(lambda: published() >= len(expected) // 2, 120, "half the events published")
         second = lose("KV_KEW_LEASE")
         for (node, groups, elected, resumed, delivered), what in ((first, "the alert stream's"),
