@@ -582,6 +582,57 @@ class HotStandby(NatsCase):
         self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
 
 
+    def test_a_host_wide_stall_past_the_lease_leaves_one_speaker(self):
+        """A paused virtual machine stops everything at once, nats-server included, and
+        resumes everything together: SIGSTOP the server, the active and the standby
+        mid-conflict for three lease TTLs, then SIGCONT all three, the server first.
+        Whoever holds the lease afterwards speaks (the pair is not left silent), no event
+        reaches the subscribers of both instances after the stall, and JetStream holds the
+        run without failure."""
+        config = {name: SERVICE + HOT_STANDBY.format(url=self.nats.url, name=name) for name in "ab"}
+        first = self.start(config["a"])
+        first.wait_log("a holds the lease active: active")
+        second = self.start(config["b"])
+        second.wait_log("b: in step with the active")
+        expected = offline_alerts(first.config_path, self.recording)
+        subscribers = {"a": Subscriber(first.alert_port), "b": Subscriber(second.alert_port)}
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "4"))
+        feeder.start()
+        wait_until(lambda: len(subscribers["a"].alert_lines()) >= len(expected) // 4, 60, "alerts from the active")
+        host = (self.nats.process, first.process, second.process)
+        for process in host:
+            process.send_signal(signal.SIGSTOP)
+        # Three TTLs (1.5 s each); what was written before the stall is read by now.
+        time.sleep(4.5)
+        before = {name: len(subscriber.alert_lines()) for name, subscriber in subscribers.items()}
+        for process in host:
+            process.send_signal(signal.SIGCONT)
+        # The holder of the lease speaks again: the stream grows past what the active had
+        # sent before the stall (its stream runs ahead of its publications).
+        wait_until(lambda: stream_messages(self.nats.port) > before["a"], 30, "publication after the stall")
+        feeder.join()
+        for kewd in (first, second):
+            kewd.wait_records(count_lines(self.recording))
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected), 60, "every event in the stream")
+        time.sleep(1.0)  # the last alerts reach the subscribers
+        after = {name: [json.loads(line)["seq"] for line in subscriber.alert_lines()[before[name]:]]
+                 for name, subscriber in subscribers.items()}
+        holders = [kewd for kewd in (first, second) if kewd.stats()["nats"]["active"]]
+        print(f"\nafter the stall: {len(after['a'])} alert events from a, {len(after['b'])} from b")
+        for name, kewd in (("a", first), ("b", second)):
+            for line in kewd.log().splitlines():
+                if any(word in line for word in ("renew the lease", "the lease again", "now", "fenced")):
+                    print(f"{name}: {line}")
+        self.assertEqual(len(holders), 1, "one instance holds the lease")
+        self.assertEqual(sorted(set(after["a"]) & set(after["b"])), [], "no event sent by both after the stall")
+        result = subprocess.run([KEW_WATCH, "--nats", self.nats.url, "--json", "--since", "0", "-n",
+                                 str(len(expected))], capture_output=True, text=True, timeout=60)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn("no longer held the lease", result.stderr, "no message of a stalled holding after another")
+        self.assertEqual(result.stdout.splitlines(keepends=True), expected,
+                         "JetStream holds the run without failure, event for event")
+
     def test_an_active_stalled_past_its_lease_sends_nothing_after_the_takeover(self):
         """SIGSTOP the active for three lease TTLs, then SIGCONT: nothing it computes after
         the standby took over reaches its subscribers, the stream or kew-watch."""

@@ -2,8 +2,10 @@
 routed on loopback; kewd lists them all (`[nats] servers`) with `replicas = 3`, and the
 node that leads the alert stream is killed mid-run: no event is lost or repeated, the
 other outputs never stop, publication resumes as soon as the cluster has a new leader. A
-comma-separated `url` reaches the server a dead one is listed before; deploy/nats/'s
-cluster files are valid nats-server configurations.
+hot-standby pair on the cluster loses the alert stream's leader, then (that node back) the
+lease's: one instance speaks, the stream is the run without failure. A comma-separated
+`url` reaches the server a dead one is listed before; deploy/nats/'s cluster files are
+valid nats-server configurations.
 
 Run by ctest with Debian's `nats-server`; by hand:
 KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest test_nats_cluster -v
@@ -19,10 +21,10 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEWD, NATS_SERVER, STARTUP_TIMEOUT_S, NatsServer, Subscriber, count_lines, free_port,
-                          generate, nats_request, offline_alerts, replay_to, wait_until)
+from kewd_harness import (KEWD, NATS_SERVER, STARTUP_TIMEOUT_S, NatsServer, Subscriber, _nats_client, active_at_end,
+                          count_lines, free_port, generate, nats_request, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase
-from test_nats import SERVICE, UDP_INPUT, watch
+from test_nats import SERVICE, UDP_INPUT, check_alert_lifecycles, watch
 
 DEPLOY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "deploy", "nats")
 
@@ -54,11 +56,20 @@ class NatsCluster:
             self.config_paths.append(path)
             self.logs.append(open(os.path.join(workdir, f"node{i}.log"), "a"))
         for i in range(self.SIZE):
-            self.processes[i] = subprocess.Popen([NATS_SERVER, "-c", self.config_paths[i]], stdout=self.logs[i],
-                                                 stderr=subprocess.STDOUT)
+            self.start(i)
         # Ready when every node knows the JetStream meta leader: streams can be made.
         wait_until(lambda: all(self.meta_leader(i) for i in range(self.SIZE)), STARTUP_TIMEOUT_S,
                    "the cluster's JetStream meta leader")
+
+    def start(self, i):
+        self.processes[i] = subprocess.Popen([NATS_SERVER, "-c", self.config_paths[i]], stdout=self.logs[i],
+                                             stderr=subprocess.STDOUT)
+
+    def restart(self, i):
+        """Node i again after a kill, with its configuration and its store: it rejoins the
+        cluster (it knows the meta leader again) and its replicas catch up."""
+        self.start(i)
+        wait_until(lambda: self.meta_leader(i), STARTUP_TIMEOUT_S, f"node{i} to rejoin the cluster")
 
     def url(self, i):
         return f"nats://127.0.0.1:{self.ports[i]}"
@@ -82,9 +93,13 @@ class NatsCluster:
 
     def stream_info(self, stream):
         """JetStream's answer to $JS.API.STREAM.INFO.<stream> from a live node, or None."""
+        return self.info(f"$JS.API.STREAM.INFO.{stream}")
+
+    def info(self, subject):
+        """JetStream's answer to the request `subject` ($JS.API.…) from a live node, or None."""
         for i in self.alive():
             try:
-                info = json.loads(nats_request(self.ports[i], f"$JS.API.STREAM.INFO.{stream}", timeout_s=0.5))
+                info = json.loads(nats_request(self.ports[i], subject, timeout_s=0.5))
             except (OSError, AssertionError, ValueError):  # no answer, or no responder (an empty reply)
                 continue
             if "error" not in info:
@@ -96,6 +111,41 @@ class NatsCluster:
         info = self.stream_info(stream)
         leader = info and info.get("cluster", {}).get("leader")
         return int(leader[len("node"):]) if leader else None
+
+    def current_replicas(self, group):
+        """How many replicas of `group` (a stream, or (stream, consumer)) are current, its
+        leader included (0 without one), as the leader tells JetStream's API."""
+        if isinstance(group, tuple):
+            info = self.info("$JS.API.CONSUMER.INFO.%s.%s" % group)
+        else:
+            info = self.stream_info(group)
+        cluster = (info or {}).get("cluster", {})
+        if not cluster.get("leader"):
+            return 0
+        return 1 + sum(1 for replica in cluster.get("replicas", []) if replica.get("current"))
+
+    def leaders(self):
+        """The leader (a node's index) of every stream and consumer, as the live nodes know
+        it from their monitoring endpoint (/jsz): {stream: i, (stream, consumer): i}; a
+        group none of them knows a live leader of is left out."""
+        found = {}
+        for i in self.alive():
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{self.http_ports[i]}/jsz?accounts=true&streams=true"
+                                            f"&consumers=true", timeout=2) as reply:
+                    details = json.load(reply).get("account_details", [])
+            except OSError:
+                continue
+            for account in details:
+                for stream in account.get("stream_detail", []):
+                    groups = [(stream["name"], stream.get("cluster", {}))]
+                    groups += [((stream["name"], consumer["name"]), consumer.get("cluster", {}))
+                               for consumer in stream.get("consumer_detail", [])]
+                    for group, cluster in groups:
+                        leader = cluster.get("leader")
+                        if leader and int(leader[len("node"):]) in self.alive():
+                            found.setdefault(group, int(leader[len("node"):]))
+        return found
 
     def kill(self, i):
         self.processes[i].kill()
@@ -184,6 +234,233 @@ class Cluster(ClusterCase):
         with self.assertRaises(subprocess.TimeoutExpired):
             watch(survivors, "--since", str(json.loads(expected[-1])["seq"]), "-n", "1", timeout=3)
         self.assertEqual(kewd.terminate(), 0)
+
+
+class AcknowledgedFeed(threading.Thread):
+    """The recording published on the cluster as the producer of a durable feed publishes:
+    20 lines a message at `speed` times their own pace, each message with a Nats-Msg-Id
+    and sent again, through any live node, until JetStream acknowledges it (the stream
+    keeps it once). kew-replay publishes without acknowledgement: what it publishes while
+    the feed stream elects a leader is lost (42 of 118 messages over 12 s, measured), and
+    the alerts would not be the recording's."""
+
+    def __init__(self, cluster, subject, recording, speed):
+        super().__init__(daemon=True)
+        self.cluster = cluster
+        self.subject = subject
+        self.speed = speed
+        with open(recording, "rb") as f:
+            lines = [line for line in f if line.strip() and not line.startswith(b"#")]
+        self.batches = [lines[i:i + 20] for i in range(0, len(lines), 20)]
+        self.sent_again = 0
+        self.error = None
+        self._socket = self._reader = None
+
+    def run(self):
+        try:
+            first = json.loads(self.batches[0][0])["t"]
+            start = time.monotonic()
+            for number, batch in enumerate(self.batches):
+                time.sleep(max(0.0, start + (json.loads(batch[0])["t"] - first) / self.speed - time.monotonic()))
+                self._publish(number, b"".join(batch))
+        except Exception as e:  # seen by join()
+            self.error = e
+        finally:
+            self._close()
+
+    def join(self, timeout=None):
+        super().join(timeout)
+        if self.error:
+            raise self.error
+
+    def _publish(self, number, payload):
+        headers = b"NATS/1.0\r\nNats-Msg-Id: kew-e2e-feed-%d\r\n\r\n" % number
+        for attempt in range(600):
+            inbox = f"_INBOX.kew_e2e_feed.{number}.{attempt}".encode()
+            try:
+                if self._socket is None:
+                    self._connect()
+                self._socket.sendall(b"HPUB %s %s %d %d\r\n%s%s\r\n" % (
+                    self.subject.encode(), inbox, len(headers), len(headers) + len(payload), headers, payload))
+                reply = self._reply(inbox)
+                if reply.startswith(b"{") and "seq" in json.loads(reply):
+                    return
+            except OSError:  # the node died, or no answer in time: another try, maybe through another node
+                self._close()
+            self.sent_again += 1
+            time.sleep(0.1)
+        raise AssertionError(f"feed message {number} never acknowledged")
+
+    def _connect(self):
+        for i in self.cluster.alive():
+            try:
+                self._socket, self._reader = _nats_client(self.cluster.ports[i], 2)
+            except OSError:
+                continue
+            self._socket.sendall(b"SUB _INBOX.kew_e2e_feed.> 1\r\n")
+            return
+        raise OSError("no live node")
+
+    def _reply(self, inbox):
+        """The payload of the reply to `inbox` (empty for a status such as 503, no stream
+        leader to answer); earlier tries' late replies are passed over."""
+        while True:
+            line = self._reader.readline()
+            if not line:
+                raise OSError("the node closed the connection")
+            if line.startswith(b"PING"):
+                self._socket.sendall(b"PONG\r\n")
+            elif line.startswith((b"MSG ", b"HMSG ")):
+                words = line.split()
+                header_size = int(words[-2]) if line.startswith(b"HMSG ") else 0
+                size = int(words[-1])
+                payload = self._reader.read(size + 2)[header_size:size]
+                if words[1] == inbox:
+                    return payload
+            elif line.startswith(b"-ERR"):
+                raise OSError(line.decode())
+
+    def _close(self):
+        if self._socket:
+            self._reader.close()
+            self._socket.close()
+        self._socket = self._reader = None
+
+
+# A hot-standby pair on the cluster: everything on three replicas, the feed a durable
+# consumer of the stream KEW_FEED, through any node.
+PAIR_ON_CLUSTER = """
+[nats]
+servers = [{servers}]
+replicas = 3
+hot_standby = true
+instance = "{name}"
+
+[[input]]
+name = "bus"
+format = "ndjson"
+transport = "nats"
+address = "kew.feed.tma"
+nats_servers = [{servers}]
+durable = "kewd_{name}"
+stream = "KEW_FEED"
+"""
+
+# What the pair keeps in JetStream: the alerts, the feed, the lease and the pair's origin;
+# with the feed's durable consumers, each a group of three replicas with its leader.
+PAIR_STREAMS = ("KEW_ALERTS", "KEW_FEED", "KV_KEW_LEASE", "KV_KEW_PAIR")
+PAIR_GROUPS = PAIR_STREAMS + (("KEW_FEED", "kewd_a"), ("KEW_FEED", "kewd_b"))
+
+
+class HotStandbyOnCluster(ClusterCase):
+    def test_a_pair_on_the_cluster_survives_losing_the_alert_stream_leader_then_the_lease_leader(self):
+        """A active, B standby on three nodes, every stream on three replicas. Mid-conflict
+        the node leading the alert stream is killed, restarted with its store and caught
+        up; then the node leading the lease's stream is killed. Each time publication
+        resumes within RESUME_AFTER_ELECTION_S of the survivors electing leaders, the lease
+        has one holder (the standby takes over only a lease the active lost, in step), and
+        at the end the stream read through the survivors is the run without failure."""
+        recording = self.path("tma-long.ndjson")
+        generate(recording, "tma", aircraft=150, duration=300, seed=5)
+        self.cluster = cluster = NatsCluster(self.workdir)
+        servers = ", ".join(f'"{url}"' for url in cluster.urls)
+        config = {name: SERVICE + PAIR_ON_CLUSTER.format(servers=servers, name=name) for name in "ab"}
+        kewd = {"a": self.start(config["a"])}
+        kewd["a"].wait_log("a holds the lease active: active", timeout_s=30)
+        kewd["b"] = self.start(config["b"])
+        kewd["b"].wait_log("b: in step with the active", timeout_s=30)
+        expected = offline_alerts(kewd["a"].config_path, recording)
+        self.assertGreater(len(expected), 200, "the scenario must keep alerts open through both failures")
+
+        def caught_up(what):
+            """Waits until every stream and feed consumer of the pair has three current
+            replicas; a failure names those that have not."""
+            try:
+                wait_until(lambda: all(cluster.current_replicas(group) == 3 for group in PAIR_GROUPS), 60, what)
+            except AssertionError as e:
+                behind = {group: cluster.current_replicas(group) for group in PAIR_GROUPS}
+                raise AssertionError(f"{e}; current replicas: {behind}") from None
+
+        caught_up("every stream and feed consumer of the pair on three current replicas")
+        subscribers = {name: Subscriber(kewd[name].alert_port) for name in "ab"}
+        feeder = AcknowledgedFeed(cluster, "kew.feed.tma", recording, speed=4)
+        feeder.start()
+
+        def published():
+            return sum(k.stats()["nats"]["published"] for k in kewd.values())
+
+        def received():
+            return sum(len(s.alert_lines()) for s in subscribers.values())
+
+        def kept():
+            return ((cluster.stream_info("KEW_ALERTS") or {}).get("state") or {}).get("messages", 0)
+
+        def lose(stream):
+            """Kills the node leading `stream` mid-conflict; returns the node, what it led
+            of the pair's, and when (after the kill) the survivors had a leader for each,
+            kewd published again and a subscriber received an alert again."""
+            wait_until(lambda: active_at_end(subscribers["a"].alert_lines() + subscribers["b"].alert_lines()), 60,
+                       "alerts open")
+            led = wait_until(lambda: stream in (leaders := cluster.leaders()) and leaders, 30, f"{stream}'s leader")
+            node = led[stream]
+            groups = [group for group, leader in led.items() if leader == node and group in PAIR_GROUPS]
+            at_kill = published(), received()
+            cluster.kill(node)
+            killed = time.monotonic()
+            elected = resumed = delivered = None
+            while elected is None or resumed is None or delivered is None:
+                now = time.monotonic()
+                self.assertLess(now - killed, 60, f"within 60 s: leaders for {groups} ({elected is not None}), a "
+                                f"publication ({resumed is not None}), an alert ({delivered is not None})")
+                if elected is None and all(group in cluster.leaders() for group in groups):
+                    elected = now
+                if resumed is None and published() > at_kill[0] + 1:
+                    resumed = now
+                if delivered is None and received() > at_kill[1]:
+                    delivered = now
+                time.sleep(0.1)
+            return node, groups, elected - killed, resumed - killed, delivered - killed
+
+        wait_until(lambda: published() >= len(expected) // 5, 120, "a fifth of the events published")
+        first = lose("KEW_ALERTS")
+        cluster.restart(first[0])
+        caught_up(f"node{first[0]} back: every stream and feed consumer of the pair on three current replicas")
+        wait_until(lambda: published() >= len(expected) // 2, 120, "half the events published")
+        second = lose("KV_KEW_LEASE")
+        for (node, groups, elected, resumed, delivered), what in ((first, "the alert stream's"),
+                                                                  (second, "the lease's")):
+            print(f"\nnode{node} ({what} leader; it led {', '.join(map(str, groups))}) killed: leaders elected after "
+                  f"{elected:.1f} s, kewd publishing again after {resumed:.1f} s, a subscriber receiving again after "
+                  f"{delivered:.1f} s")
+            self.assertLess(resumed - elected, RESUME_AFTER_ELECTION_S, "publication resumes once leaders are elected")
+
+        feeder.join()
+        print(f"feed messages sent again until acknowledged: {feeder.sent_again}")
+        for k in kewd.values():
+            k.wait_records(count_lines(recording))
+        wait_until(lambda: kept() >= len(expected) and all(k.stats()["nats"]["queued"] == 0 for k in kewd.values()),
+                   60, "every event in the stream, the outboxes emptied")
+        stream = watch(",".join(cluster.url(i) for i in range(cluster.SIZE)), "--since", "0", "-n", str(len(expected)))
+        check_alert_lifecycles(self, stream)
+        self.assertEqual(stream, expected, "JetStream holds the run without failure, event for event")
+        self.assertEqual(active_at_end(stream), active_at_end(expected), "every alert ends as in the run without failure")
+
+        # One holder at a time: every holding but the last ended by its holder's own loss.
+        logs = {name: k.log() for name, k in kewd.items()}
+        took = {name: logs[name].count(f"active now (hot standby {name})") for name in kewd}
+        lost = {name: logs[name].count("could not renew the lease") for name in kewd}
+        print("lease: " + "; ".join(f"{name} took it {took[name]}x, lost it {lost[name]}x" for name in kewd))
+        for name in kewd:
+            self.assertIn(took[name] - lost[name], (0, 1), f"{name}: {took[name]} holdings, {lost[name]} losses")
+        self.assertEqual(sum(took.values()) - sum(lost.values()), 1, "one instance holds the lease at the end")
+        for name in kewd:
+            self.assertNotIn("unsynced", logs[name], "every takeover by an instance in step")
+            self.assertNotIn("they are lost", logs[name])
+        # One numbering on the subscribers' streams too: a seq is the run's event, wherever received.
+        run = {json.loads(line)["seq"]: line for line in expected}
+        for name, subscriber in subscribers.items():
+            for line in subscriber.alert_lines():
+                self.assertEqual(line, run.get(json.loads(line)["seq"]), f"{name}'s stream: the run's event")
 
 
 class CommaSeparatedUrl(ClusterCase):
