@@ -241,6 +241,9 @@ void LeaderLease::run() {
       speak_until(holding, sent);
     } else {
       forget_bucket_if_gone(s);
+      // No answer (the key's stream electing a leader, every server away): nobody can
+      // take the key meanwhile either, as when the connection itself is lost.
+      if (!lost && (s == NATS_TIMEOUT || s == NATS_NO_RESPONDERS)) right_->bus_lost(sent);
       if (!lost && right_->bus_away()) {
         // Nobody can take the key while no server answers: the outputs that need no bus
         // go on; NATS publication waits for the renewal (SpeakingRight::may_publish).
