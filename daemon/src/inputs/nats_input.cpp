@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "nats_connection.hpp"
+#include "pull_consumer.hpp"
 #include "repeated_failure.hpp"
 #include "stream_replicas.hpp"
 
@@ -22,6 +23,7 @@ namespace {
 
 namespace asio = boost::asio;
 using nats::NatsConnection;
+using nats::PullConsumer;
 
 constexpr int kFetchBatch = 256;            // messages per JetStream pull
 constexpr std::int64_t kWaitMs = 200;       // a read waits this long, then looks at stopping_
@@ -30,9 +32,6 @@ constexpr auto kRetryPeriod = std::chrono::seconds(1);
 // How long the server may take to say what a durable consumer still holds: a server that
 // does not answer within it counts as unreachable (design §4.1, §5.9).
 constexpr std::int64_t kAskWaitMs = 500;
-// JetStream's wait for an acknowledgement before it sends a message again; kewd
-// acknowledges each batch as soon as it has decoded it.
-constexpr std::int64_t kAckWaitNs = 30'000'000'000;
 constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 
 /// Messages owned until decoded; the last one of a JetStream batch is acknowledged then
@@ -104,18 +103,17 @@ class NatsInput final : public Input {
 
   // The reader thread: subscribes (again and again until it can), then reads.
   void read() {
-    natsSubscription* subscription = nullptr;
     while (!stopping()) {
-      if (!subscription) {
-        subscription = subscribe();
-        if (!subscription) {
+      if (!subscription_ && !consumer_) {
+        if (!subscribe()) {
           tell(SourceState::Unreachable);
           pause();
         }
         continue;
       }
       auto batch = std::make_shared<MessageBatch>();
-      const natsStatus status = jetstream() ? fetch(subscription, *batch) : next(subscription, *batch);
+      const natsStatus status =
+          consumer_ ? consumer_->fetch(batch->messages, kFetchBatch, kWaitMs) : next(subscription_, *batch);
       const bool delivered = !batch->messages.empty();
       const std::optional<SourceState> after = delivered ? pending_after(*batch) : std::nullopt;
       if (delivered) post(std::move(batch));
@@ -123,12 +121,12 @@ class NatsInput final : public Input {
       if (after) tell(*after);
       if (status == NATS_OK || status == NATS_TIMEOUT) {
         failures_.recovered("reading again");
-        if (!delivered) tell(ask_source(subscription));
+        if (!delivered) tell(ask_source());
         continue;
       }
       if (status == NATS_SLOW_CONSUMER) {
         std::int64_t dropped = 0;
-        natsSubscription_GetDropped(subscription, &dropped);
+        if (subscription_) natsSubscription_GetDropped(subscription_, &dropped);
         dropped_.store(static_cast<std::uint64_t>(dropped));
         failures_.report(fmt::format("kewd fell behind {}: {} messages dropped so far", config_.address, dropped));
         continue;
@@ -139,70 +137,72 @@ class NatsInput final : public Input {
         pause();
         continue;
       }
+      if (consumer_ && status == NATS_NOT_FOUND) {
+        make_consumer_again();
+        continue;
+      }
       failures_.report(fmt::format("reading {}: {}", config_.address, nats::describe(status)));
       if (status == NATS_INVALID_SUBSCRIPTION || status == NATS_CONNECTION_CLOSED) {
-        natsSubscription_Destroy(subscription);
-        subscription = nullptr;
+        unsubscribe();
         tell(SourceState::Unreachable);
       } else {
-        tell(ask_source(subscription));
+        tell(ask_source());
       }
       pause();
     }
-    // Destroyed, not unsubscribed: a durable consumer stays on the server for the next run.
-    natsSubscription_Destroy(subscription);
+    unsubscribe();
   }
 
-  natsSubscription* subscribe() {
-    natsSubscription* subscription = nullptr;
+  // Deleted on the server (by an operator, or with its stream): the next pass makes it
+  // again from the message after the last one taken, so nothing is read twice or skipped.
+  void make_consumer_again() {
+    failures_.report(fmt::format("the JetStream consumer {} is gone: making it again {}", config_.durable,
+                                 taken_sequence_ ? fmt::format("from message {}", taken_sequence_ + 1)
+                                                 : std::string("from the stream's first message")));
+    if (taken_sequence_) start_sequence_ = taken_sequence_ + 1;
+    consumer_.reset();
+  }
+
+  // Destroyed, not unsubscribed: a durable consumer stays on the server for the next run.
+  void unsubscribe() {
+    natsSubscription_Destroy(subscription_);
+    subscription_ = nullptr;
+    consumer_.reset();
+  }
+
+  bool subscribe() {
     if (!jetstream()) {
-      const natsStatus s = natsConnection_SubscribeSync(&subscription, connection_.get(), config_.address.c_str());
+      const natsStatus s = natsConnection_SubscribeSync(&subscription_, connection_.get(), config_.address.c_str());
       if (s != NATS_OK) {
+        subscription_ = nullptr;
         failures_.report(fmt::format("cannot subscribe to {}: {}", config_.address, nats::describe(s)));
-        return nullptr;
+        return false;
       }
       spdlog::info("input {}: subscribed to {}", config_.name, config_.address);
-      return subscription;
+      return true;
     }
-    if (!connection_.connected()) return nullptr;
-    if (!config_.stream.empty() && !ensure_stream()) return nullptr;
-    jsSubOptions options;
-    jsSubOptions_Init(&options);
-    if (!config_.stream.empty()) options.Stream = config_.stream.c_str();
-    options.Config.AckPolicy = js_AckAll;
-    options.Config.AckWait = kAckWaitNs;
-    options.Config.DeliverPolicy = js_DeliverAll;
-    if (start_sequence_) {
-      // What this consumer took before belongs to a computation this kewd no longer has:
-      // it is made again from the sequence asked for.
-      jsErrCode deleted = static_cast<jsErrCode>(0);
-      const natsStatus d = js_DeleteConsumer(connection_.jetstream(), config_.stream.c_str(), config_.durable.c_str(),
-                                             nullptr, &deleted);
-      if (d != NATS_OK && d != NATS_NOT_FOUND && deleted != JSConsumerNotFoundErr) {
-        failures_.report(fmt::format("cannot make the JetStream consumer {} again: {}", config_.durable,
-                                     nats::describe(d)));
-        return nullptr;
-      }
-      options.Config.DeliverPolicy = js_DeliverByStartSequence;
-      options.Config.OptStartSeq = *start_sequence_;
-    }
-    jsErrCode error = static_cast<jsErrCode>(0);
-    const natsStatus s = js_PullSubscribe(&subscription, connection_.jetstream(), config_.address.c_str(),
-                                          config_.durable.c_str(), nullptr, &options, &error);
-    if (s != NATS_OK) {
-      failures_.report(fmt::format("cannot read {} through the JetStream consumer {}: {}{}", config_.address,
-                                   config_.durable, nats::describe(s),
-                                   error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
-      return nullptr;
+    if (!connection_.connected()) return false;
+    if (!config_.stream.empty() && !ensure_stream()) return false;
+    PullConsumer::Options options;
+    options.subject = config_.address;
+    options.stream = config_.stream;
+    options.durable = config_.durable;
+    options.start_sequence = start_sequence_;
+    try {
+      consumer_ = std::make_unique<PullConsumer>(connection_, options);
+    } catch (const nats::NatsError& e) {
+      failures_.report(fmt::format("cannot read {} through the JetStream consumer {}: {}", config_.address,
+                                   config_.durable, e.what()));
+      return false;
     }
     if (start_sequence_)
       spdlog::info("input {}: reading {} through the JetStream consumer {} from message {} of {}", config_.name,
-                   config_.address, config_.durable, *start_sequence_, config_.stream);
+                   config_.address, config_.durable, *start_sequence_, consumer_->stream());
     else
       spdlog::info("input {}: reading {} through the JetStream consumer {}", config_.name, config_.address,
                    config_.durable);
     start_sequence_.reset();  // a later subscription resumes where this consumer is
-    return subscription;
+    return true;
   }
 
   bool ensure_stream() {
@@ -254,9 +254,11 @@ class NatsInput final : public Input {
   }
 
   // The server's count, in the last message of a batch, of the messages still to come.
-  static std::optional<SourceState> pending_after(const MessageBatch& batch) {
+  // Also notes the batch's last stream sequence, from which a consumer found gone is made again.
+  std::optional<SourceState> pending_after(const MessageBatch& batch) {
     jsMsgMetaData* meta = nullptr;
     if (natsMsg_GetMetaData(&meta, batch.messages.back()) != NATS_OK) return std::nullopt;
+    taken_sequence_ = meta->Sequence.Stream;
     const bool behind = meta->NumPending > 0;
     jsMsgMetaData_Destroy(meta);
     return behind ? SourceState::Behind : SourceState::CaughtUp;
@@ -265,31 +267,17 @@ class NatsInput final : public Input {
   // After a read that brought nothing: the server's count of what the consumer has not yet
   // delivered, which also tells whether the server answers at all (a stopped server keeps
   // the connection open and answers nothing).
-  SourceState ask_source(natsSubscription* subscription) {
-    if (!jetstream()) return SourceState::CaughtUp;
-    jsOptions options;
-    jsOptions_Init(&options);
-    options.Wait = kAskWaitMs;
-    jsConsumerInfo* info = nullptr;
-    const natsStatus s = natsSubscription_GetConsumerInfo(&info, subscription, &options, nullptr);
-    if (s != NATS_OK) {
-      // A server that answers that the consumer is gone holds nothing more for kewd.
-      return s == NATS_NOT_FOUND && connection_.connected() ? SourceState::CaughtUp : SourceState::Unreachable;
+  SourceState ask_source() {
+    if (!consumer_) return SourceState::CaughtUp;
+    std::uint64_t undelivered = 0;
+    const natsStatus s = consumer_->undelivered(undelivered, kAskWaitMs);
+    if (s == NATS_NOT_FOUND && connection_.connected()) {
+      // Nothing more held for kewd under that name: made again after the last message taken.
+      make_consumer_again();
+      return SourceState::CaughtUp;
     }
-    const bool behind = info->NumPending > 0;
-    jsConsumerInfo_Destroy(info);
-    return behind ? SourceState::Behind : SourceState::CaughtUp;
-  }
-
-  static natsStatus fetch(natsSubscription* subscription, MessageBatch& batch) {
-    natsMsgList list{};
-    const natsStatus s = natsSubscription_Fetch(&list, subscription, kFetchBatch, kWaitMs, nullptr);
-    for (int i = 0; i < list.Count; ++i) {
-      batch.messages.push_back(list.Msgs[i]);
-      list.Msgs[i] = nullptr;  // owned by the batch now
-    }
-    natsMsgList_Destroy(&list);
-    return s;
+    if (s != NATS_OK) return SourceState::Unreachable;
+    return undelivered > 0 ? SourceState::Behind : SourceState::CaughtUp;
   }
 
   // One message (waiting for it), then whatever has already arrived behind it.
@@ -323,7 +311,8 @@ class NatsInput final : public Input {
       for (natsMsg* m : batch.messages)
         feed_message(*decoder_, natsMsg_GetData(m), static_cast<std::size_t>(natsMsg_GetDataLength(m)));
       // Acknowledged once decoded: the records are the pipeline's now.
-      if (jetstream() && !batch.messages.empty()) natsMsg_Ack(batch.messages.back(), nullptr);
+      if (jetstream() && !batch.messages.empty())
+        PullConsumer::acknowledge(connection_.get(), batch.messages.back());
     }
     {
       const std::lock_guard lock(mutex_);
@@ -336,6 +325,8 @@ class NatsInput final : public Input {
   NatsConnection connection_;
   std::unique_ptr<protocol::Decoder> decoder_;
   std::thread reader_;
+  natsSubscription* subscription_ = nullptr;  // reader thread: a plain subscription
+  std::unique_ptr<PullConsumer> consumer_;    // reader thread: a durable JetStream consumer
   std::mutex mutex_;
   std::condition_variable taken_;
   int in_flight_ = 0;       // guarded by mutex_
@@ -344,6 +335,7 @@ class NatsInput final : public Input {
   std::atomic<std::uint64_t> dropped_{0};
   RepeatedFailure failures_;  // reader thread
   std::optional<std::uint64_t> start_sequence_;  // set before start(), then the reader thread's
+  std::uint64_t taken_sequence_ = 0;  // reader thread: the stream sequence of the last message taken
   std::optional<SourceState> told_;  // reader thread: the last state posted; none yet
 };
 
