@@ -59,16 +59,32 @@ bool LeaderLease::wait(Clock::duration period) {
 void LeaderLease::on_link(bool up) {
   if (!up) {
     right_->bus_lost(Clock::now());
+    const std::lock_guard lock(mutex_);
+    link_lost_ = true;
     return;
   }
   {
     const std::lock_guard lock(mutex_);
     bus_back_ = true;
+    if (link_lost_) link_back_at_ = Clock::now();
+    link_lost_ = false;
   }
   stop_.notify_all();
 }
 
-LeaderLease::Retake LeaderLease::take_again(std::uint64_t& taken) {
+bool LeaderLease::link_up() {
+  if (!connection_.connected()) return false;
+  const std::lock_guard lock(mutex_);
+  return !link_lost_;
+}
+
+bool LeaderLease::yielding_to_a_returning_active() {
+  const std::lock_guard lock(mutex_);
+  return link_back_at_ && Clock::now() - *link_back_at_ < seconds(config_.lease_ttl_s);
+}
+
+LeaderLease::Retake LeaderLease::take_again(std::uint64_t& taken, Clock::time_point& sent) {
+  sent = Clock::now();
   const natsStatus s = kvStore_Create(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
                                       static_cast<int>(instance_.size()));
   if (s == NATS_OK) return Retake::Taken;
@@ -139,11 +155,15 @@ void LeaderLease::run() {
         failures.report(fmt::format("cannot open the key-value bucket {}", config_.lease_bucket));
       continue;
     }
-    const Clock::time_point sent = Clock::now();
+    Clock::time_point sent = Clock::now();
     std::uint64_t taken = 0;  // the client zeroes its output on failure: never the revision itself
     if (!active_) {
       const Readiness readiness = handlers_.readiness ? handlers_.readiness() : Readiness::InStep;
       if (readiness == Readiness::NotReady) continue;
+      if (!link_up() || yielding_to_a_returning_active()) {
+        free_since_.reset();
+        continue;
+      }
       if (readiness == Readiness::Unsynced) {
         if (!free_for_a_ttl()) continue;
         spdlog::warn("[nats] the lease {} has been free for {} s and this instance is not in step with the pair: "
@@ -195,10 +215,11 @@ void LeaderLease::run() {
       handlers_.on_lost();
       continue;
     }
-    natsStatus s = kvStore_Update(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
-                                  static_cast<int>(instance_.size()), revision);
-    bool lost = false;  // the server says so: another holds the key, or it expired
-    if (s != NATS_OK) {
+    natsStatus s = link_up() ? kvStore_Update(&taken, bucket_, config_.lease_key.c_str(), instance_.data(),
+                                              static_cast<int>(instance_.size()), revision)
+                             : NATS_CONNECTION_DISCONNECTED;
+    const char* lost = nullptr;  // the server's word that the holding is over: why
+    if (s != NATS_OK && s != NATS_CONNECTION_DISCONNECTED) {
       // The update may have been stored with its answer lost: then the key still says
       // this instance, at a newer revision.
       kvEntry* entry = nullptr;
@@ -208,29 +229,30 @@ void LeaderLease::run() {
           taken = kvEntry_Revision(entry);
           s = taken > revision ? NATS_OK : s;
         } else {
-          lost = true;
+          lost = "another instance holds it";
         }
         kvEntry_Destroy(entry);
       } else if (got == NATS_NOT_FOUND) {
-        lost = true;
+        lost = "it expired";
       }
     }
-    if (lost && right_->bus_away()) {
+    if (lost != nullptr && right_->bus_away()) {
       // The key expired on the servers while none answered: unless another instance
       // has taken it since, the same holding goes on under the key taken again (a new,
       // higher fencing token); the servers not answering yet, it stays away.
-      switch (take_again(taken)) {
+      switch (take_again(taken, sent)) {
         case Retake::Taken:
           holding = taken;
           s = NATS_OK;
-          lost = false;
+          lost = nullptr;
           spdlog::warn("[nats] {} took the lease {} again when the bus came back (fencing token {})", instance_,
                        config_.lease_key, holding);
           break;
         case Retake::NoAnswer:
-          lost = false;
+          lost = nullptr;
           break;
         case Retake::Another:
+          lost = "another instance took it when the bus came back";
           break;
       }
     }
@@ -243,8 +265,9 @@ void LeaderLease::run() {
       forget_bucket_if_gone(s);
       // No answer (the key's stream electing a leader, every server away): nobody can
       // take the key meanwhile either, as when the connection itself is lost.
-      if (!lost && (s == NATS_TIMEOUT || s == NATS_NO_RESPONDERS)) right_->bus_lost(sent);
-      if (!lost && right_->bus_away()) {
+      if (lost == nullptr && (s == NATS_TIMEOUT || s == NATS_NO_RESPONDERS || s == NATS_CONNECTION_DISCONNECTED))
+        right_->bus_lost(sent);
+      if (lost == nullptr && right_->bus_away()) {
         // Nobody can take the key while no server answers: the outputs that need no bus
         // go on; NATS publication waits for the renewal (SpeakingRight::may_publish).
         failures.report(fmt::format("no NATS server answers ({}): still active for the outputs that need no bus",
@@ -253,13 +276,13 @@ void LeaderLease::run() {
       }
       // A stalled process may wake with its clock telling little time has passed (a
       // paused virtual machine): the server's word ends the holding at once.
-      if (lost || Clock::now() - renewed_ >= ttl - period) {
+      if (lost != nullptr || Clock::now() - renewed_ >= ttl - period) {
         // The key expires on the server lease_ttl_s after the last renewal reached it;
         // this instance stops speaking a period earlier, before another can hold it.
         active_ = false;
         right_->release();
         spdlog::error("[nats] {} could not renew the lease {} ({}): standby", instance_, config_.lease_key,
-                      lost ? "another instance holds it, or it expired" : nats::describe(s));
+                      lost != nullptr ? lost : nats::describe(s));
         handlers_.on_lost();
       }
     }

@@ -79,7 +79,16 @@ class LeaderLease {
   /// After the bus came back without the key: creates it again (`taken` its revision),
   /// or finds another instance holding it, or no server answering yet.
   enum class Retake : std::uint8_t { Taken, Another, NoAnswer };
-  Retake take_again(std::uint64_t& taken);
+  /// `sent`: when the create was sent, from which the new key's TTL counts.
+  Retake take_again(std::uint64_t& taken, std::chrono::steady_clock::time_point& sent);
+  /// Connected, and the loss of the last connection told (on_link): a call made
+  /// otherwise would wait in the client's reconnect buffer and reach the server at the
+  /// reconnection, long after this thread stopped waiting for its answer (a create that
+  /// takes the key for an instance that believes it failed).
+  bool link_up();
+  /// A standby whose bus came back lets the key alone for a TTL: an active whose bus went
+  /// away with it takes its expired key again first (design §5.9).
+  bool yielding_to_a_returning_active();
   /// Waits `period`, or until stopping (true) or a server answers again.
   bool wait(std::chrono::steady_clock::duration period);
 
@@ -96,6 +105,8 @@ class LeaderLease {
   std::condition_variable stop_;
   bool stopping_ = false;  // guarded by mutex_
   bool bus_back_ = false;  // guarded by mutex_: a server answers again, renew at once
+  bool link_lost_ = false;  // guarded by mutex_: every server lost since the last answer
+  std::optional<std::chrono::steady_clock::time_point> link_back_at_;  // guarded by mutex_: the last reconnection
   std::thread thread_;
 };
 

@@ -265,12 +265,24 @@ NatsPublisher::Sent NatsPublisher::send(const Message& message) {
     }
     return Sent::Refused;
   }
-  const bool no_stream = !config_.stream.empty() && (s == NATS_NO_RESPONDERS || error == JSStreamNotFoundErr);
+  const bool no_stream =
+      !config_.stream.empty() && (error == JSStreamNotFoundErr || (s == NATS_NO_RESPONDERS && stream_is_gone()));
   failures_.report(fmt::format("{} not taken by the server: {}{} ({})", message.subject, nats::describe(s),
                                error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : "",
                                no_stream ? "no stream takes it: creating the stream again"
                                          : "tried again until it is"));
   return no_stream ? Sent::NoStream : Sent::Refused;
+}
+
+bool NatsPublisher::stream_is_gone() {
+  jsOptions options;
+  jsOptions_Init(&options);
+  options.Wait = kAcknowledgementWaitMs;
+  jsStreamInfo* info = nullptr;
+  jsErrCode error = static_cast<jsErrCode>(0);
+  js_GetStreamInfo(&info, connection_.jetstream(), config_.stream.c_str(), &options, &error);
+  jsStreamInfo_Destroy(info);
+  return error == JSStreamNotFoundErr;
 }
 
 void NatsPublisher::discard_outbox() {

@@ -78,6 +78,10 @@ class NatsPublisher {
   /// when the server did not tell. Fenced: that message carries a later holding's token.
   enum class Follows { Known, Unknown, Fenced };
   Follows learn_last_message();
+  /// Whether the server says the alert stream does not exist. A publication nobody
+  /// answered (no responders) means that, or only that the stream has no leader for the
+  /// moment (its replicas electing one after a node died): only the first is made again.
+  bool stream_is_gone();
   /// Waits `period` or until stopping; true when stopping.
   bool wait(std::chrono::milliseconds period);
 
