@@ -323,8 +323,9 @@ def _nats_client(port, timeout_s):
     return s, reader
 
 
-def _nats_next_payload(s, reader, subject):
-    """The payload (bytes, headers left out) of the next message the connection receives."""
+def _nats_next(s, reader, subject):
+    """(reply subject or None, payload bytes with headers left out) of the next message the
+    connection receives."""
     while True:
         line = reader.readline()
         if not line:
@@ -332,21 +333,30 @@ def _nats_next_payload(s, reader, subject):
         if line.startswith(b"PING"):
             s.sendall(b"PONG\r\n")
         elif line.startswith(b"MSG "):
-            size = int(line.split()[-1])
-            return reader.read(size + 2)[:size]
+            fields = line.split()
+            size = int(fields[-1])
+            return (fields[3].decode() if len(fields) == 5 else None), reader.read(size + 2)[:size]
         elif line.startswith(b"HMSG "):
-            header_size, size = (int(n) for n in line.split()[-2:])
-            return reader.read(size + 2)[header_size:size]
+            fields = line.split()
+            header_size, size = (int(n) for n in fields[-2:])
+            return (fields[3].decode() if len(fields) == 6 else None), reader.read(size + 2)[header_size:size]
 
 
-def nats_publish(port, subject, payloads):
-    """Publishes each of `payloads` (bytes) as one message through NATS's text protocol,
-    then waits for the server's PONG: every message has reached it."""
+def _nats_next_payload(s, reader, subject):
+    """The payload (bytes, headers left out) of the next message the connection receives."""
+    return _nats_next(s, reader, subject)[1]
+
+
+def nats_publish(port, subject, payloads, reply=None):
+    """Publishes each of `payloads` (bytes) as one message through NATS's text protocol
+    (with `reply` as its reply subject when given), then waits for the server's PONG:
+    every message has reached it."""
     s, reader = _nats_client(port, 10)
     with s:
         out = []
+        head = subject if reply is None else f"{subject} {reply}"
         for payload in payloads:
-            out.append(b"PUB %s %d\r\n%s\r\n" % (subject.encode(), len(payload), payload))
+            out.append(b"PUB %s %d\r\n%s\r\n" % (head.encode(), len(payload), payload))
         out.append(b"PING\r\n")
         s.sendall(b"".join(out))
         while True:
@@ -364,6 +374,18 @@ def nats_next_message(port, subject, timeout_s=10.0):
     with s:
         s.sendall(b"SUB %s 1\r\nPING\r\n" % subject.encode())
         return _nats_next_payload(s, reader, subject)
+
+
+def nats_next_reply_subject(port, subject, timeout_s=10.0):
+    """Subscribes to `subject` and returns the reply subject of the first message published
+    to it with one (where its sender waits for the answer)."""
+    s, reader = _nats_client(port, timeout_s)
+    with s:
+        s.sendall(b"SUB %s 1\r\nPING\r\n" % subject.encode())
+        while True:
+            reply, _ = _nats_next(s, reader, subject)
+            if reply is not None:
+                return reply
 
 
 def nats_request(port, subject, payload=b"", timeout_s=10.0):

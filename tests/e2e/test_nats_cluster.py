@@ -24,6 +24,7 @@ import urllib.request
 from kewd_harness import (KEWD, NATS_SERVER, STARTUP_TIMEOUT_S, NatsServer, Subscriber, _nats_client, active_at_end,
                           count_lines, free_port, generate, nats_request, offline_alerts, replay_to, wait_until)
 from test_kewd import E2eCase
+from test_hot_standby import pair_member
 from test_nats import SERVICE, UDP_INPUT, check_alert_lifecycles, watch
 
 DEPLOY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "deploy", "nats")
@@ -216,6 +217,8 @@ class Cluster(ClusterCase):
         print(f"\nnode{leader} (the stream's leader) killed: a new leader elected after {elected - killed:.1f} s, "
               f"kewd publishing again after {resumed - killed:.1f} s")
         self.assertLess(resumed - elected, RESUME_AFTER_ELECTION_S, "publication resumes once a leader is elected")
+        # Unanswered while it had no leader, the stream was never gone: not made again.
+        self.assertNotIn("creating the stream again", kewd.log())
 
         feeder.join()
         kewd.wait_records(count_lines(self.recording))
@@ -327,25 +330,6 @@ class AcknowledgedFeed(threading.Thread):
         self._socket = self._reader = None
 
 
-# A hot-standby pair on the cluster: everything on three replicas, the feed a durable
-# consumer of the stream KEW_FEED, through any node.
-PAIR_ON_CLUSTER = """
-[nats]
-servers = [{servers}]
-replicas = 3
-hot_standby = true
-instance = "{name}"
-
-[[input]]
-name = "bus"
-format = "ndjson"
-transport = "nats"
-address = "kew.feed.tma"
-nats_servers = [{servers}]
-durable = "kewd_{name}"
-stream = "KEW_FEED"
-"""
-
 # What the pair keeps in JetStream: the alerts, the feed, the lease and the pair's origin;
 # with the feed's durable consumers, each a group of three replicas with its leader.
 PAIR_STREAMS = ("KEW_ALERTS", "KEW_FEED", "KV_KEW_LEASE", "KV_KEW_PAIR")
@@ -363,8 +347,8 @@ class HotStandbyOnCluster(ClusterCase):
         recording = self.path("tma-long.ndjson")
         generate(recording, "tma", aircraft=150, duration=300, seed=5)
         self.cluster = cluster = NatsCluster(self.workdir)
-        servers = ", ".join(f'"{url}"' for url in cluster.urls)
-        config = {name: SERVICE + PAIR_ON_CLUSTER.format(servers=servers, name=name) for name in "ab"}
+        # Everything on three replicas, the feed read through any node.
+        config = {name: SERVICE + pair_member(name, cluster.urls, replicas=3) for name in "ab"}
         kewd = {"a": self.start(config["a"])}
         kewd["a"].wait_log("a holds the lease active: active", timeout_s=30)
         kewd["b"] = self.start(config["b"])
