@@ -206,6 +206,16 @@ class NatsInput final : public Input {
   }
 
   bool ensure_stream() {
+    jsStreamInfo* existing = nullptr;
+    jsErrCode missing = static_cast<jsErrCode>(0);
+    const natsStatus found =
+        js_GetStreamInfo(&existing, connection_.jetstream(), config_.stream.c_str(), nullptr, &missing);
+    jsStreamInfo_Destroy(existing);
+    if (found == NATS_OK) return keep_stream();
+    if (missing != JSStreamNotFoundErr) {
+      failures_.report(fmt::format("cannot read the JetStream stream {}: {}", config_.stream, nats::describe(found)));
+      return false;
+    }
     jsStreamConfig stream;
     jsStreamConfig_Init(&stream);
     stream.Name = config_.stream.c_str();
@@ -224,15 +234,17 @@ class NatsInput final : public Input {
                    config_.address, config_.stream_replicas);
       return true;
     }
-    if (error == kStreamNameInUse) {
-      // Made by an earlier run or the operator: its subjects and limits stay theirs, its
-      // replicas follow [nats] replicas.
-      const std::string scaled = nats::ensure_replicas(connection_.jetstream(), config_.stream, config_.stream_replicas);
-      if (!scaled.empty()) spdlog::warn("input {}: {}", config_.name, scaled);
-      return true;
-    }
+    if (error == kStreamNameInUse) return keep_stream();  // made by another meanwhile
     failures_.report(fmt::format("cannot create the JetStream stream {}: {}", config_.stream, nats::describe(s)));
     return false;
+  }
+
+  // Made by an earlier run or the operator: its subjects and limits stay theirs, its
+  // replicas follow [nats] replicas.
+  bool keep_stream() {
+    const std::string scaled = nats::ensure_replicas(connection_.jetstream(), config_.stream, config_.stream_replicas);
+    if (!scaled.empty()) spdlog::warn("input {}: {}", config_.name, scaled);
+    return true;
   }
 
   // What a durable consumer's source holds for kewd, for the live tick (design §4.1): only

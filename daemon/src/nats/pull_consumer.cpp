@@ -13,7 +13,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr std::string_view kAckPrefix = "$JS.ACK.";
-constexpr jsErrCode kConsumerNotFound = static_cast<jsErrCode>(10014);
 
 bool from_the_stream(natsMsg* message) {
   const char* reply = natsMsg_GetReply(message);
@@ -70,14 +69,14 @@ void PullConsumer::bind(const Options& options) {
     // What this consumer took before belongs to a computation the reader no longer has:
     // it is made again from the sequence asked for.
     const natsStatus deleted = js_DeleteConsumer(jetstream, stream_.c_str(), durable_.c_str(), nullptr, &error);
-    if (deleted != NATS_OK && deleted != NATS_NOT_FOUND && error != kConsumerNotFound)
+    if (deleted != NATS_OK && deleted != NATS_NOT_FOUND && error != JSConsumerNotFoundErr)
       throw NatsError(fmt::format("making the JetStream consumer {} again", durable_), deleted);
   } else {
     jsConsumerInfo* info = nullptr;
     const natsStatus found = js_GetConsumerInfo(&info, jetstream, stream_.c_str(), durable_.c_str(), nullptr, &error);
     jsConsumerInfo_Destroy(info);
     if (found == NATS_OK) return;  // made by an earlier run: it resumes where that one was
-    if (found != NATS_NOT_FOUND && error != kConsumerNotFound)
+    if (found != NATS_NOT_FOUND && error != JSConsumerNotFoundErr)
       throw NatsError(fmt::format("reading the JetStream consumer {}", durable_), found);
   }
   std::optional<std::uint64_t> start = options.start_sequence;
@@ -190,9 +189,11 @@ natsStatus PullConsumer::undelivered(std::uint64_t& count, std::int64_t wait_ms)
   jsErrCode error = static_cast<jsErrCode>(0);
   natsStatus s = js_GetConsumerInfo(&info, connection_.jetstream(), stream_.c_str(), durable_.c_str(), &options, &error);
   if (s == NATS_OK) count = info->NumPending;
-  else if (error == kConsumerNotFound) s = NATS_NOT_FOUND;
   jsConsumerInfo_Destroy(info);
-  return s;
+  // Gone only on the server's word (the consumer or its stream not found): the caller
+  // deletes and makes the consumer again on it.
+  if (s != NATS_OK && (error == JSConsumerNotFoundErr || error == JSStreamNotFoundErr)) return NATS_NOT_FOUND;
+  return s == NATS_NOT_FOUND ? NATS_ERR : s;
 }
 
 }  // namespace kew::nats
