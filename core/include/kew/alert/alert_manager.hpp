@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "kew/alert/alert_event.hpp"
+#include "kew/util/checkpoint_io.hpp"
 
 namespace kew::alert {
 
@@ -154,6 +155,13 @@ class AlertManager {
     next_number_ = next_number == 0 ? 1 : next_number;
   }
   const AlertConfig& config() const { return config_; }
+
+  /// The manager's whole state, for a checkpoint (design §5.9): restore() into a manager
+  /// made with the same AlertConfig and party names continues exactly as this one would.
+  void save(util::CheckpointWriter& out) const;
+  /// Replaces this manager's state by one save() wrote. Throws util::CheckpointError when
+  /// it cannot be read; the manager is then left empty, numbering from the start.
+  void restore(util::CheckpointReader& in);
 
  private:
   /// What an active alert keeps of one party of its last event: the numbers and the
