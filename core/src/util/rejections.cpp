@@ -28,4 +28,31 @@ void Rejections::merge(const Rejections& other) {
   total_ += other.total_;
 }
 
+void Rejections::save(util::CheckpointWriter& out) const {
+  out.tag("rejections");
+  out.u64(total_);
+  out.text(last_);
+  out.u64(counts_.size());
+  for (const auto& [reason, n] : counts_) {
+    out.text(reason);
+    out.u64(n);
+  }
+}
+
+void Rejections::restore(util::CheckpointReader& in) {
+  // Read whole before anything changes: a checkpoint that cannot be read leaves the counts.
+  in.tag("rejections");
+  const std::uint64_t total = in.u64();
+  std::string last = in.text();
+  std::map<std::string, std::uint64_t, std::less<>> counts;
+  const std::uint64_t reasons = in.u64();
+  for (std::uint64_t i = 0; i < reasons; ++i) {
+    std::string reason = in.text();
+    counts[std::move(reason)] = in.u64();
+  }
+  total_ = total;
+  last_ = std::move(last);
+  counts_ = std::move(counts);
+}
+
 }  // namespace kew

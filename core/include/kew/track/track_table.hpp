@@ -196,6 +196,14 @@ class TrackTable {
   std::uint64_t velocity_resets() const { return velocity_resets_; }
   std::uint64_t velocities_derived() const { return velocities_derived_; }
 
+  /// The table's whole state, for a checkpoint (design §5.9): every slot's track, the
+  /// free slots in the order they are reused, the deadlines and the counters. restore()
+  /// into a table of the same configuration admits, expires and numbers exactly as this
+  /// one would. Throws util::CheckpointError when it cannot be read; the table is then
+  /// left empty.
+  void save(util::CheckpointWriter& out) const;
+  void restore(util::CheckpointReader& in);
+
  private:
   TrackSlot allocate(const TrackReport& r);
   /// The rate of turn after record `r` (Track::turn_rate_dps); track.trk_deg is r's.

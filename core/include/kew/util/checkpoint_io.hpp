@@ -63,6 +63,11 @@ class CheckpointWriter {
   void field(E v, E /*last*/) {
     u8(static_cast<std::uint8_t>(v));
   }
+  template <class T>
+  void field(const std::optional<T>& v) {
+    boolean(v.has_value());
+    if (v) field(*v);
+  }
 
   const std::string& bytes() const { return bytes_; }
   std::string take() { return std::move(bytes_); }
@@ -127,6 +132,14 @@ class CheckpointReader {
   template <class E>
   void field(E& v, E last) {
     v = enumeration(last);
+  }
+  template <class T>
+  void field(std::optional<T>& v) {
+    v.reset();
+    if (!boolean()) return;
+    T value{};
+    field(value);
+    v = value;
   }
   /// The section `name` begins here.
   void tag(std::string_view name) {

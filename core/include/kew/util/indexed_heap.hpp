@@ -39,6 +39,13 @@ class IndexedHeap {
   }
 
   /// Removes h if present.
+  /// Calls f(handle, key) for every entry, in no particular order (a checkpoint: set()
+  /// in any order gives the same order out, ties going to the smaller handle).
+  template <class F>
+  void for_each(F&& f) const {
+    for (const Entry& e : entries_) f(e.handle, e.key);
+  }
+
   void erase(Handle h) {
     if (!contains(h)) return;
     const std::size_t i = position_[h];

@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "kew/util/checkpoint_io.hpp"
+
 namespace kew {
 
 class Rejections {
@@ -39,6 +41,11 @@ class Rejections {
   /// Adds another counter's figures into this one (e.g. per-connection decoders into
   /// an input's total).
   void merge(const Rejections& other);
+
+  /// The counts, for a checkpoint (design §5.9); restore() replaces them (the reporter
+  /// and its rate limit stay this object's).
+  void save(util::CheckpointWriter& out) const;
+  void restore(util::CheckpointReader& in);
 
  private:
   std::uint64_t burst_;
