@@ -1,7 +1,5 @@
 #include "pull_consumer.hpp"
 
-#include <cstring>
-
 #include <fmt/format.h>
 
 #include "nats_connection.hpp"
