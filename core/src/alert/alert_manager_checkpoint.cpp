@@ -70,8 +70,7 @@ void numbering_fields(Io& io, std::uint64_t& seq, std::uint16_t& next_number, Co
 }  // namespace
 
 void AlertManager::save(util::CheckpointWriter& out) const {
-  out.tag("alert_manager");
-  out.u32(kVersion);
+  out.section("alert_manager", kVersion);
   std::uint64_t seq = seq_;
   std::uint16_t next_number = next_number_;
   Counters counters = counters_;
@@ -111,9 +110,7 @@ void AlertManager::restore(util::CheckpointReader& in) {
   };
   empty();
   try {
-    in.tag("alert_manager");
-    const std::size_t at = in.offset();
-    if (in.u32() != kVersion) in.fail(at, "an alert manager of another version");
+    in.section("alert_manager", kVersion);
     numbering_fields(in, seq_, next_number_, counters_);
     const std::uint64_t pairs = in.u64();
     for (std::uint64_t i = 0; i < pairs; ++i) {

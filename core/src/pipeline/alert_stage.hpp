@@ -15,6 +15,7 @@
 #include "kew/pipeline/instrumentation.hpp"
 #include "kew/pipeline/pair_observer.hpp"
 #include "kew/pipeline/pipeline_config.hpp"
+#include "kew/util/checkpoint_io.hpp"
 #include "kew/util/rejections.hpp"
 #include "pair_judge.hpp"
 #include "zone_set.hpp"
@@ -39,6 +40,12 @@ class AlertStage {
   const alert::AlertManager& alerts() const { return alerts_; }
   alert::AlertManager& alerts() { return alerts_; }
   const Rejections& suppressed() const { return suppressed_; }
+  /// Each track as the alert stage last judged it, by slot.
+  const std::vector<Snapshot>& view() const { return view_; }
+  /// The stage's state (design §5.9) between batches; restore() into a fresh stage.
+  void save(util::CheckpointWriter& out) const;
+  void restore(util::CheckpointReader& in);
+
   std::uint64_t probes() const { return probes_; }
   std::uint64_t candidates() const { return candidates_; }
 

@@ -17,6 +17,7 @@
 #include "kew/region/region_map.hpp"
 #include "kew/track/time_guard.hpp"
 #include "kew/track/track_table.hpp"
+#include "kew/util/checkpoint_io.hpp"
 #include "zone_set.hpp"
 
 namespace kew::pipeline {
@@ -54,6 +55,16 @@ class TrackStage {
 
   void set_time_ceiling(double utc_s) { time_ceiling_ = utc_s; }
   void set_pair_observer(PairObserver* observer) { observer_ = observer; }
+
+  /// Whether save() may be called: no record held ahead of the clock or refused by a young
+  /// run (they are records, not state, and are not checkpointed).
+  bool checkpointable() const { return time_guard_.held() == 0 && young_refused_.empty(); }
+  /// No record taken yet.
+  bool fresh() const { return !started_ && stats_.records == 0; }
+  /// The stage's state (design §5.9), checkpointable() required; restore() into a fresh
+  /// stage of the same configuration, which also sets the zones' epoch and single plane.
+  void save(util::CheckpointWriter& out) const;
+  void restore(util::CheckpointReader& in);
 
   double now() const { return clock_; }
   const track::TrackTable& tracks() const { return tracks_; }

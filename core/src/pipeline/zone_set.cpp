@@ -115,7 +115,7 @@ void ZoneSet::touch(zone::ZoneKey key) {
 }
 
 std::uint32_t ZoneSet::place(track::TrackSlot slot, std::uint32_t snapshot, double lat_deg, double lon_deg,
-                             double t, std::vector<zone::ZoneKey>& step_zones) {
+                             double t, std::vector<zone::ZoneKey>& step_zones, bool probe) {
   util::grow_to(members_, static_cast<std::size_t>(slot) + 1);
   std::vector<zone::ZoneKey>& members = members_[slot];
   // The zones that hold the track now (design §4.9): it leaves the others first.
@@ -135,7 +135,7 @@ std::uint32_t ZoneSet::place(track::TrackSlot slot, std::uint32_t snapshot, doub
     ZoneWork& w = work_[key];
     if (std::find(members.begin(), members.end(), key) == members.end()) ++w.members;
     w.ops.push_back({ZoneOp::Kind::Place, slot, snapshot, t});
-    w.ops.push_back({ZoneOp::Kind::Probe, slot, snapshot, t});
+    if (probe) w.ops.push_back({ZoneOp::Kind::Probe, slot, snapshot, t});
     touch(key);
     step_zones.push_back(key);
   }

@@ -58,8 +58,9 @@ class ZoneSet {
   /// Places the track in the zones near (lat, lon) at data time t and asks them to probe
   /// it (snapshot: in the batch), taking it out of the zones no longer near; appends the
   /// zones to `step_zones` and returns how many.
+  /// `probe` false: placed only (refill()).
   std::uint32_t place(track::TrackSlot slot, std::uint32_t snapshot, double lat_deg, double lon_deg, double t,
-                      std::vector<zone::ZoneKey>& step_zones);
+                      std::vector<zone::ZoneKey>& step_zones, bool probe = true);
   /// Takes the track out of every zone it is a member of at data time t.
   void remove(track::TrackSlot slot, double t);
   /// Asks the zones due for memory ordering (PipelineConfig::renumber_every_s) to renumber.
@@ -67,6 +68,12 @@ class ZoneSet {
   /// Forgets every zone (a young run restarting, design §4.1); single mode's plane is
   /// kept when `keep_single_plane`. Requires that no track is a member.
   void reset(bool keep_single_plane);
+  /// A restored pipeline's zones (design §5.9): every track of `snapshots` (each one in the
+  /// engines, as the alert stage last judged it) placed at `clock` without a probe, the
+  /// engines run to `clock`; then the creation and retirement counters set to the saved
+  /// ones. Requires no zone and no work.
+  void refill(const std::vector<Snapshot>& snapshots, double clock, std::uint64_t zones_created,
+              std::uint64_t zones_retired);
 
   // ---- The batch.
   bool has_work() const { return !touched_.empty(); }

@@ -68,9 +68,11 @@ void track_fields(Io& io, T& track) {
 
 }  // namespace
 
+void TrackTable::write_track(util::CheckpointWriter& out, const Track& track) { track_fields(out, track); }
+void TrackTable::read_track(util::CheckpointReader& in, Track& track) { track_fields(in, track); }
+
 void TrackTable::save(util::CheckpointWriter& out) const {
-  out.tag("track_table");
-  out.u32(kVersion);
+  out.section("track_table", kVersion);
   out.u32(slot_end());
   for (TrackSlot slot = 0; slot < slot_end(); ++slot) {
     const Track& track = tracks_[slot];
@@ -102,9 +104,7 @@ void TrackTable::restore(util::CheckpointReader& in) {
   };
   empty();
   try {
-    in.tag("track_table");
-    const std::size_t at = in.offset();
-    if (in.u32() != kVersion) in.fail(at, "a track table of another version");
+    in.section("track_table", kVersion);
     const TrackSlot slots = in.u32();
     for (TrackSlot slot = 0; slot < slots; ++slot) {
       Track& track = tracks_.emplace_back();

@@ -16,6 +16,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "kew/alert/alert_manager.hpp"
 #include "kew/kinetic/kinetic_delaunay.hpp"
@@ -100,6 +102,20 @@ class Pipeline {
   /// Ends every alert and drops every track at the current time (end of a replay, or a
   /// daemon shutting down), emitting the End events.
   void drop_all();
+
+  /// The computation's whole state after a flush() (design §5.9, a hot-standby pair's
+  /// checkpoint): bytes that restore() turns into a pipeline that continues this one
+  /// event for event (ids, seq, numbers, severities, figures) and record for record. The
+  /// kinetic engines are not in it: they are made again from the tracks, and only their
+  /// counters differ. Nullopt while the track stage holds records it has not decided yet
+  /// (ahead of the clock in the time guard, or a young run's refused ones): a few records
+  /// later it can.
+  std::optional<std::string> checkpoint();
+  /// Takes the state a pipeline of the same configuration wrote with checkpoint(). This
+  /// pipeline must be fresh (no record processed); the sink, observer and instruments
+  /// stay. Throws util::CheckpointError (kew/util/checkpoint_io.hpp) when the bytes cannot
+  /// be read or were written in another zone mode: the pipeline is then to be discarded.
+  void restore(std::string_view checkpoint);
 
   /// Exact audit of every zone's triangulation at now(), repairing what it finds; the
   /// zones' findings summed.

@@ -203,6 +203,10 @@ class TrackTable {
   /// left empty.
   void save(util::CheckpointWriter& out) const;
   void restore(util::CheckpointReader& in);
+  /// One track's fields as save() writes them (in_use aside), for the copies of tracks
+  /// other owners keep (the alert stage's view). read_track throws util::CheckpointError.
+  static void write_track(util::CheckpointWriter& out, const Track& track);
+  static void read_track(util::CheckpointReader& in, Track& track);
 
  private:
   TrackSlot allocate(const TrackReport& r);

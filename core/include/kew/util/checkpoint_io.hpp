@@ -47,6 +47,11 @@ class CheckpointWriter {
   }
   /// A section's name, so that a reader out of step fails where it went wrong.
   void tag(std::string_view name) { text(name); }
+  /// A section's name and the version of its layout (CheckpointReader::section).
+  void section(std::string_view name, std::uint32_t version) {
+    tag(name);
+    u32(version);
+  }
 
   /// One value by its type, as CheckpointReader::field reads it back: a class writes and
   /// reads its state with one template of field() calls, so the two cannot drift apart.
@@ -145,6 +150,13 @@ class CheckpointReader {
   void tag(std::string_view name) {
     const std::size_t at = offset_;
     if (text() != name) fail(at, "not the section " + std::string(name));
+  }
+
+  /// The section `name` of layout `version` begins here: another version is refused.
+  void section(std::string_view name, std::uint32_t version) {
+    tag(name);
+    const std::size_t at = offset_;
+    if (u32() != version) fail(at, std::string(name) + " of another version");
   }
 
   bool at_end() const { return offset_ == bytes_.size(); }
