@@ -65,6 +65,9 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   EXPECT_EQ(file.nats.outbox, defaults.nats.outbox);
   EXPECT_EQ(file.nats.hot_standby, defaults.nats.hot_standby);
   EXPECT_EQ(file.nats.lease_bucket, defaults.nats.lease_bucket);
+  EXPECT_EQ(file.nats.pair_bucket, defaults.nats.pair_bucket);
+  EXPECT_EQ(file.nats.checkpoint_interval_s, defaults.nats.checkpoint_interval_s);
+  EXPECT_EQ(file.nats.checkpoint_stream, defaults.nats.checkpoint_stream);
   EXPECT_EQ(file.nats.lease_key, defaults.nats.lease_key);
   EXPECT_EQ(file.nats.lease_ttl_s, defaults.nats.lease_ttl_s);
   EXPECT_EQ(file.nats.instance, defaults.nats.instance);

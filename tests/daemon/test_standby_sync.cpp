@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "pair_checkpoint.hpp"
 #include "pair_origin.hpp"
 
 namespace kew::daemon {
@@ -141,6 +142,56 @@ TEST(PairOrigin, ReadsBackWhatItWritesAndRefusesAnythingElse) {
                           R"({"feed_seq":1,"alerts_seq":1,"last_seq":-1,"next_number":1,"created_by":"a","created_t":0})",
                           R"({"feed_seq":1,"alerts_seq":1,"last_seq":0,"next_number":1,"created_by":7,"created_t":0})"})
     EXPECT_FALSE(pair_origin_from_json(bad)) << bad;
+}
+
+TEST(PairCheckpoint, ReadsBackWhatItWritesAndRefusesAnythingElse) {
+  PairCheckpoint checkpoint;
+  checkpoint.origin_feed_seq = 3;
+  checkpoint.origin_created_unix_s = 1733000000.125;
+  checkpoint.feed_seq = 90210;
+  checkpoint.alerts_seq = 4711;
+  checkpoint.last_seq = 815;
+  checkpoint.written_by = "kew-a \"north\"";
+  checkpoint.written_unix_s = 1733000300.5;
+  checkpoint.pipeline = std::string("\0state\n\xff bytes\n", 15);
+  const std::string bytes = to_bytes(checkpoint);
+  std::string why;
+  EXPECT_EQ(pair_checkpoint_from_bytes(bytes, why), checkpoint) << why;
+  // Every truncation, an altered byte of the state, a header without a field, and a
+  // feed message before the pair's origin are refused, each saying why.
+  for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
+    why.clear();
+    EXPECT_FALSE(pair_checkpoint_from_bytes(std::string_view(bytes).substr(0, cut), why)) << cut;
+    EXPECT_FALSE(why.empty()) << cut;
+  }
+  std::string altered = bytes;
+  altered.back() ^= 1;
+  EXPECT_FALSE(pair_checkpoint_from_bytes(altered, why));
+  EXPECT_NE(why.find("CRC-32"), std::string::npos) << why;
+  std::string no_field = bytes;
+  no_field.replace(no_field.find("\"last_seq\""), 10, "\"lost_seq\"");
+  EXPECT_FALSE(pair_checkpoint_from_bytes(no_field, why));
+  PairCheckpoint before_origin = checkpoint;
+  before_origin.feed_seq = 2;
+  EXPECT_FALSE(pair_checkpoint_from_bytes(to_bytes(before_origin), why));
+}
+
+TEST(StandbySync, ACheckpointsOpenAlertsAreTheActivesToEndInAnUnsyncedTakeover) {
+  StandbySync sync(100);
+  AlertEvent open_at_checkpoint;
+  open_at_checkpoint.id = "a1";
+  open_at_checkpoint.seq = 98;
+  open_at_checkpoint.state = AlertState::Update;
+  sync.seed_open({open_at_checkpoint});
+  AlertEvent ended = open_at_checkpoint;
+  ended.id = "a2";
+  ended.seq = 101;
+  ended.state = AlertState::New;
+  sync.active_alert(ended);
+  const std::vector<AlertEvent> open = sync.open_on_active();
+  ASSERT_EQ(open.size(), 2u);
+  EXPECT_EQ(open[0].id, "a1");
+  EXPECT_EQ(open[1].id, "a2");
 }
 
 }  // namespace

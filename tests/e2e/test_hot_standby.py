@@ -18,13 +18,15 @@ import urllib.request
 from kewd_harness import (KEW_WATCH, Subscriber, count_lines, generate, nats_publish, offline_alerts, replay_to,
                           wait_until)
 from test_http import WebSocket
-from test_nats import SERVICE, UDP_INPUT, NatsCase, check_alert_lifecycles, stream_messages, watch
+from test_nats import (SERVICE, UDP_INPUT, NatsCase, check_alert_lifecycles, stream_first_seq, stream_messages,
+                       watch)
 
 
-def pair_member(name, servers, replicas=1):
+def pair_member(name, servers, replicas=1, nats_keys="", input_keys=""):
     """The [nats] table and NATS feed of hot-standby pair member `name` on `servers` (URLs of
     one server or of a cluster's nodes), each stream with `replicas` replicas: it reads the
-    feed through its own durable consumer of the stream KEW_FEED, through any server."""
+    feed through its own durable consumer of the stream KEW_FEED, through any server.
+    `nats_keys`, `input_keys`: more lines for the [nats] table and the input."""
     listed = ", ".join(f'"{url}"' for url in servers)
     return f"""
 [nats]
@@ -32,6 +34,7 @@ servers = [{listed}]
 replicas = {replicas}
 hot_standby = true
 instance = "{name}"
+{nats_keys}
 
 [[input]]
 name = "bus"
@@ -41,6 +44,7 @@ address = "kew.feed.tma"
 nats_servers = [{listed}]
 durable = "kewd_{name}"
 stream = "KEW_FEED"
+{input_keys}
 """
 
 # Hot standby fed by UDP on each instance (radar delivered to both hosts): the lease and
@@ -234,6 +238,47 @@ class HotStandby(NatsCase):
         check_alert_lifecycles(self, kept)
         self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
 
+
+    def test_a_standby_restarted_after_the_feed_dropped_the_origin_continues_the_latest_checkpoint(self):
+        """The feed stream keeps 12 s of records and the active writes a checkpoint every
+        3 s: the standby, killed early and restarted once the stream no longer holds the
+        pair's origin, loads the latest checkpoint, is in step, and takes over when the
+        active dies; JetStream holds the run without failure event for event. (Without
+        checkpoints, checkpoint_interval_s = 0, the restarted standby is never in step.)"""
+        recording = self.path("tma-long.ndjson")
+        generate(recording, "tma", aircraft=150, duration=300, seed=5)
+        member = {name: SERVICE + pair_member(name, [self.nats.url], nats_keys="checkpoint_interval_s = 3",
+                                              input_keys="stream_max_age_s = 12") for name in "ab"}
+        first, second = self.start_pair(member)
+        for kewd in (first, second):
+            kewd.wait_log("reading kew.feed.tma through the JetStream consumer")
+        expected = offline_alerts(first.config_path, recording)
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", recording, "--speed", "5"))
+        feeder.start()
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected) / 10, 60, "alerts in the stream")
+        second.process.kill()
+        second.process.wait()
+        # The stream has dropped the pair's first records: judging the feed again from the
+        # origin is impossible now.
+        wait_until(lambda: stream_first_seq(self.nats.port, "KEW_FEED") > 1, 60, "the feed's first records dropped")
+        first.wait_log("[nats] checkpoint written to KEW_CHECKPOINTS.active", timeout_s=30)
+        second = self.start(member["b"])
+        second.wait_log("the pair's latest checkpoint (written by a)", timeout_s=30)
+        second.wait_log("hot standby: the pipeline continues the checkpoint of a", timeout_s=30)
+        second.wait_log("b: in step with the active", timeout_s=60)
+        self.assertTrue(second.stats()["nats"]["began_from_checkpoint"])
+        self.assertGreater(first.stats()["nats"]["checkpoints_written"], 0)
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected) / 2, 120, "alerts in the stream")
+        first.process.kill()
+        second.wait_log("active now (hot standby b)", timeout_s=30)
+        feeder.join()
+        wait_until(lambda: stream_messages(self.nats.port) >= len(expected), 60, "every event in the stream")
+        time.sleep(1.0)
+        kept = [line for line in watch(self.nats.url, "--since", "0", "-n", str(stream_messages(self.nats.port)))
+                if json.loads(line)["class"] == "ALERT"]
+        check_alert_lifecycles(self, kept)
+        self.assertEqual(kept, expected, "JetStream holds the run without failure, event for event")
 
     def test_a_host_wide_stall_past_the_lease_leaves_one_speaker(self):
         """A paused virtual machine stops everything at once, nats-server included, and

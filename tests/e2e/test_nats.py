@@ -438,6 +438,12 @@ def stream_messages(port, stream="KEW_ALERTS"):
     return info.get("state", {}).get("messages", 0)
 
 
+def stream_first_seq(port, stream):
+    """The sequence of the first message a JetStream stream holds (0 before it exists)."""
+    info = json.loads(nats_request(port, f"$JS.API.STREAM.INFO.{stream}"))
+    return info.get("state", {}).get("first_seq", 0)
+
+
 def check_alert_lifecycles(case, alert_lines):
     """Every id begins with its "new" and has no event after its "end"; no pair of
     aircraft has two alerts open at once; seq grows by one."""

@@ -120,6 +120,8 @@ void read_nats(TableReader& r, NatsConfig& n) {
   r.boolean("hot_standby", n.hot_standby);
   stream_name(r, "lease_bucket", n.lease_bucket);
   stream_name(r, "pair_bucket", n.pair_bucket);
+  r.number("checkpoint_interval_s", n.checkpoint_interval_s, 0.0, 86400.0);
+  stream_name(r, "checkpoint_stream", n.checkpoint_stream);
   r.string("lease_key", n.lease_key);
   if (!config::valid_nats_subject(n.lease_key, false) || n.lease_key.find('.') != std::string::npos)
     r.fail(r.node("lease_key"), fmt::format("lease_key = \"{}\" is not a key (no '.', wildcard or space)", n.lease_key));

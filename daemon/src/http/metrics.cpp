@@ -190,6 +190,9 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
       e.single("kew_standby_bus_away", "gauge",
                "Hot standby: 1 while this active kewd reaches no NATS server and serves the other outputs alone.",
                n.bus_away ? 1.0 : 0.0);
+      e.single("kew_standby_checkpoints_written_total", "counter",
+               "Hot standby: checkpoints of the computation this kewd wrote as the active.",
+               num(n.checkpoints_written));
     }
   }
   if (!s.http) return;

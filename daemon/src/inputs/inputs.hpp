@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ class Input {
   /// JetStream stream (the pair's origin), whatever this input's durable consumer had
   /// taken before. Only a NATS input with `durable` and `stream` can; false for the others.
   virtual bool read_from_stream_sequence(std::uint64_t /*sequence*/) { return false; }
+  /// Hot standby's checkpoint (design §5.9), on the I/O thread: the JetStream stream
+  /// sequence of the last message whose records have all been delivered; nullopt before
+  /// the first, and for every input but a NATS input with `durable`.
+  virtual std::optional<std::uint64_t> delivered_stream_sequence() const { return std::nullopt; }
   /// Called on the I/O thread when an input that knows its source's backlog (a durable
   /// JetStream consumer) learns its source's state, ordered with the records it delivers;
   /// other inputs never call it (their source counts as caught up).

@@ -66,6 +66,7 @@ class NatsInput final : public Input {
     start_sequence_ = sequence;
     return true;
   }
+  std::optional<std::uint64_t> delivered_stream_sequence() const override { return delivered_sequence_; }
   void stop() override {
     halt();
     stopped_ = true;
@@ -323,8 +324,14 @@ class NatsInput final : public Input {
       for (natsMsg* m : batch.messages)
         feed_message(*decoder_, natsMsg_GetData(m), static_cast<std::size_t>(natsMsg_GetDataLength(m)));
       // Acknowledged once decoded: the records are the pipeline's now.
-      if (jetstream() && !batch.messages.empty())
+      if (jetstream() && !batch.messages.empty()) {
         PullConsumer::acknowledge(connection_.get(), batch.messages.back());
+        jsMsgMetaData* meta = nullptr;
+        if (natsMsg_GetMetaData(&meta, batch.messages.back()) == NATS_OK) {
+          delivered_sequence_ = meta->Sequence.Stream;
+          jsMsgMetaData_Destroy(meta);
+        }
+      }
     }
     {
       const std::lock_guard lock(mutex_);
@@ -344,6 +351,7 @@ class NatsInput final : public Input {
   int in_flight_ = 0;       // guarded by mutex_
   bool stopping_ = false;   // guarded by mutex_
   bool stopped_ = false;    // I/O thread
+  std::optional<std::uint64_t> delivered_sequence_;  // I/O thread
   std::atomic<std::uint64_t> dropped_{0};
   RepeatedFailure failures_;  // reader thread
   std::optional<std::uint64_t> start_sequence_;  // set before start(), then the reader thread's

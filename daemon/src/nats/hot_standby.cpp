@@ -22,9 +22,10 @@ HotStandby::HotStandby(boost::asio::io_context& io, const NatsConfig& config, co
                        std::shared_ptr<SpeakingRight> right)
     : handlers_(std::move(handlers)), instance_(instance_name(config)) {
   PairFollower::Handlers pair;
-  pair.on_origin = [this, &io](const PairOrigin& origin) {
-    boost::asio::post(io, [this, origin] { handlers_.on_origin(origin); });
+  pair.on_origin = [this, &io](const PairOrigin& start, std::shared_ptr<const PairCheckpoint> checkpoint) {
+    boost::asio::post(io, [this, start, checkpoint = std::move(checkpoint)] { handlers_.on_origin(start, checkpoint); });
   };
+  pair.usable = handlers_.usable;
   pair.on_alert = [this, &io](const AlertEvent& event) {
     boost::asio::post(io, [this, event] { handlers_.on_active_alert(event); });
   };
@@ -47,6 +48,7 @@ HotStandby::HotStandby(boost::asio::io_context& io, const NatsConfig& config, co
     if (!origin_known_) return LeaderLease::Readiness::NotReady;
     return in_step_ ? LeaderLease::Readiness::InStep : LeaderLease::Readiness::Unsynced;
   };
+  if (handlers_.usable && config.checkpoint_interval_s > 0) checkpoints_ = std::make_unique<CheckpointPublisher>(config, right);
   lease_ = std::make_unique<LeaderLease>(config, instance_, std::move(lease), std::move(right));
 }
 

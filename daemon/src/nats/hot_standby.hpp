@@ -12,6 +12,7 @@
 
 #include <boost/asio/io_context.hpp>
 
+#include "checkpoint_store.hpp"
 #include "leader_lease.hpp"
 #include "pair_follower.hpp"
 
@@ -21,8 +22,12 @@ class HotStandby {
  public:
   /// Called on the I/O thread.
   struct Handlers {
-    /// The pair's origin: judge the feed from there with its numbering. Once, first.
-    std::function<void(const PairOrigin&)> on_origin;
+    /// Where this instance begins: judge the feed from there with its numbering, from
+    /// the checkpoint's state when there is one. Once, first.
+    std::function<void(const PairOrigin& start, std::shared_ptr<const PairCheckpoint> checkpoint)> on_origin;
+    /// PairFollower::Handlers::usable, called on the follower's thread; unset: no
+    /// checkpoint is read or written.
+    std::function<bool(const std::string& state, std::string& why)> usable;
     /// The lease is this instance's; the previous active published up to `published`.
     std::function<void(std::uint64_t published)> on_acquired;
     std::function<void()> on_lost;
@@ -46,6 +51,12 @@ class HotStandby {
   /// The pair's origin is known: the lease may be taken (unsynced at worst). Thread-safe.
   void set_origin_known() { origin_known_ = true; }
   const std::string& instance() const { return instance_; }
+  /// Hands a checkpoint to the writer (CheckpointPublisher::write); false while it is
+  /// busy or when checkpoints are off.
+  std::uint64_t checkpoints_written() const { return checkpoints_ ? checkpoints_->written() : 0; }
+  bool write_checkpoint(PairCheckpoint checkpoint, std::future<std::uint64_t> published) {
+    return checkpoints_ && checkpoints_->write(std::move(checkpoint), std::move(published));
+  }
 
  private:
   Handlers handlers_;
@@ -54,6 +65,7 @@ class HotStandby {
   std::atomic<bool> origin_known_{false};
   std::unique_ptr<LeaderLease> lease_;
   std::unique_ptr<PairFollower> follower_;
+  std::unique_ptr<CheckpointPublisher> checkpoints_;
 };
 
 }  // namespace kew::daemon

@@ -89,7 +89,7 @@ void NatsPublisher::enqueue(std::string subject, std::string_view json, std::uin
     }
     ++numbered_;
     if (id.empty()) id = fmt::format("{}-{}", run_id_, numbered_);
-    outbox_.push_back(Message{std::move(subject), std::string(json), seq, numbered_, std::move(id)});
+    outbox_.push_back(Message{std::move(subject), std::string(json), seq, numbered_, std::move(id), nullptr});
   }
   changed_.notify_all();
 }
@@ -129,6 +129,15 @@ void NatsPublisher::run() {
       changed_.wait(lock, [this] { return stopping_ || !outbox_.empty(); });
       if (stopping_) return;
       message = outbox_.front();
+    }
+    if (message.mark) {
+      if (reach(message)) {
+        const std::lock_guard lock(mutex_);
+        if (!outbox_.empty() && outbox_.front().number == message.number) outbox_.pop_front();
+      } else if (wait(kRetryPeriod)) {
+        return;
+      }
+      continue;
     }
     const Sent sent = send(message);
     if (sent == Sent::Taken) {
@@ -195,6 +204,38 @@ bool NatsPublisher::ensure_stream() {
                                config_.stream, nats::describe(s),
                                error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
   return false;
+}
+
+std::future<std::uint64_t> NatsPublisher::mark_published() {
+  auto mark = std::make_shared<std::promise<std::uint64_t>>();
+  std::future<std::uint64_t> reached = mark->get_future();
+  {
+    const std::lock_guard lock(mutex_);
+    ++numbered_;
+    outbox_.push_back(Message{{}, {}, 0, numbered_, {}, std::move(mark)});
+  }
+  changed_.notify_all();
+  return reached;
+}
+
+bool NatsPublisher::reach(const Message& mark) {
+  if (!right_) {
+    mark.mark->set_value(0);
+    return true;
+  }
+  // The stream's last message as this holding knows it: everything before the mark is
+  // at or below it, and only this holding's later publications come after it.
+  if (!right_->may_publish()) return false;
+  if (known_holding_ != right_->revision()) {
+    const Follows follows = learn_last_message();
+    if (follows == Follows::Fenced) {
+      discard_outbox();
+      return false;
+    }
+    if (follows == Follows::Unknown) return false;
+  }
+  mark.mark->set_value(last_message_);
+  return true;
 }
 
 NatsPublisher::Follows NatsPublisher::learn_last_message() {

@@ -14,6 +14,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -49,6 +50,12 @@ class NatsPublisher {
   void publish_status(std::string_view json, std::uint64_t seq);
   void publish_tracks(std::string_view json, std::uint64_t seq);
 
+  /// Hot standby's checkpoint (design §5.9): a mark behind everything queued so far. The
+  /// future becomes the alert stream's last message sequence once all of it is in the
+  /// stream (0 without hot standby); broken when it never will be (the outbox discarded
+  /// or full).
+  std::future<std::uint64_t> mark_published();
+
   /// Forgets the events not yet published (a hot-standby instance that lost its lease:
   /// they are the next active's).
   void discard_outbox();
@@ -62,7 +69,11 @@ class NatsPublisher {
     std::uint64_t seq = 0;
     std::uint64_t number = 0;  // this run's count of kept messages
     std::string id;            // JetStream's message id: a retry or a second publisher's copy is kept once
+    /// A mark_published() mark, not a message: told the stream's last sequence.
+    std::shared_ptr<std::promise<std::uint64_t>> mark;
   };
+  /// The outbox has reached a mark: true once it is told (and leaves the outbox).
+  bool reach(const Message& mark);
   /// `id` empty: this run's own (run id and count).
   void enqueue(std::string subject, std::string_view json, std::uint64_t seq, std::string id);
   void publish_now(const std::string& subject, std::string_view json, std::uint64_t seq);

@@ -1,12 +1,14 @@
 #include "pair_follower.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <memory>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "checkpoint_store.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "repeated_failure.hpp"
 
@@ -61,8 +63,46 @@ void PairFollower::run() {
   }
   if (!found) return;
   failures.recovered("origin read");
-  handlers_.on_origin(*found);
-  follow(*found);
+  PairOrigin start = *found;
+  std::shared_ptr<const PairCheckpoint> checkpoint = handlers_.usable ? latest_checkpoint(start) : nullptr;
+  if (checkpoint) {
+    start.feed_seq = checkpoint->feed_seq + 1;
+    start.alerts_seq = checkpoint->alerts_seq;
+    start.last_seq = checkpoint->last_seq;
+  }
+  handlers_.on_origin(start, checkpoint);
+  follow(start);
+}
+
+std::shared_ptr<const PairCheckpoint> PairFollower::latest_checkpoint(const PairOrigin& origin) {
+  constexpr int kTries = 5;
+  std::string why;
+  for (int attempt = 0; attempt < kTries && !stopping_; ++attempt) {
+    std::optional<PairCheckpoint> found = read_latest_checkpoint(connection_, config_, why);
+    if (found) {
+      if (found->origin_feed_seq != origin.feed_seq ||
+          std::abs(found->origin_created_unix_s - origin.created_unix_s) > 0.01) {
+        spdlog::warn("[nats] the latest checkpoint (written by {}) continues another pair's origin: judging the feed "
+                     "from this pair's origin",
+                     found->written_by);
+        return nullptr;
+      }
+      if (!handlers_.usable(found->pipeline, why)) {
+        spdlog::error("[nats] the latest checkpoint (written by {}) cannot be loaded: {}; judging the feed from the "
+                      "pair's origin",
+                      found->written_by, why);
+        return nullptr;
+      }
+      spdlog::info("[nats] the pair's latest checkpoint (written by {}): feed message {}, alert stream message {}, "
+                   "seq {}, {} bytes of state",
+                   found->written_by, found->feed_seq, found->alerts_seq, found->last_seq, found->pipeline.size());
+      return std::make_shared<const PairCheckpoint>(std::move(*found));
+    }
+    if (why.empty()) return nullptr;  // none written yet
+    if (!sleep_unless_stopping()) return nullptr;
+  }
+  if (!why.empty()) spdlog::error("[nats] no checkpoint loaded ({}): judging the feed from the pair's origin", why);
+  return nullptr;
 }
 
 bool PairFollower::bind_bucket() {

@@ -1,9 +1,10 @@
 #pragma once
 // A hot-standby instance's view of its pair on NATS (design §5.9), on a thread and a
-// connection of its own: first the pair's origin (read from the key-value bucket
-// [nats] pair_bucket, or written there when the pair has none), then every event and
-// acknowledgement the active publishes into the alert stream from that origin on, in
-// stream order. Its news goes to the handlers, called on its thread.
+// connection of its own: first where this instance begins (the pair's origin, read from
+// the key-value bucket [nats] pair_bucket or written there when the pair has none; moved
+// on to the pair's latest checkpoint when there is one this instance can load), then
+// every event and acknowledgement the active publishes into the alert stream from there
+// on, in stream order. Its news goes to the handlers, called on its thread.
 
 #include <atomic>
 #include <cstdint>
@@ -13,6 +14,9 @@
 #include <thread>
 #include <vector>
 
+#include <memory>
+
+#include "../standby/pair_checkpoint.hpp"
 #include "../standby/pair_origin.hpp"
 #include "kew/alert/alert_event.hpp"
 #include "kew/daemon/config.hpp"
@@ -23,8 +27,13 @@ namespace kew::daemon {
 class PairFollower {
  public:
   struct Handlers {
-    /// The pair's origin, once.
-    std::function<void(const PairOrigin&)> on_origin;
+    /// Where this instance begins, once: the pair's origin, or the latest checkpoint's
+    /// continuation of it (feed_seq, alerts_seq and last_seq moved to the checkpoint's;
+    /// `checkpoint` then not null).
+    std::function<void(const PairOrigin& start, std::shared_ptr<const PairCheckpoint> checkpoint)> on_origin;
+    /// Whether this instance can load a checkpoint's pipeline state (`why` when not).
+    /// Unset: checkpoints are not read (the feed cannot be judged from one).
+    std::function<bool(const std::string& state, std::string& why)> usable;
     /// The active's events and acknowledgements (the seq their object carries).
     std::function<void(const AlertEvent&)> on_alert;
     std::function<void(std::uint64_t seq, std::vector<std::string> ids)> on_acknowledgement;
@@ -48,6 +57,8 @@ class PairFollower {
   /// The origin, written when there is none; nullopt when the server did not tell.
   std::optional<PairOrigin> origin();
   std::optional<PairOrigin> new_origin();
+  /// The pair's latest checkpoint that continues `origin` and this instance can load.
+  std::shared_ptr<const PairCheckpoint> latest_checkpoint(const PairOrigin& origin);
   bool bind_bucket();
   /// Follows the alert stream from `origin` until stopping.
   void follow(const PairOrigin& origin);

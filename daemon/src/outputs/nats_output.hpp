@@ -30,6 +30,11 @@ class NatsOutput final : public Output {
 
   /// A TRACKS object (its line) while active.
   void tracks(const std::string& line, std::uint64_t seq);
+  /// NatsPublisher::mark_published (a broken future once closed).
+  std::future<std::uint64_t> mark_published() {
+    if (publisher_) return publisher_->mark_published();
+    return std::promise<std::uint64_t>().get_future();
+  }
   /// The publisher stops, with the last events given their chance to reach the server.
   void close() { publisher_.reset(); }
 

@@ -171,6 +171,8 @@ void Service::start_housekeeping() {
   housekeeping_.every(std::chrono::seconds(1), [this] {
     if (alert_log_) alert_log_->housekeeping();
     save_numbering();
+    if (pair_ && nats_ && inputs_.size() == 1)
+      pair_->checkpoint_if_due(inputs_.front()->delivered_stream_sequence(), [this] { return nats_->mark_published(); });
   });
   if (modbus_) housekeeping_.every(ModbusOutput::kPublishPeriod, [this] { modbus_->publish(); });
   if (nats_ && config_.nats.tracks_interval_s > 0)
@@ -208,14 +210,30 @@ void Service::begin_run() {
     // The pair's own numbering and open alerts are in its stream: this instance's log
     // holds only what it computed, and it judges the feed again from the pair's origin.
     fan_out_->set_journal_floor(numbering.last_seq);
-    pair_ = std::make_unique<PairMember>(
-        io_, config_.nats, pair_feed_stream(config_.inputs), numbering.last_seq, numbering.next_number,
-        speaking_right_, pipeline_, *fan_out_,
-        PairMember::Hooks{[this](const PairOrigin& origin) { begin_pair(origin); },
-                          [this] {
-                            if (modbus_) modbus_->mark_changed();
-                          },
-                          [this](const AlertEvent& event) { on_alert(event); }});
+    PairMember::Hooks hooks{[this](const PairOrigin& start, const PairCheckpoint* checkpoint) {
+                              begin_pair(start, checkpoint);
+                            },
+                            [this] {
+                              if (modbus_) modbus_->mark_changed();
+                            },
+                            [this](const AlertEvent& event) { on_alert(event); },
+                            {}};
+    if (pair_feed_checkpointable(config_.inputs))
+      hooks.usable = [config = config_.pipeline](const std::string& state, std::string& why) {
+        // Restored into a pipeline of this configuration apart from the service's, which
+        // must stay fresh until the checkpoint is known to fit.
+        try {
+          Pipeline trial(config);
+          trial.restore(state);
+          return true;
+        } catch (const std::exception& e) {
+          why = e.what();
+          return false;
+        }
+      };
+    pair_ = std::make_unique<PairMember>(io_, config_.nats, pair_feed_stream(config_.inputs), numbering.last_seq,
+                                         numbering.next_number, speaking_right_, pipeline_, *fan_out_,
+                                         std::move(hooks));
     spdlog::info("run {}: hot standby: the numbering and the inputs wait for the pair's origin ({} alerts this "
                  "instance's log left open are the pair's to end)",
                  continuity_.run_id(), beginning.ended.size());
@@ -230,9 +248,18 @@ void Service::begin_run() {
                continuity_.run_id(), numbering.last_seq, numbering.next_number, beginning.ended.size());
 }
 
-void Service::begin_pair(const PairOrigin& origin) {
+void Service::begin_pair(const PairOrigin& origin, const PairCheckpoint* checkpoint) {
   if (stopping_) return;
-  pipeline_.alerts().resume(origin.last_seq, origin.next_number);
+  if (checkpoint) {
+    // Read and tried on the pair's thread already (PairMember::Hooks::usable).
+    pipeline_.restore(checkpoint->pipeline);
+    spdlog::info("hot standby: the pipeline continues the checkpoint of {} after feed message {} ({} tracks, {} alerts "
+                 "open, seq {})",
+                 checkpoint->written_by, checkpoint->feed_seq, pipeline_.tracks().size(),
+                 pipeline_.alerts().active_count(), pipeline_.alerts().last_seq());
+  } else {
+    pipeline_.alerts().resume(origin.last_seq, origin.next_number);
+  }
   last_alert_seq_ = origin.last_seq;
   save_numbering();
   for (auto& input : inputs_)
@@ -378,6 +405,7 @@ protocol::ServiceStatistics Service::service_statistics() const {
   service.uptime_s = status_.uptime_s(std::chrono::steady_clock::now());
   for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
   fan_out_->report(service);
+  if (pair_ && service.nats) pair_->report(*service.nats);
   intake_->report(service);
   service.resident_bytes = http::resident_bytes();
   return service;

@@ -33,6 +33,7 @@ namespace kew::daemon {
 
 class AlertLogOutput;
 class PairMember;
+struct PairCheckpoint;
 class SpeakingRight;
 class ModbusOutput;
 class NatsOutput;
@@ -73,8 +74,9 @@ class Service {
   /// pair's stream, not this instance's log, says what is open; the numbering and the
   /// inputs wait for the pair's origin (begin_pair).
   void begin_run();
-  /// Hot standby: the pair's origin is known; the inputs start (design §5.9).
-  void begin_pair(const PairOrigin& origin);
+  /// Hot standby: where this instance begins is known (the pair's origin, or its latest
+  /// checkpoint, whose state the pipeline takes); the inputs start (design §5.9).
+  void begin_pair(const PairOrigin& origin, const PairCheckpoint* checkpoint);
   void start_inputs();
   void save_numbering();
   void start_housekeeping();

@@ -12,15 +12,27 @@ std::string pair_feed_stream(const std::vector<InputConfig>& inputs) {
   return feed.transport == Transport::Nats && !feed.durable.empty() ? feed.stream : std::string();
 }
 
+bool pair_feed_checkpointable(const std::vector<InputConfig>& inputs) {
+  if (pair_feed_stream(inputs).empty()) return false;
+  const protocol::Format format = inputs.front().format;
+  return format == protocol::Format::Ndjson || format == protocol::Format::ReadsbJson;
+}
+
 PairMember::PairMember(boost::asio::io_context& io, const NatsConfig& config, const std::string& feed_stream,
                        std::uint64_t last_seq, std::uint16_t next_number, std::shared_ptr<SpeakingRight> right,
                        Pipeline& pipeline, FanOut& fan_out, Hooks hooks)
-    : pipeline_(pipeline), fan_out_(fan_out), hooks_(std::move(hooks)) {
+    : pipeline_(pipeline),
+      fan_out_(fan_out),
+      hooks_(std::move(hooks)),
+      checkpoint_interval_s_(config.checkpoint_interval_s) {
   if (feed_stream.empty())
     spdlog::warn("hot standby without one durable NATS feed ([[input]] transport \"nats\" with durable and stream, "
                  "and no other input): an instance that starts after the active cannot catch up with it exactly");
   HotStandby::Handlers handlers;
-  handlers.on_origin = [this](const PairOrigin& origin) { on_origin(origin); };
+  handlers.on_origin = [this](const PairOrigin& start, std::shared_ptr<const PairCheckpoint> checkpoint) {
+    on_origin(start, checkpoint);
+  };
+  handlers.usable = hooks_.usable;
   handlers.on_acquired = [this](std::uint64_t published) { take_over(published); };
   handlers.on_lost = [this] { fan_out_.step_down(); };
   handlers.on_active_alert = [this](const AlertEvent& event) {
@@ -51,12 +63,42 @@ bool PairMember::syncing() const { return !fan_out_.active() && !(sync_ && sync_
 
 const std::string& PairMember::instance() const { return standby_->instance(); }
 
-void PairMember::on_origin(const PairOrigin& origin) {
+void PairMember::on_origin(const PairOrigin& start, const std::shared_ptr<const PairCheckpoint>& checkpoint) {
   if (stopping_ || sync_) return;
-  sync_.emplace(origin.last_seq);
-  hooks_.begin(origin);
+  origin_feed_seq_ = checkpoint ? checkpoint->origin_feed_seq : start.feed_seq;
+  origin_created_unix_s_ = start.created_unix_s;
+  began_from_checkpoint_ = checkpoint != nullptr;
+  sync_.emplace(start.last_seq);
+  hooks_.begin(start, checkpoint.get());
+  // The active's alerts open at the checkpoint are in its state, not in the stream read.
+  if (checkpoint) sync_->seed_open(pipeline_.alerts().snapshot());
   standby_->set_origin_known();
   judged();
+}
+
+void PairMember::report(protocol::NatsStatistics& statistics) const {
+  statistics.checkpoints_written = standby_->checkpoints_written();
+  statistics.began_from_checkpoint = began_from_checkpoint_;
+}
+
+void PairMember::checkpoint_if_due(std::optional<std::uint64_t> feed_position,
+                                   const std::function<std::future<std::uint64_t>()>& mark) {
+  if (checkpoint_interval_s_ <= 0 || !hooks_.usable || !sync_ || !fan_out_.active() || !feed_position) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (last_checkpoint_ && now - *last_checkpoint_ < std::chrono::duration<double>(checkpoint_interval_s_)) return;
+  // Nullopt while the time guard holds records: a second later, most likely not.
+  std::optional<std::string> state = pipeline_.checkpoint();
+  if (!state) return;
+  PairCheckpoint checkpoint;
+  checkpoint.origin_feed_seq = origin_feed_seq_;
+  checkpoint.origin_created_unix_s = origin_created_unix_s_;
+  checkpoint.feed_seq = *feed_position;
+  checkpoint.last_seq = pipeline_.alerts().last_seq();
+  checkpoint.written_by = instance();
+  checkpoint.written_unix_s =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  checkpoint.pipeline = std::move(*state);
+  if (standby_->write_checkpoint(std::move(checkpoint), mark())) last_checkpoint_ = now;
 }
 
 void PairMember::own_alert(const AlertEvent& event) {

@@ -8,8 +8,10 @@
 //
 // Owned by the service; everything here runs on its I/O thread.
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +23,8 @@
 #include "../outputs/fan_out.hpp"
 #include "kew/daemon/config.hpp"
 #include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/encoders/statistics_json.hpp"
+#include "pair_checkpoint.hpp"
 #include "pair_origin.hpp"
 #include "standby_sync.hpp"
 
@@ -30,6 +34,10 @@ namespace kew::daemon {
 /// when it is a durable NATS input with `stream`; "" otherwise (several inputs interleave
 /// differently on each instance: no exact catch-up is possible).
 std::string pair_feed_stream(const std::vector<InputConfig>& inputs);
+/// Whether the pair's feed can be judged from a checkpoint: a pair feed stream whose
+/// format decodes each line alone (ndjson, readsb), so that nothing of the decoder's
+/// state before the checkpoint matters after it.
+bool pair_feed_checkpointable(const std::vector<InputConfig>& inputs);
 
 class PairMember {
  public:
@@ -37,10 +45,15 @@ class PairMember {
   /// and starts the inputs, the feed read from the origin's message; `acknowledged()`
   /// after the active's acknowledgements were applied here (the Modbus panel's state);
   /// `emit(event)` sends an event made outside the pipeline as the pipeline's own.
+  /// `begin(start, checkpoint)`: with a checkpoint, its pipeline state is to be restored
+  /// instead (and the numbering is the state's); `usable(state, why)`: whether a
+  /// checkpoint's state can be restored here (called on another thread; unset: no
+  /// checkpoint is read or written).
   struct Hooks {
-    std::function<void(const PairOrigin&)> begin;
+    std::function<void(const PairOrigin& start, const PairCheckpoint* checkpoint)> begin;
     std::function<void()> acknowledged;
     std::function<void(const AlertEvent&)> emit;
+    std::function<bool(const std::string& state, std::string& why)> usable;
   };
 
   /// `feed_stream`: the JetStream stream of the pair's one durable NATS feed ("" when the
@@ -54,12 +67,21 @@ class PairMember {
 
   /// An event this instance computed (after the fan-out had it).
   void own_alert(const AlertEvent& event);
+  /// Called every second on the I/O thread: when active and checkpoint_interval_s has
+  /// passed since the last one, a checkpoint of the pipeline after feed message
+  /// `feed_position` goes to the writer, once everything before `mark()` (the alert
+  /// stream's publisher's mark, NatsPublisher::mark_published) is published.
+  void checkpoint_if_due(std::optional<std::uint64_t> feed_position,
+                         const std::function<std::future<std::uint64_t>()>& mark);
+  /// The pair's part of ?STATS "nats": checkpoints written, and whether this instance
+  /// began from one.
+  void report(protocol::NatsStatistics& statistics) const;
   /// Not active, and not (yet) in step: health standby_syncing.
   bool syncing() const;
   const std::string& instance() const;
 
  private:
-  void on_origin(const PairOrigin& origin);
+  void on_origin(const PairOrigin& start, const std::shared_ptr<const PairCheckpoint>& checkpoint);
   void take_over(std::uint64_t published);
   void take_over_unsynced(std::uint64_t published);
   void apply_due_acknowledgements();
@@ -72,6 +94,12 @@ class PairMember {
   std::optional<StandbySync> sync_;  // from the origin on
   StandbySync::State told_ = StandbySync::State::Syncing;
   bool stopping_ = false;
+  // The pair's origin (a checkpoint names the one it continues) and the checkpoints' pace.
+  std::uint64_t origin_feed_seq_ = 0;
+  double origin_created_unix_s_ = 0.0;
+  double checkpoint_interval_s_;
+  std::optional<std::chrono::steady_clock::time_point> last_checkpoint_;
+  bool began_from_checkpoint_ = false;
   std::unique_ptr<HotStandby> standby_;
 };
 

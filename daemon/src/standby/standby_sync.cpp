@@ -18,6 +18,10 @@ std::string StandbySync::describe(std::uint64_t seq, const Identity& identity) {
                      identity.reason == AlertEndReason::None ? "" : fmt::format(" ({})", to_string(identity.reason)));
 }
 
+void StandbySync::seed_open(const std::vector<AlertEvent>& open) {
+  for (const AlertEvent& event : open) open_on_active_[event.id] = event;
+}
+
 void StandbySync::active_alert(const AlertEvent& event) {
   if (event.seq <= active_seq_) return;  // read again after a reconnection
   active_seq_ = event.seq;

@@ -39,6 +39,9 @@ class StandbySync {
   /// stream's events both continue from it.
   explicit StandbySync(std::uint64_t origin_last_seq);
 
+  /// Begun from a checkpoint (design §5.9): the alerts open in its state are the
+  /// active's open alerts at that point (its stream is read from after it).
+  void seed_open(const std::vector<AlertEvent>& open);
   /// The active's event, in stream order.
   void active_alert(const AlertEvent& event);
   /// The active's acknowledgement of `ids`, published when its last event was `seq`.

@@ -219,6 +219,8 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     if (s.active) {
       c.boolean("active", *s.active);
       c.boolean("bus_away", s.bus_away);
+      c.integer("checkpoints_written", s.checkpoints_written);
+      c.boolean("began_from_checkpoint", s.began_from_checkpoint);
     }
     c.close();
   }

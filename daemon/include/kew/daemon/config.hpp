@@ -119,6 +119,11 @@ struct NatsConfig {
   /// Hot standby: the key-value bucket (no TTL) holding the pair's origin under
   /// lease_key: where the feed and the numbering of the pair's computation begin.
   std::string pair_bucket = "KEW_PAIR";
+  /// Hot standby: the active writes a checkpoint of its computation every this many
+  /// seconds (0: never) into the JetStream stream checkpoint_stream, and an instance that
+  /// starts judges the feed from the latest one instead of the pair's origin.
+  double checkpoint_interval_s = 300.0;
+  std::string checkpoint_stream = "KEW_CHECKPOINTS";
   std::string lease_key = "active";
   double lease_ttl_s = 1.5;  ///< a dead active is replaced within 1.25 × this
   std::string instance;      ///< this kewd's name in the lease; "" = HOST-PID

@@ -67,6 +67,10 @@ struct NatsStatistics {
   /// Hot standby: active with every NATS server away (the lease unconfirmed; the outputs
   /// that need no bus go on, NATS publication waits).
   bool bus_away = false;
+  /// Hot standby: checkpoints of the computation this instance wrote as the active, and
+  /// whether it began from one (design §5.9).
+  std::uint64_t checkpoints_written = 0;
+  bool began_from_checkpoint = false;
 };
 
 struct ModbusStatistics {
