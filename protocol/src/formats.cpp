@@ -84,8 +84,25 @@ Format classify_line(std::string_view line) {
   return Format::Auto;
 }
 
+/// An aircraft.json snapshot: an object whose "aircraft" or "ac" member is an array
+/// (readsb JSON lines never hold one), wherever that member stands in the head.
+bool looks_like_snapshot(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos || text[first] != '{') return false;
+  for (const std::string_view key : {"\"aircraft\"", "\"ac\""}) {
+    for (auto at = text.find(key); at != std::string_view::npos; at = text.find(key, at + 1)) {
+      auto p = text.find_first_not_of(" \t\r\n", at + key.size());
+      if (p == std::string_view::npos || text[p] != ':') continue;
+      p = text.find_first_not_of(" \t\r\n", p + 1);
+      if (p != std::string_view::npos && text[p] == '[') return true;
+    }
+  }
+  return false;
+}
+
 Format detect_text(std::string_view text) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+  if (looks_like_snapshot(text)) return Format::AircraftJson;
   int lines = 0;
   while (!text.empty() && lines < kDetectMaxLines) {
     const auto newline = text.find('\n');
@@ -243,6 +260,8 @@ std::unique_ptr<Decoder> make_plain_decoder(Format format, const DecoderOptions&
       return make_opensky_json_decoder({.max_object_bytes = options.max_line_bytes});
     case Format::ReadsbJson:
       return make_readsb_decoder({.max_line_bytes = options.max_line_bytes});
+    case Format::AircraftJson:
+      return make_aircraft_json_decoder(options.aircraft_json);
     case Format::AsterixRaw:
       return make_asterix_decoder(AsterixFraming::RawBlocks, options.asterix);
     case Format::AsterixFinalFormat:

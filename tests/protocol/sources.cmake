@@ -1,6 +1,7 @@
 # The tests of kew_protocol: kew_protocol_tests (tests/protocol/CMakeLists.txt) and, under
 # the sanitizers, kew_decoder_tests (tests/fuzz/CMakeLists.txt) build these.
 set(KEW_PROTOCOL_TESTS
+  test_aircraft_json.cpp
   test_alert_json.cpp
   test_asterix_golden.cpp
   test_asterix_intent.cpp

@@ -20,10 +20,10 @@ namespace {
 
 using test::decode_all;
 
-constexpr Format kAllFormats[] = {Format::Auto,        Format::Ndjson,     Format::Sbs,
-                                  Format::OpenskyCsv,  Format::OpenskyJson, Format::ReadsbJson,
-                                  Format::AsterixRaw,  Format::AsterixFinalFormat,
-                                  Format::AsterixPcap, Format::AsterixDatagram};
+constexpr Format kAllFormats[] = {Format::Auto,         Format::Ndjson,     Format::Sbs,
+                                  Format::OpenskyCsv,   Format::OpenskyJson, Format::ReadsbJson,
+                                  Format::AircraftJson, Format::AsterixRaw,  Format::AsterixFinalFormat,
+                                  Format::AsterixPcap,  Format::AsterixDatagram};
 
 Format detect_file(const std::string& path, std::size_t head_bytes = 64 * 1024) {
   std::string head = test::read_file(path);
@@ -47,7 +47,7 @@ TEST(Formats, NamesRoundTrip) {
   EXPECT_FALSE(kFormatNames.parse("NDJSON"));
   EXPECT_FALSE(kFormatNames.parse(""));
   EXPECT_EQ(kFormatNames.list({Format::Auto, Format::AsterixDatagram}),
-            "ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, asterix-pcap");
+            "ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, asterix-raw, asterix-ff, asterix-pcap");
 }
 
 TEST(Formats, DetectsEveryBundledTextFile) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "kew/protocol/aircraft_json.hpp"
 #include "kew/protocol/asterix/asterix_decoder.hpp"
 #include "kew/protocol/decoder.hpp"
 #include "kew/util/name_table.hpp"
@@ -22,6 +23,7 @@ enum class Format {
   OpenskyCsv,          ///< OpenSky state-vector CSV, opensky.hpp
   OpenskyJson,         ///< traffic-library state-vector JSON, opensky.hpp
   ReadsbJson,          ///< readsb JSON lines, readsb.hpp
+  AircraftJson,        ///< aircraft.json snapshots, aircraft_json.hpp
   AsterixRaw,          ///< ASTERIX data blocks back to back
   AsterixFinalFormat,  ///< ASTERIX in EUROCONTROL final format (.ff)
   AsterixPcap,         ///< ASTERIX in UDP datagrams of a pcap file
@@ -29,13 +31,14 @@ enum class Format {
 };
 
 /// The names of `format = ...` and `--format` (exact, lower case).
-inline constexpr util::NameTable<Format, 10> kFormatNames({{
+inline constexpr util::NameTable<Format, 11> kFormatNames({{
     {Format::Auto, "auto"},
     {Format::Ndjson, "ndjson"},
     {Format::Sbs, "sbs"},
     {Format::OpenskyCsv, "opensky-csv"},
     {Format::OpenskyJson, "opensky-json"},
     {Format::ReadsbJson, "readsb"},
+    {Format::AircraftJson, "aircraft-json"},
     {Format::AsterixRaw, "asterix-raw"},
     {Format::AsterixFinalFormat, "asterix-ff"},
     {Format::AsterixPcap, "asterix-pcap"},
@@ -49,6 +52,8 @@ struct DecoderOptions {
   double sbs_utc_offset_s = 0;
   /// Longest line (text formats) or JSON array element (opensky-json), bytes.
   std::size_t max_line_bytes = 4096;
+  /// aircraft.json snapshots: their size limit and the oldest position reported.
+  AircraftJsonOptions aircraft_json;
 };
 
 /// Names the format of a stream from its first bytes (after gunzip when they start with

@@ -10,7 +10,8 @@
 // gscp (kt, what adsb_actions writes instead of gs), track (deg), baro_rate or
 // geom_rate (ft/min), squawk (octal string), nav_altitude_mcp (ft: sel_ft, sel_src mcp)
 // or else nav_altitude_fms (ft: sel_ft, sel_src fms), track_rate (deg/s, positive turning
-// right: tar_dps). A nested "flightdict" object (adsb_actions' copy of the full readsb
+// right: tar_dps); dump1090-mutability's older altitude (ft or "ground"), speed (kt) and
+// vert_rate (ft/min) when the current names are absent. A nested "flightdict" object (adsb_actions' copy of the full readsb
 // record) supplies alt_geom, baro_rate, geom_rate, squawk, nav_altitude_mcp,
 // nav_altitude_fms and track_rate when the top level lacks them. null means absent;
 // other keys are ignored.
