@@ -632,6 +632,21 @@ TEST(AsterixRoundTrip, RandomCat048PolarPlotsLandWhereTheyWereMeasured) {
   }
 }
 
+TEST(AsterixCat048Sites, APlotOfARadarWithoutASiteIsRefusedNamingItsSacAndSic) {
+  // A new user with a recording of an unknown radar must learn which [[radar]] to add.
+  auto decoder = make_asterix_decoder(AsterixFraming::Datagram, {});
+  std::vector<std::string> messages;
+  decoder->rejections().set_reporter([&](std::string_view, std::string_view m) { messages.emplace_back(m); });
+  const Bytes block = data_block(48, {minimal_cat048(5, std::nullopt).bytes()});
+  std::size_t reports = 0;
+  decoder->feed(std::as_bytes(std::span<const std::uint8_t>(block)), [&](const TrackReport&) { ++reports; });
+  EXPECT_EQ(reports, 0U);
+  EXPECT_EQ(decoder->rejections().count("cat048_unknown_radar"), 1U);
+  ASSERT_EQ(messages.size(), 1U);
+  EXPECT_NE(messages[0].find("SAC 25 SIC 7"), std::string::npos) << messages[0];
+  EXPECT_NE(messages[0].find("sac = 25, sic = 7"), std::string::npos) << messages[0];
+}
+
 TEST(AsterixCat048Identity, TrackNumberIsTheIdentityAndTheAddressAnAttribute) {
   // As in CAT062: a Mode S address that comes and goes within one radar track must not
   // split it. Only a plot without a track number is keyed by its address.

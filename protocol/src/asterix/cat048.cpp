@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "bytes.hpp"
 #include "kew/protocol/asterix/uap.hpp"
 #include "record_context.hpp"
@@ -121,7 +123,12 @@ bool decode_cat048(const RecordItems& items, RecordContext& context, TrackReport
   const std::uint8_t* source = items.data(kDataSource);
   const int site = context.radars.find(source[0], source[1]);
   if (site < 0) {
-    rejections.reject("cat048_unknown_radar", "CAT048 radar SAC/SIC without a configured site");
+    // Named so that the user knows which site to add (each radar's message once, as
+    // every other refusal, rate-limited by the counter).
+    rejections.reject("cat048_unknown_radar",
+                      fmt::format("CAT048 plot of radar SAC {} SIC {}, which has no site: add a [[radar]] table "
+                                  "with sac = {}, sic = {} and its position",
+                                  source[0], source[1], source[0], source[1]));
     return false;
   }
   if (!items.has(kPolarPosition)) {
