@@ -22,6 +22,7 @@
 #include "kew/daemon/config.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/protocol/version.hpp"
+#include "kew/replay/recording_reader.hpp"
 #include "kew/util/units.hpp"
 
 namespace {
@@ -138,7 +139,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(kew::daemon::kLogLevelNames.names()));
   auto* replay = app.add_option("--replay", flags.replay.file,
                                 "replay a recording with a built-in configuration on loopback (below)")
-                     ->check(CLI::ExistingFile)
+                     ->check(CLI::Validator([](std::string& path) { return kew::replay::recording_path_problem(path); }, "RECORDING"))
                      ->excludes("--listen-any");
   // Every format but the live-only asterix-datagram, as kew-replay.
   const auto file_formats = {kew::protocol::Format::AsterixDatagram};

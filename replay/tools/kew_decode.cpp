@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
                  "kew TOML configuration: its [[radar]] sites project CAT048 plots ([decoding] applies too)");
   app.add_flag("-q,--quiet", options.quiet, "no message per refused record, only the summary");
   app.add_option("files", options.files, "recordings, merged in time order (none or -: standard input)")
-      ->check(CLI::ExistingFile | CLI::IsMember({std::string(kew::replay::kStandardInput)}));
+      ->check(CLI::Validator([](std::string& path) { return kew::replay::recording_path_problem(path); }, "RECORDING"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -651,7 +651,9 @@ int main(int argc, char** argv) {
                  "vertical separation minimum of the truth, ft (a loss is below it less 200 ft)")
       ->default_val(1000.0)
       ->check(CLI::Range(201.0, 10000.0));
-  app.add_option("files", options.files, "recordings (merged in time order)")->required()->check(CLI::ExistingFile);
+  app.add_option("files", options.files, "recordings (merged in time order)")
+      ->required()
+      ->check(CLI::Validator([](std::string& path) { return kew::replay::recording_path_problem(path); }, "RECORDING"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

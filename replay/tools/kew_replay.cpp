@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(kew::probe::kProbeModeNames.names()));
   app.add_option("files", options.files, "recordings (merged in time order; - reads standard input)")
       ->required()
-      ->check(CLI::ExistingFile | CLI::IsMember({std::string(kew::replay::kStandardInput)}));
+      ->check(CLI::Validator([](std::string& path) { return kew::replay::recording_path_problem(path); }, "RECORDING"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

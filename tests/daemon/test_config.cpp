@@ -679,7 +679,7 @@ TEST(Config, ChoicesListTheirNameTable) {
   expect_error("[[input]]\ntransport = \"tcp\"\naddress = \"a:1\"\n",
                "expected one of udp, tcp-client, tcp-server, file");
   expect_error("[[input]]\nformat = \"json\"\naddress = \"a:1\"\n",
-               "expected one of auto, ndjson, sbs, opensky-csv, opensky-json, readsb, asterix-raw, asterix-ff, "
+               "expected one of auto, ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, asterix-raw, asterix-ff, "
                "asterix-pcap, asterix-datagram");
   expect_error("[service]\nlog_level = \"warning\"\n", "expected one of trace, debug, info, warn, error, critical, off");
   EXPECT_EQ(parse_config("[service]\nlog_level = \"warn\"\n").service.log_level, LogLevel::Warn);

@@ -56,10 +56,17 @@ TEST(RecordingReader, MissingUnknownAndUnreadableFilesAreCounted) {
   EXPECT_TRUE(read_all(unknown).empty());
   EXPECT_EQ(unknown.rejections().count("unknown_format"), 1u);
 
-  // A directory opens (on Linux) but every read fails: a read error, not an empty file.
+  // A file that opens but whose every read fails (/proc/self/mem at offset 0): a read
+  // error, not an empty file.
+  RecordingReader unreadable("/proc/self/mem", protocol::Format::Ndjson, {});
+  EXPECT_TRUE(read_all(unreadable).empty());
+  EXPECT_EQ(unreadable.rejections().count("file_unreadable"), 1u);
+  // A directory is the recording of its files (RecordingReader.ADirectory… below): here
+  // the words, refused line by line.
   RecordingReader directory(dir.string(), protocol::Format::Ndjson, {});
   EXPECT_TRUE(read_all(directory).empty());
-  EXPECT_EQ(directory.rejections().count("file_unreadable"), 1u);
+  EXPECT_EQ(directory.files().size(), 1u);
+  EXPECT_EQ(directory.rejections().count("bad_json"), 1u);
   std::filesystem::remove_all(dir);
 }
 
@@ -69,6 +76,68 @@ TEST(RecordingReader, SharedSwitzerlandWhole) {
   RecordingReader reader(path, protocol::Format::Auto, {});
   EXPECT_EQ(read_all(reader).size(), 139098u);
   EXPECT_EQ(reader.rejections().total(), 0u);
+}
+
+// A receiver's history: readsb keeps history_0.json … history_119.json round a ring, so
+// their names are not their order. A directory of them, or a glob, is read as one stream
+// in the order of their data, gzip or not, and gives what the snapshots give in one file.
+TEST(RecordingReader, ADirectoryOrAPatternOfSnapshotsIsOneStreamInDataOrder) {
+  const std::string whole = protocol::test::read_file(protocol::test::bundled_path("aircraft_json_history.json"));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("kew_history_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::size_t at = 0;
+  for (int i = 0; at < whole.size(); ++i) {
+    const std::size_t end = whole.find('\n', at) + 1;
+    const std::string snapshot = whole.substr(at, end - at - (i % 3 == 0 ? 1 : 0));  // some without a newline
+    at = end;
+    const std::string name = (dir / ("history_" + std::to_string((i + 70) % 120) + ".json")).string();
+    std::ofstream(name, std::ios::binary) << snapshot;
+    if (i % 2 == 0) {
+      ASSERT_EQ(std::system(("gzip -n '" + name + "'").c_str()), 0);  // history_N.json.gz
+    }
+  }
+  std::ofstream(dir / ".hidden") << "not a snapshot";
+
+  RecordingReader one(protocol::test::bundled_path("aircraft_json_history.json"), protocol::Format::Auto, {});
+  const std::vector<TrackReport> expected = read_all(one);
+  ASSERT_GT(expected.size(), 90u);
+  for (const std::string& path : {dir.string(), (dir / "history_*.json*").string()}) {
+    SCOPED_TRACE(path);
+    RecordingReader set(path, protocol::Format::Auto, {});
+    const std::vector<TrackReport> got = read_all(set);
+    EXPECT_EQ(set.files().size(), 120u);
+    EXPECT_EQ(set.rejections().total(), 0u) << set.rejections().last_reason();
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].id, expected[i].id) << i;
+      EXPECT_EQ(got[i].t, expected[i].t) << i;
+    }
+  }
+  RecordingReader none((dir / "nothing_*.json").string(), protocol::Format::Auto, {});
+  EXPECT_EQ(read_all(none).size(), 0u);
+  EXPECT_EQ(none.rejections().count("no_files"), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+// Line formats too: a recording cut into files (the last line of one without its
+// newline) reads as the whole.
+TEST(RecordingReader, ARecordingCutIntoFilesReadsAsTheWhole) {
+  const std::string whole = protocol::test::read_file(protocol::test::bundled_path("readsb_20minutes.json"));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("kew_parts_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::size_t cut = whole.find('\n', whole.size() / 2);
+  std::ofstream(dir / "b.json", std::ios::binary) << whole.substr(0, cut);  // named after the second part
+  std::ofstream(dir / "a.json", std::ios::binary) << whole.substr(cut + 1);
+  RecordingReader one(protocol::test::bundled_path("readsb_20minutes.json"), protocol::Format::Auto, {});
+  RecordingReader parts(dir.string(), protocol::Format::Auto, {});
+  const std::vector<TrackReport> expected = read_all(one);
+  const std::vector<TrackReport> got = read_all(parts);
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].t, expected[i].t) << i;
+  EXPECT_EQ(parts.rejections().count("no_position"), one.rejections().count("no_position"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // aircraft.json snapshots; the format is described in aircraft_json.hpp.
 #include <algorithm>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -76,7 +77,9 @@ class AircraftJsonDecoder final : public Decoder {
     std::stable_sort(ready_.begin(), ready_.end(),
                      [](const TrackReport& a, const TrackReport& b) { return a.t < b.t; });
     for (const TrackReport& report : ready_) sink(report);
-    forget_older_than(t_now - options_.max_position_age_s);
+    // A snapshot older than one read before (a history read out of order) forgets nothing.
+    newest_now_ = std::max(newest_now_, t_now);
+    forget_older_than(newest_now_ - options_.max_position_age_s);
   }
 
   LineResult decode_aircraft(simdjson::dom::element entry, double now) {
@@ -116,6 +119,7 @@ class AircraftJsonDecoder final : public Decoder {
   text::JsonObjectParser json_;
   std::unordered_map<std::uint32_t, double> last_reported_;  // address key → data time reported
   std::vector<TrackReport> ready_;
+  double newest_now_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace

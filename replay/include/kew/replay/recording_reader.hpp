@@ -1,11 +1,14 @@
 #pragma once
 // Reading recordings for replay (design §5.6): one file through its decoder, read in
-// chunks on demand, and several files merged into one stream in data-time order.
+// chunks on demand; a directory or a glob pattern of files (a receiver's history_N.json
+// snapshots) as one stream through one decoder, the files in the order of their data;
+// and several recordings merged into one stream in data-time order.
 
 #include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,11 +20,21 @@ namespace kew::replay {
 /// The path that names standard input (a recording piped in).
 inline constexpr std::string_view kStandardInput = "-";
 
+/// Why `path` names no recording RecordingReader can read ("" when it does): standard
+/// input, an existing file, a directory, or a glob pattern that matches a file. For the
+/// tools' command lines.
+std::string recording_path_problem(const std::string& path);
+
 class RecordingReader {
  public:
   /// Opens `path`, or reads standard input when it is kStandardInput (auto-detects the
-  /// format when `format` is Auto; gzip is transparent).
-  /// A file that cannot be opened yields no records and counts "file_unreadable".
+  /// format when `format` is Auto; gzip is transparent). A directory, or a path with a
+  /// glob pattern (`*`, `?`, `[`), is every regular file it names (a directory's hidden
+  /// files aside), read one after another through one decoder in the order of their
+  /// newest data time (a snapshot's time: readsb's history_N.json files are numbered
+  /// round a ring), each file gzip or not; a line left without its newline at a file's
+  /// end is ended there. A file that cannot be opened yields no records and counts
+  /// "file_unreadable"; a pattern or directory that names no file counts "no_files".
   RecordingReader(std::string path, protocol::Format format, const protocol::DecoderOptions& options);
   ~RecordingReader();
   RecordingReader(const RecordingReader&) = delete;
@@ -31,6 +44,8 @@ class RecordingReader {
   bool next(TrackReport& out);
 
   const std::string& path() const { return path_; }
+  /// The files read, in reading order (one, unless a directory or a pattern).
+  const std::vector<std::string>& files() const { return files_; }
   /// False when the file could not be opened (then counted "file_unreadable").
   bool is_open() const { return decoder_ != nullptr; }
   /// The decoder's rejections, plus file-level problems.
@@ -41,8 +56,17 @@ class RecordingReader {
 
  private:
   bool refill();
+  /// A set of files: the next one opened (false when none is left).
+  bool open_next_file();
+  /// A set of files: the current one's bytes through its own gzip layer.
+  void feed_file_bytes(std::span<const std::byte> bytes);
 
   std::string path_;
+  std::vector<std::string> files_;
+  std::size_t next_file_ = 0;
+  bool file_set_ = false;
+  std::unique_ptr<protocol::Decoder> unwrap_;  // a set's current file: gzip, then the decoder
+  bool line_open_ = false;  // a set: the bytes fed so far do not end with a newline
   std::FILE* file_ = nullptr;
   std::unique_ptr<protocol::Decoder> decoder_;
   Rejections own_rejections_;
