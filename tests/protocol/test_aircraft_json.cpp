@@ -112,6 +112,23 @@ TEST(AircraftJson, APositionIsReportedOnceHoweverManySnapshotsShowIt) {
   EXPECT_DOUBLE_EQ(r[1].lat_deg, 49.01);
 }
 
+TEST(AircraftJson, OneSnapshotADatagramRemembersWhatWasReportedUntilTheStreamEnds) {
+  const std::string snapshot = R"({"now":1700000000,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":1}]})";
+  const std::string later = R"({"now":1700000001,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":2}]})";
+  auto decoder = make_aircraft_json_decoder();
+  std::size_t reports = 0;
+  const ReportSink count = [&](const TrackReport&) { ++reports; };
+  decoder->feed_text(snapshot, count);
+  decoder->end_message(count);  // a NATS message, a fetched snapshot
+  decoder->feed_text(later, count);
+  decoder->end_message(count);
+  EXPECT_EQ(reports, 1u) << "the same position in two messages is one record";
+  decoder->finish(count);
+  decoder->feed_text(later, count);
+  decoder->finish(count);
+  EXPECT_EQ(reports, 2u) << "after the end of the stream the decoder is as new";
+}
+
 TEST(AircraftJson, PositionsOlderThanTheLimitAreNotReported) {
   const std::string text = R"({"now":1700000000,"aircraft":[)"
                            R"({"hex":"000001","alt_baro":1000,"lat":1,"lon":1,"seen_pos":9.9},)"

@@ -35,9 +35,15 @@ class AircraftJsonDecoder final : public Decoder {
         [&](std::string_view reason, std::string message) { rejections().reject(reason, message); });
   }
 
-  // What was reported stays known across finish(): the next snapshot (the next file of
-  // a directory of history files) reports only what is new.
-  void finish(const ReportSink& /*sink*/) override {
+  // The end of the stream: the decoder is as new (a stream read again reports again).
+  void finish(const ReportSink& sink) override {
+    end_message(sink);
+    last_reported_.clear();
+    newest_now_ = -std::numeric_limits<double>::infinity();
+  }
+  // A datagram (a NATS message, a snapshot fetched) ends its framing, but the snapshots go
+  // on: what was reported stays known, so the next one reports only what is new.
+  void end_message(const ReportSink& /*sink*/) override {
     const std::uint64_t snapshot = cutter_.object_number();
     if (cutter_.finish())
       rejections().reject("truncated", fmt::format("aircraft.json snapshot {}: cut by the end of the stream", snapshot));

@@ -19,7 +19,8 @@
 // older than max_position_age_s is not reported, nor one reported before: an aircraft's
 // position is reported again only with a later data time, so a snapshot every second of
 // a position 5 s old makes one record, not five. The records of one snapshot come in
-// data-time order.
+// data-time order. What was reported is remembered across end_message() (one snapshot a
+// datagram or message) and forgotten at finish() (the end of the stream).
 //
 // An aircraft without a position is no record and no refusal (most Mode S aircraft have
 // none). Refusals, by reason: bad_json (a snapshot, or an aircraft that is not an
