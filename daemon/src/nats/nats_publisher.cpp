@@ -14,6 +14,7 @@ namespace {
 constexpr auto kDrainOnStop = std::chrono::seconds(2);
 constexpr auto kRetryPeriod = std::chrono::milliseconds(250);
 constexpr std::int64_t kAcknowledgementWaitMs = 2000;
+constexpr std::int64_t kLearnWaitMs = 500;  // the stream's last message, asked of its leader
 constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 
 /// A message with the seq header, destroyed with its owner.
@@ -239,14 +240,20 @@ bool NatsPublisher::reach(const Message& mark) {
 }
 
 NatsPublisher::Follows NatsPublisher::learn_last_message() {
+  // Asked again soon rather than waited for long: right after a new stream leader is
+  // elected a question put to the old one is never answered, and the client's own wait
+  // (5 s) would hold publication back that long.
+  jsOptions options;
+  jsOptions_Init(&options);
+  options.Wait = kLearnWaitMs;
   jsStreamInfo* info = nullptr;
-  if (js_GetStreamInfo(&info, connection_.jetstream(), config_.stream.c_str(), nullptr, nullptr) != NATS_OK)
+  if (js_GetStreamInfo(&info, connection_.jetstream(), config_.stream.c_str(), &options, nullptr) != NATS_OK)
     return Follows::Unknown;
   const std::uint64_t last = info->State.LastSeq;
   jsStreamInfo_Destroy(info);
   if (last > 0) {
     natsMsg* message = nullptr;
-    if (js_GetMsg(&message, connection_.jetstream(), config_.stream.c_str(), last, nullptr, nullptr) != NATS_OK)
+    if (js_GetMsg(&message, connection_.jetstream(), config_.stream.c_str(), last, &options, nullptr) != NATS_OK)
       return Follows::Unknown;
     const char* value = nullptr;
     const std::uint64_t token =
