@@ -139,6 +139,8 @@ void read_eligibility(TableReader& r, eligibility::EligibilityConfig& e, std::st
 void read_decoding(TableReader& r, protocol::DecoderOptions& d) {
   r.number("sbs_utc_offset_s", d.sbs_utc_offset_s, -86400.0, 86400.0);
   r.integer("max_line_bytes", d.max_line_bytes, 256, 1 << 20);
+  r.integer("max_snapshot_bytes", d.aircraft_json.max_snapshot_bytes, 4096, std::int64_t{1} << 30);
+  r.number("max_position_age_s", d.aircraft_json.max_position_age_s, 0.1, 3600.0);
 }
 
 void read_radar(TableReader& r, protocol::RadarSite& site) {

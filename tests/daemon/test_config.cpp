@@ -160,6 +160,8 @@ TEST(Config, TheShippedFileStatesExactlyTheBuiltInDefaults) {
   for (const InputConfig& input : file.inputs) EXPECT_EQ(input.allow_remote, InputConfig{}.allow_remote);
   EXPECT_EQ(file.decoding.sbs_utc_offset_s, defaults.decoding.sbs_utc_offset_s);
   EXPECT_EQ(file.decoding.max_line_bytes, defaults.decoding.max_line_bytes);
+  EXPECT_EQ(file.decoding.aircraft_json.max_snapshot_bytes, defaults.decoding.aircraft_json.max_snapshot_bytes);
+  EXPECT_EQ(file.decoding.aircraft_json.max_position_age_s, defaults.decoding.aircraft_json.max_position_age_s);
   EXPECT_TRUE(file.decoding.asterix.radars.empty());
   ASSERT_EQ(file.inputs.size(), 2u);
   EXPECT_EQ(file.inputs[0].format, protocol::Format::AsterixDatagram);

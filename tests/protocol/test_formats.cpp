@@ -57,6 +57,7 @@ TEST(Formats, DetectsEveryBundledTextFile) {
       {"readsb_20minutes.json", Format::ReadsbJson},
       {"opensky_switzerland_first2000.json.gz", Format::OpenskyJson},
       {"opensky_states_sample.csv", Format::OpenskyCsv},
+      {"aircraft_json_history.json", Format::AircraftJson},
   };
   for (const auto& [name, format] : expected)
     EXPECT_EQ(detect_file(test::bundled_path(name)), format) << name;
@@ -159,6 +160,16 @@ TEST(Formats, OptionsReachTheDecoders) {
   EXPECT_EQ(reports[0].t, 1714400000.0);
   EXPECT_EQ(sbs->rejections().count("line_too_long"), 1u);
   EXPECT_EQ(sbs->max_message_bytes(), 100u);
+
+  options.aircraft_json.max_snapshot_bytes = 5000;
+  options.aircraft_json.max_position_age_s = 2.0;
+  auto snapshots = make_decoder(Format::AircraftJson, options);
+  EXPECT_EQ(snapshots->max_message_bytes(), 5000u);
+  EXPECT_EQ(decode_all(*snapshots, R"({"now":1700000000,"aircraft":[)"
+                                   R"({"hex":"000001","alt_baro":1,"lat":1,"lon":1,"seen_pos":1.9},)"
+                                   R"({"hex":"000002","alt_baro":1,"lat":1,"lon":1,"seen_pos":2.1}]})")
+                .size(),
+            1u);
 }
 
 class AutoDecoderOnBundledFile : public testing::TestWithParam<std::pair<const char*, Format>> {};
@@ -182,7 +193,8 @@ INSTANTIATE_TEST_SUITE_P(
                     std::pair{"sbs_japan_13501-16500.csv", Format::Sbs},
                     std::pair{"readsb_20minutes.json", Format::ReadsbJson},
                     std::pair{"opensky_switzerland_first2000.json.gz", Format::OpenskyJson},
-                    std::pair{"opensky_states_sample.csv", Format::OpenskyCsv}));
+                    std::pair{"opensky_states_sample.csv", Format::OpenskyCsv},
+                    std::pair{"aircraft_json_history.json", Format::AircraftJson}));
 
 TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   auto decoder = make_decoder(Format::Auto);
