@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 #include "kew/protocol/gzip.hpp"
@@ -201,11 +202,19 @@ class AutoDecoder final : public Decoder {
 
  private:
   /// finish() (`message` false) or end_message(): a stream or a datagram is judged on
-  /// what arrived, and the next bytes are detected afresh.
+  /// what arrived, and the next bytes are detected afresh. After a datagram the decoder
+  /// of its format is kept for the next datagram of that format: what a format carries
+  /// from one message to the next (aircraft.json's positions reported, SBS's merges)
+  /// holds across datagrams as it does for an explicit format; finish() forgets it.
   void end(bool message, const ReportSink& sink) {
     if (!inner_ && !unknown_ && !head_.empty()) try_detect(head_.size(), true, sink);
-    if (inner_ && message) inner_->end_message(sink);
-    else if (inner_) inner_->finish(sink);
+    if (inner_ && message) {
+      inner_->end_message(sink);
+      parked_[inner_format_] = std::move(inner_);
+    } else if (inner_) {
+      inner_->finish(sink);
+    }
+    if (!message) parked_.clear();
     inner_.reset();
     unknown_ = false;
     tried_first_ = false;
@@ -231,8 +240,14 @@ class AutoDecoder final : public Decoder {
       rejections().reject("unknown_format",
                           fmt::format("auto: the first {} bytes match no known format; skipped, {} after them",
                                       detection.start, to_string(detection.format)));
-    inner_ = make_decoder(detection.format, options_);
-    text::forward_rejections(*inner_, rejections());
+    inner_format_ = detection.format;
+    if (const auto kept = parked_.find(detection.format); kept != parked_.end()) {
+      inner_ = std::move(kept->second);
+      parked_.erase(kept);
+    } else {
+      inner_ = make_decoder(detection.format, options_);
+      text::forward_rejections(*inner_, rejections());
+    }
     inner_->set_receive_time(receive_time_);
     inner_->feed(std::span<const std::byte>(head_).subspan(detection.start), sink);
     head_.clear();
@@ -242,6 +257,8 @@ class AutoDecoder final : public Decoder {
   DecoderOptions options_;
   std::optional<double> receive_time_;
   std::unique_ptr<Decoder> inner_;
+  Format inner_format_ = Format::Auto;
+  std::map<Format, std::unique_ptr<Decoder>> parked_;  // after a datagram, by format
   std::vector<std::byte> head_;
   bool tried_first_ = false;
   bool unknown_ = false;

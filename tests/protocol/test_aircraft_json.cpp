@@ -129,6 +129,25 @@ TEST(AircraftJson, OneSnapshotADatagramRemembersWhatWasReportedUntilTheStreamEnd
   EXPECT_EQ(reports, 2u) << "after the end of the stream the decoder is as new";
 }
 
+TEST(AircraftJson, ThroughAutoDetectionDatagramsRememberWhatWasReportedToo) {
+  // A watched file or a NATS subject of snapshots with format = "auto": each message is
+  // detected afresh, and the decoder of its format keeps what it reported.
+  const std::string snapshot = R"({"now":1700000000,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":1}]})";
+  const std::string later = R"({"now":1700000001,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":2}]})";
+  auto decoder = make_decoder(Format::Auto);
+  std::size_t reports = 0;
+  const ReportSink count = [&](const TrackReport&) { ++reports; };
+  for (const std::string& message : {snapshot, later, later}) {
+    decoder->feed_text(message, count);
+    decoder->end_message(count);
+  }
+  EXPECT_EQ(reports, 1u);
+  decoder->finish(count);
+  decoder->feed_text(later, count);
+  decoder->end_message(count);
+  EXPECT_EQ(reports, 2u) << "finish() forgets";
+}
+
 TEST(AircraftJson, PositionsOlderThanTheLimitAreNotReported) {
   const std::string text = R"({"now":1700000000,"aircraft":[)"
                            R"({"hex":"000001","alt_baro":1000,"lat":1,"lon":1,"seen_pos":9.9},)"

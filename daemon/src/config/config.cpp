@@ -139,7 +139,7 @@ void read_input(TableReader& r, InputConfig& in) {
   r.string("name", in.name);
   r.choice("format", in.format, protocol::kFormatNames);
   r.choice("transport", in.transport, kTransportNames);
-  if (in.transport == Transport::File) r.path("address", in.address);
+  if (in.transport == Transport::File || in.transport == Transport::WatchedFile) r.path("address", in.address);
   else if (in.transport == Transport::Nats) subject(r, "address", in.address, true);
   else r.address("address", in.address);
   server_list(r, "nats_url", "nats_servers", in.nats_servers);

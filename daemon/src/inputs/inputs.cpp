@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "nats_input.hpp"
+#include "watched_file_input.hpp"
 #include "accept_guard.hpp"
 #include "udp_receiver.hpp"
 #include "kew/config/address.hpp"
@@ -43,7 +44,7 @@ protocol::DecoderOptions options_for(const InputConfig& config, protocol::Decode
   if (day) {
     options.asterix.day_start_utc_s = *day;
     options.asterix.day_from_pcap = false;
-  } else if (config.transport != Transport::File) {
+  } else if (config.transport != Transport::File && config.transport != Transport::WatchedFile) {
     options.asterix.day_start_utc_s = today_utc_midnight();
   }
   return options;
@@ -452,6 +453,7 @@ std::unique_ptr<Input> make_input(asio::io_context& io, const InputConfig& confi
     case Transport::TcpServer: return std::make_unique<TcpServerInput>(io, config, options, std::move(handler));
     case Transport::TcpClient: return std::make_unique<TcpClientInput>(io, config, options, std::move(handler));
     case Transport::Nats: return make_nats_input(io, config, options, std::move(handler));
+    case Transport::WatchedFile: return make_watched_file_input(io, config, options, std::move(handler));
     case Transport::File: break;
   }
   return std::make_unique<FileInput>(io, config, options, std::move(handler));

@@ -1,6 +1,7 @@
 #pragma once
 // kewd's inputs, one class per transport (design §5.7 [[input]]): UDP (unicast or
-// multicast), TCP client with reconnect and backoff, TCP server, NATS (src/nats), file (through replay's
+// multicast), TCP client with reconnect and backoff, TCP server, NATS (src/nats), a watched file
+// read again whenever it is replaced (watched_file_input.cpp), file (through replay's
 // RecordingReader and Pacer, as kew-replay reads recordings). Every byte
 // stream gets its own decoder (one per TCP connection), so streams never mix; decoded
 // reports go to the service's handler on the I/O thread.

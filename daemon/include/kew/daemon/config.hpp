@@ -15,14 +15,15 @@
 
 namespace kew::daemon {
 
-enum class Transport { Udp, TcpClient, TcpServer, File, Nats };
+enum class Transport { Udp, TcpClient, TcpServer, File, Nats, WatchedFile };
 /// The names of `transport = ...`.
-inline constexpr util::NameTable<Transport, 5> kTransportNames({{
+inline constexpr util::NameTable<Transport, 6> kTransportNames({{
     {Transport::Udp, "udp"},
     {Transport::TcpClient, "tcp-client"},
     {Transport::TcpServer, "tcp-server"},
     {Transport::File, "file"},
     {Transport::Nats, "nats"},
+    {Transport::WatchedFile, "watched-file"},
 }});
 constexpr std::string_view to_string(Transport t) { return kTransportNames.name(t); }
 
