@@ -240,13 +240,13 @@ class HotStandby(NatsCase):
 
 
     def test_a_standby_restarted_after_the_feed_dropped_the_origin_continues_the_latest_checkpoint(self):
-        """The feed stream keeps 12 s of records and the active writes a checkpoint every
-        3 s: the standby, killed early and restarted once the stream no longer holds the
+        """The feed stream keeps 12 s of records and the active writes a checkpoint (of 330
+        aircraft: more than one message) every 3 s: the standby, killed early and restarted once the stream no longer holds the
         pair's origin, loads the latest checkpoint, is in step, and takes over when the
         active dies; JetStream holds the run without failure event for event. (Without
         checkpoints, checkpoint_interval_s = 0, the restarted standby is never in step.)"""
         recording = self.path("tma-long.ndjson")
-        generate(recording, "tma", aircraft=150, duration=300, seed=5)
+        generate(recording, "tma", aircraft=330, duration=300, seed=5)  # a checkpoint of two parts
         member = {name: SERVICE + pair_member(name, [self.nats.url], nats_keys="checkpoint_interval_s = 3",
                                               input_keys="stream_max_age_s = 12") for name in "ab"}
         first, second = self.start_pair(member)
@@ -264,7 +264,9 @@ class HotStandby(NatsCase):
         wait_until(lambda: stream_first_seq(self.nats.port, "KEW_FEED") > 1, 60, "the feed's first records dropped")
         first.wait_log("[nats] checkpoint written to KEW_CHECKPOINTS.active", timeout_s=30)
         second = self.start(member["b"])
-        second.wait_log("the pair's latest checkpoint (written by a)", timeout_s=30)
+        loaded = second.wait_log("the pair's latest checkpoint (written by a)", timeout_s=30)
+        state_bytes = int(loaded.split(" bytes of state")[0].rsplit(" ", 1)[1])
+        self.assertGreater(state_bytes, 256 * 1024, "a checkpoint of more than one message (256 KiB each)")
         second.wait_log("hot standby: the pipeline continues the checkpoint of a", timeout_s=30)
         second.wait_log("b: in step with the active", timeout_s=60)
         self.assertTrue(second.stats()["nats"]["began_from_checkpoint"])
