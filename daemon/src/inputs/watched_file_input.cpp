@@ -55,7 +55,9 @@ class WatchedFileInput final : public Input {
     if (decoder_ && !stopped_) out.merge(decoder_->rejections());
   }
 
-  // The directory is watched, not the file: a rename puts another file under the name.
+  // The directory is watched, not the file: a rename puts another file under the name
+  // (IN_MOVED_TO); a writer that rewrites it in place is read once it closes the file
+  // (IN_CLOSE_WRITE), never half written.
   void watch() {
     const int fd = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
     if (fd < 0) {
@@ -64,7 +66,7 @@ class WatchedFileInput final : public Input {
       return;
     }
     const std::string directory = path_.parent_path().empty() ? "." : path_.parent_path().string();
-    if (::inotify_add_watch(fd, directory.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_CREATE) < 0) {
+    if (::inotify_add_watch(fd, directory.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO) < 0) {
       spdlog::warn("input {}: cannot watch {} ({}): {} is looked at every {} s", config_.name, directory,
                    std::strerror(errno), path_.string(), kPollPeriod.count());
       ::close(fd);
