@@ -3,6 +3,7 @@
 set(KEW_PROTOCOL_TESTS
   test_aircraft_json.cpp
   test_alert_json.cpp
+  test_asterix_cat048.cpp
   test_asterix_golden.cpp
   test_asterix_intent.cpp
   test_asterix_roundtrip.cpp
