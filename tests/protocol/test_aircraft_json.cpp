@@ -47,6 +47,8 @@ TEST(AircraftJson, ReadsEveryReadsbMemberAndDatesEachPositionByItsAge) {
   ASSERT_EQ(r.size(), 3u) << "the Mode S aircraft without a position is no record";
   // In data-time order: 2.5 s old, 1.0 s, 0.4 s.
   EXPECT_EQ(r[0].id, "~A1B2C3");
+  EXPECT_EQ(r[0].position_source, "tisb_other") << "type kept as the position's source";
+  EXPECT_EQ(r[1].position_source, "") << "none given";
   EXPECT_FALSE(r[0].address) << "a non-ICAO address is no aircraft's";
   EXPECT_DOUBLE_EQ(r[0].t, 1700000000.0 - 2.5);
   EXPECT_EQ(r[0].alt_ft, 5000.0) << "alt_geom without alt_baro";
@@ -58,6 +60,7 @@ TEST(AircraftJson, ReadsEveryReadsbMemberAndDatesEachPositionByItsAge) {
   EXPECT_EQ(r[1].alt_ft, 0.0);
   const TrackReport& a = r[2];
   EXPECT_EQ(a.source, "aircraft-json");
+  EXPECT_EQ(a.position_source, "adsb_icao");
   EXPECT_EQ(a.id, "3C6586");
   EXPECT_EQ(a.address, 0x3c6586u);
   EXPECT_DOUBLE_EQ(a.t, 1700000000.0 - 0.4);

@@ -95,6 +95,7 @@ inline void expect_same_report(const TrackReport& a, const TrackReport& b, std::
   EXPECT_EQ(bits(a.t), bits(b.t)) << a.t << " vs " << b.t;
   EXPECT_EQ(a.id, b.id);
   EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.position_source, b.position_source);
   EXPECT_EQ(bits(a.lat_deg), bits(b.lat_deg)) << a.lat_deg << " vs " << b.lat_deg;
   EXPECT_EQ(bits(a.lon_deg), bits(b.lon_deg)) << a.lon_deg << " vs " << b.lon_deg;
   EXPECT_EQ(bits(a.alt_ft), bits(b.alt_ft)) << a.alt_ft << " vs " << b.alt_ft;

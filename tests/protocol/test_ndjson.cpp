@@ -327,6 +327,7 @@ TEST(NdjsonRoundTrip, RandomReportsReadBackEqual) {
       r.id = random_text(random, 12);
     } while (r.id.empty());
     r.source = random_text(random, 6);
+    if (random() % 2) r.position_source = random_text(random, 10);
     r.callsign = random_text(random, 10);
     r.lat_deg = random_double(random, -90, 90);
     r.lon_deg = random_double(random, -180, 180);

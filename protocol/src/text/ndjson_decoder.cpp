@@ -60,6 +60,7 @@ class NdjsonDecoder final : public text::LineDecoder {
     }
     if (key == "cs") return optional_string(value, key, report_.callsign);
     if (key == "src") return optional_string(value, key, report_.source);
+    if (key == "pos_src") return optional_string(value, key, report_.position_source);
     return std::nullopt;
   }
 

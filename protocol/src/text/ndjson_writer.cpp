@@ -121,6 +121,10 @@ void append_ndjson(std::string& out, const TrackReport& report) {
     out += ",\"src\":";
     append_json_string(out, report.source);
   }
+  if (!report.position_source.empty()) {
+    out += ",\"pos_src\":";
+    append_json_string(out, report.position_source);
+  }
   if (report.on_ground) out += ",\"gnd\":true";
   if (report.mode3a) fmt::format_to(std::back_inserter(out), ",\"sq\":\"{:04o}\"", *report.mode3a & 07777u);
   if (report.address) fmt::format_to(std::back_inserter(out), ",\"addr\":\"{:06X}\"", *report.address & 0xFFFFFFu);

@@ -115,6 +115,7 @@ LineResult fill_readsb_report(const ReadsbMembers& m, double t, std::string_view
   }
   report.tar_dps = m.track_rate;
   report.mode3a = m.squawk;
+  if (m.type) report.position_source.assign(*m.type);
   if (m.flight) {
     const std::string_view callsign = trim(*m.flight);
     if (callsign != "N/A") report.callsign.assign(callsign);

@@ -103,6 +103,7 @@ void clear_report(TrackReport& report) {
   report.t = report.lat_deg = report.lon_deg = report.alt_ft = 0.0;
   report.id.clear();
   report.source.clear();
+  report.position_source.clear();
   report.callsign.clear();
   report.gs_kt.reset();
   report.trk_deg.reset();

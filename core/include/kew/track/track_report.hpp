@@ -64,6 +64,10 @@ struct TrackReport {
   /// of the track is `id`). Two tracks with the same address are one aircraft; two
   /// different addresses are never one aircraft (design §4.5).
   std::optional<std::uint32_t> address;
+  /// How the source located the aircraft, in its own words, when it says (readsb's and
+  /// dump1090's `type`: "adsb_icao", "mlat", "tisb_icao", "adsr_icao", ...); empty when
+  /// it does not. An attribute kept with the record, as `source` is, not the identity.
+  std::string position_source;
   /// The source says the target is on the ground.
   bool on_ground = false;
   /// The source extrapolated this position without a fresh measurement (CAT062 I062/080

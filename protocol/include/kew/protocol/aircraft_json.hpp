@@ -14,7 +14,8 @@
 // upper case with '~' kept for non-ICAO addresses, address the 24-bit hex but for '~'
 // ones) dated now − seen_pos (now − seen without seen_pos; now without either), with the
 // members of readsb.hpp: alt_baro (ft, or "ground"), alt_geom, gs, track, baro_rate or
-// geom_rate, nav_altitude_mcp or nav_altitude_fms, track_rate, squawk, flight; and
+// geom_rate, nav_altitude_mcp or nav_altitude_fms, track_rate, squawk, flight, type (kept
+// as TrackReport::position_source: adsb_icao, mlat, tisb_*, adsr_*); and
 // dump1090-mutability's altitude, speed and vert_rate when those are absent. A position
 // older than max_position_age_s is not reported, nor one reported before: an aircraft's
 // position is reported again only with a later data time, so a snapshot every second of
