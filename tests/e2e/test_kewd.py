@@ -165,12 +165,13 @@ class AlertStream(E2eCase):
                         z.pop("busy_s")
             if key not in ("rejected", "rejected_total"):
                 self.assertEqual(live[key], value, key)
-        # kewd's total adds the unreadable directory to the recording's one bad line.
+        # kewd's total adds the empty directory (a directory is the recording of its files:
+        # this one names none) to the recording's one bad line.
         self.assertEqual(replay["rejected"], {"wrong_type": 1})
-        self.assertEqual(live["rejected"], {"file_unreadable": 1, "wrong_type": 1})
+        self.assertEqual(live["rejected"], {"no_files": 1, "wrong_type": 1})
         self.assertEqual((replay["rejected_total"], live["rejected_total"]), (1, 2))
         by_name = {i["name"]: i for i in live["inputs"]}
-        self.assertEqual(by_name["dir"]["rejected"], {"file_unreadable": 1}, "a read error is counted")
+        self.assertEqual(by_name["dir"]["rejected"], {"no_files": 1}, "an input that reads nothing is counted")
         self.assertEqual(by_name["file"]["rejected"], {"wrong_type": 1})
         self.assertEqual(by_name["file"]["reports"], live["records"])
 
