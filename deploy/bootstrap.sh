@@ -15,6 +15,7 @@ packages=(build-essential cmake ccache
           libboost-dev libsimdjson-dev libfmt-dev zlib1g-dev
           libgtest-dev libgmock-dev libbenchmark-dev
           libtomlplusplus-dev libcli11-dev libspdlog-dev libmodbus-dev libsystemd-dev libnats-dev
+          libcurl4-openssl-dev openssl dump1090-mutability
           mbpoll python3-pymodbus systemd prometheus nats-server mosquitto-clients
           tshark clang-14 libclang-rt-14-dev
           libjs-leaflet chromium chromium-driver python3-selenium

@@ -91,6 +91,36 @@ void TableReader::host_name_list(std::string_view key, std::vector<std::string>&
               });
 }
 
+void TableReader::http_url(std::string_view key, std::string& out) {
+  const toml::node* node = take(key);
+  if (!node) return;
+  const auto* text = node->as_string();
+  const std::string_view url = text ? std::string_view(text->get()) : std::string_view();
+  const std::size_t scheme_end = url.find("://");
+  const std::string_view scheme = scheme_end == std::string_view::npos ? "" : url.substr(0, scheme_end);
+  const std::string_view rest = scheme_end == std::string_view::npos ? "" : url.substr(scheme_end + 3);
+  const bool spaces = url.find_first_of(" \t\r\n") != std::string_view::npos;
+  if ((scheme != "http" && scheme != "https") || rest.empty() || rest.front() == '/' || spaces)
+    fail(node, fmt::format("{} must be an http:// or https:// URL with a host (\"https://host/path\")", key));
+  out = url;
+}
+
+void TableReader::http_header_list(std::string_view key, std::vector<std::string>& out) {
+  string_list(key, "HTTP headers (\"Name: value\")", "\"Name: value\" on one line", out,
+              [](std::string text) -> std::optional<std::string> {
+                const std::size_t colon = text.find(':');
+                if (colon == 0 || colon == std::string::npos) return std::nullopt;
+                for (std::size_t i = 0; i < colon; ++i) {
+                  const unsigned char c = static_cast<unsigned char>(text[i]);
+                  if (!std::isalnum(c) && std::string_view("!#$%&'*+-.^_`|~").find(static_cast<char>(c)) ==
+                                              std::string_view::npos)
+                    return std::nullopt;
+                }
+                if (text.find_first_of("\r\n") != std::string::npos) return std::nullopt;
+                return text;
+              });
+}
+
 void TableReader::nats_servers(std::string_view key, std::vector<std::string>& out) {
   const toml::node* node = take(key);
   if (!node) return;

@@ -298,7 +298,7 @@ TEST(Config, RefusesMistakesWithFileAndLine) {
                "[[radar]]\nsac = 20\nsic = 129\nlat = 41.5\nlon = 2.3\n",
                "t.toml:6: [radar 2] a radar with sac = 20 and sic = 129 is already configured");
   expect_error("[[input]]\ntransport = \"file\"\naddress = \"x\"\nreconnect_min_s = 2\n",
-               "t.toml:4: [input 1] reconnect_min_s is for transport tcp-client only");
+               "t.toml:4: [input 1] reconnect_min_s is for transport tcp-client and http only");
   expect_error("[[input]]\ntransport = \"udp\"\naddress = \"127.0.0.1:8600\"\npace = true\n",
                "pace is for transport file only");
   expect_error("[[input]]\ntransport = \"tcp-client\"\naddress = \"127.0.0.1:8600\"\nidle_timeout_s = 5\n",
@@ -681,8 +681,8 @@ TEST(Config, ChoicesListTheirNameTable) {
   expect_error("[[input]]\ntransport = \"tcp\"\naddress = \"a:1\"\n",
                "expected one of udp, tcp-client, tcp-server, file");
   expect_error("[[input]]\nformat = \"json\"\naddress = \"a:1\"\n",
-               "expected one of auto, ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, asterix-raw, asterix-ff, "
-               "asterix-pcap, asterix-datagram");
+               "expected one of auto, ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, opensky-rest, "
+               "readsb-trace, asterix-raw, asterix-ff, asterix-pcap, asterix-datagram");
   expect_error("[service]\nlog_level = \"warning\"\n", "expected one of trace, debug, info, warn, error, critical, off");
   EXPECT_EQ(parse_config("[service]\nlog_level = \"warn\"\n").service.log_level, LogLevel::Warn);
   EXPECT_EQ(kTransportNames.parse(to_string(Transport::TcpServer)), Transport::TcpServer);

@@ -1,5 +1,5 @@
 // The checks of a kewd configuration that need more than one key, or the file system
-// (design §5.7): listen addresses, distinct ports, writable output files.
+// (design §5.7): listen addresses, distinct ports, writable output files, readable secrets.
 #include <unistd.h>
 
 #include <cerrno>
@@ -113,6 +113,22 @@ void check_state_directory(Check& check) {
     fail(fmt::format("cannot be {}: {}", fs::exists(status) ? "written" : "created", std::strerror(errno)));
 }
 
+/// An http input's secret, credentials and certificate files: kewd reads them at start.
+void check_input_files(const Config& c) {
+  for (std::size_t i = 0; i < c.inputs.size(); ++i) {
+    const InputConfig& in = c.inputs[i];
+    for (const auto& [key, path] : {std::pair{"secret_file", &in.secret_file}, std::pair{"credentials_file", &in.credentials_file},
+                                    std::pair{"ca_file", &in.ca_file}}) {
+      if (path->empty()) continue;
+      std::error_code ec;
+      if (!fs::is_regular_file(*path, ec))
+        refuse(c, fmt::format("[input {}] {} = \"{}\" is not a file", i + 1, key, *path));
+      if (::access(path->c_str(), R_OK) != 0)
+        refuse(c, fmt::format("[input {}] {} = \"{}\" cannot be read: {}", i + 1, key, *path, std::strerror(errno)));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Listener> listeners(const Config& c) {
@@ -139,6 +155,7 @@ std::vector<std::string> check_config(const Config& c, const CheckOptions& optio
   check_writable(check, "[service] alert_log", c.service.alert_log, true);
   check_writable(check, "[service] record_file", c.service.record_file, false);
   check_state_directory(check);
+  check_input_files(c);
   if (!c.service.alert_log.empty() && c.service.alert_log == c.service.record_file)
     refuse(c, fmt::format("[service] record_file = \"{}\" is the alert log too: give each its own file",
                           c.service.record_file));

@@ -1,5 +1,6 @@
 #include "kew/daemon/config.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "kew/config/document.hpp"
@@ -135,12 +136,39 @@ void read_nats(TableReader& r, NatsConfig& n) {
     r.fail(r.node("hot_standby"), "hot_standby needs stream: a takeover reads the last event sent from it");
 }
 
+// OpenSky's REST API allows one request every 10 s without credentials and every 5 s
+// with them (https://openskynetwork.github.io/opensky-api/rest.html, "Limitations").
+bool is_opensky_api(std::string_view url) { return url.find("opensky-network.org/api") != std::string_view::npos; }
+
+void read_http_keys(TableReader& r, InputConfig& in) {
+  r.number("poll_interval_s", in.poll_interval_s, 0.1, 86400.0);
+  r.number("timeout_s", in.timeout_s, 0.1, 3600.0);
+  r.integer("max_response_bytes", in.max_response_bytes, 1024, std::int64_t{1} << 30);
+  r.http_header_list("headers", in.headers);
+  r.string("secret_header", in.secret_header);
+  r.path("secret_file", in.secret_file);
+  r.path("credentials_file", in.credentials_file);
+  r.http_url("token_url", in.token_url);
+  r.path("ca_file", in.ca_file);
+  if (in.secret_header.empty() != in.secret_file.empty())
+    r.fail(r.node(in.secret_header.empty() ? "secret_file" : "secret_header"),
+           "secret_header and secret_file come together: the header's name and the file holding its value");
+  if (in.transport == Transport::Http && is_opensky_api(in.address)) {
+    const double least = in.credentials_file.empty() ? 10.0 : 5.0;
+    if (in.poll_interval_s < least)
+      r.fail(r.node("poll_interval_s"),
+             fmt::format("poll_interval_s = {}: OpenSky's API allows one request every {} s {} credentials",
+                         in.poll_interval_s, least, in.credentials_file.empty() ? "without" : "with"));
+  }
+}
+
 void read_input(TableReader& r, InputConfig& in) {
   r.string("name", in.name);
   r.choice("format", in.format, protocol::kFormatNames);
   r.choice("transport", in.transport, kTransportNames);
   if (in.transport == Transport::File || in.transport == Transport::WatchedFile) r.path("address", in.address);
   else if (in.transport == Transport::Nats) subject(r, "address", in.address, true);
+  else if (in.transport == Transport::Http) r.http_url("address", in.address);
   else r.address("address", in.address);
   server_list(r, "nats_url", "nats_servers", in.nats_servers);
   stream_name(r, "durable", in.durable);
@@ -151,6 +179,7 @@ void read_input(TableReader& r, InputConfig& in) {
   r.number("reconnect_max_s", in.reconnect_max_s, 0.01, 86400.0);
   r.integer("max_connections", in.max_connections, 1, 1024);
   r.number("idle_timeout_s", in.idle_timeout_s, 0.0, 86400.0);
+  read_http_keys(r, in);
   r.boolean("pace", in.pace);
   r.number("speed", in.speed, 0.001, 1000.0);
   r.utc_day("asterix_day", in.asterix_day);
@@ -159,13 +188,19 @@ void read_input(TableReader& r, InputConfig& in) {
     r.fail(r.node("allow_remote"), "allow_remote is for inputs that listen (transport udp or tcp-server)");
   // A key the transport never reads is a mistake in the file (a reconnect delay on a
   // file, a pace on a socket): refused at its line, not ignored.
-  const auto only_for = [&](std::string_view key, Transport transport) {
-    if (in.transport != transport && r.node(key))
-      r.fail(r.node(key), fmt::format("{} is for transport {} only", key, kTransportNames.name(transport)));
+  const auto only_for_these = [&](std::string_view key, std::initializer_list<Transport> transports) {
+    if (!r.node(key) || std::find(transports.begin(), transports.end(), in.transport) != transports.end()) return;
+    std::string names;
+    for (const Transport t : transports) names += (names.empty() ? "" : " and ") + std::string(kTransportNames.name(t));
+    r.fail(r.node(key), fmt::format("{} is for transport {} only", key, names));
   };
+  const auto only_for = [&](std::string_view key, Transport transport) { only_for_these(key, {transport}); };
   only_for("interface", Transport::Udp);
-  only_for("reconnect_min_s", Transport::TcpClient);
-  only_for("reconnect_max_s", Transport::TcpClient);
+  only_for_these("reconnect_min_s", {Transport::TcpClient, Transport::Http});
+  only_for_these("reconnect_max_s", {Transport::TcpClient, Transport::Http});
+  for (const std::string_view key : {"poll_interval_s", "timeout_s", "max_response_bytes", "headers", "secret_header",
+                                     "secret_file", "credentials_file", "token_url", "ca_file"})
+    only_for(key, Transport::Http);
   only_for("max_connections", Transport::TcpServer);
   only_for("idle_timeout_s", Transport::TcpServer);
   only_for("pace", Transport::File);

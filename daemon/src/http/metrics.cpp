@@ -106,6 +106,15 @@ void write_inputs(Exposition& e, const std::vector<InputMetrics>& inputs) {
   for (const InputMetrics& in : inputs)
     if (in.last_record_unix_s)
       e.sample("kew_input_last_record_timestamp_seconds", {{"input", in.name}}, *in.last_record_unix_s);
+  e.family("kew_input_polls_total", "counter",
+           "Requests of each http input, by result: taken (answered 200), unchanged (304), failed (no answer, an "
+           "error status, too large).");
+  for (const InputMetrics& in : inputs) {
+    if (!in.polls) continue;
+    e.sample("kew_input_polls_total", {{"input", in.name}, {"result", "taken"}}, num(in.polls->taken));
+    e.sample("kew_input_polls_total", {{"input", in.name}, {"result", "unchanged"}}, num(in.polls->unchanged));
+    e.sample("kew_input_polls_total", {{"input", in.name}, {"result", "failed"}}, num(in.polls->failed));
+  }
 }
 
 void write_pipeline(Exposition& e, const Pipeline& pipeline) {

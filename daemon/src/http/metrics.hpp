@@ -43,6 +43,11 @@ struct InputMetrics {
   /// Its decoders' refusals and the pipeline's refusals of its records, by reason.
   Rejections rejected;
   std::optional<double> last_record_unix_s;  ///< wall clock of its last decoded record
+  /// http inputs: answers taken, "not modified" answers, failed requests.
+  struct Polls {
+    std::uint64_t taken = 0, unchanged = 0, failed = 0;
+  };
+  std::optional<Polls> polls;
 };
 
 struct MetricsSources {

@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "nats_input.hpp"
+#include "http_poll_input.hpp"
 #include "watched_file_input.hpp"
 #include "accept_guard.hpp"
 #include "udp_receiver.hpp"
@@ -44,7 +45,8 @@ protocol::DecoderOptions options_for(const InputConfig& config, protocol::Decode
   if (day) {
     options.asterix.day_start_utc_s = *day;
     options.asterix.day_from_pcap = false;
-  } else if (config.transport != Transport::File && config.transport != Transport::WatchedFile) {
+  } else if (config.transport != Transport::File && config.transport != Transport::WatchedFile &&
+             config.transport != Transport::Http) {
     options.asterix.day_start_utc_s = today_utc_midnight();
   }
   return options;
@@ -454,6 +456,7 @@ std::unique_ptr<Input> make_input(asio::io_context& io, const InputConfig& confi
     case Transport::TcpClient: return std::make_unique<TcpClientInput>(io, config, options, std::move(handler));
     case Transport::Nats: return make_nats_input(io, config, options, std::move(handler));
     case Transport::WatchedFile: return make_watched_file_input(io, config, options, std::move(handler));
+    case Transport::Http: return make_http_poll_input(io, config, options, std::move(handler));
     case Transport::File: break;
   }
   return std::make_unique<FileInput>(io, config, options, std::move(handler));

@@ -419,8 +419,10 @@ std::string Service::metrics_text() const {
     const protocol::InputStatistics& in = service.inputs[i];
     const RecordIntake::InputFigures& figures = intake_->figures(i);
     http::InputMetrics metrics{in.name, in.reports, in.bytes, in.datagrams_dropped, in.rejected,
-                               figures.last_record_unix_s};
+                               figures.last_record_unix_s, std::nullopt};
     metrics.rejected.merge(figures.pipeline_refused);
+    if (inputs_[i]->config().transport == Transport::Http)
+      metrics.polls = http::InputMetrics::Polls{in.polls, in.polls_unchanged, in.poll_failures};
     m.inputs.push_back(std::move(metrics));
   }
   m.subscribers = subscribers_->sessions();

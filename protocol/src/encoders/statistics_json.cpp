@@ -195,6 +195,9 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     i.integer("oversized_datagrams", input.oversized_datagrams);
     i.integer("datagrams_dropped", input.datagrams_dropped);
     i.integer("messages_dropped", input.messages_dropped);
+    i.integer("polls", input.polls);
+    i.integer("polls_unchanged", input.polls_unchanged);
+    i.integer("poll_failures", input.poll_failures);
     i.rejections("rejected", input.rejected);
     i.close();
   }

@@ -70,6 +70,11 @@ class TableReader {
   void ip_list(std::string_view key, std::vector<std::string>& out);
   /// A list of host names (["kew.example"]): letters, digits, '-' and '.', kept lower-case.
   void host_name_list(std::string_view key, std::vector<std::string>& out);
+  /// An http:// or https:// URL with a host (a poll input's address), kept as written.
+  void http_url(std::string_view key, std::string& out);
+  /// HTTP request headers, ["Name: value", ...]: a name of token characters (RFC 9110
+  /// §5.1), a colon, a value without line breaks.
+  void http_header_list(std::string_view key, std::vector<std::string>& out);
   /// NATS servers: an array of URLs (["nats://h1:4222", "nats://h2:4222"]), or one string
   /// of comma-separated URLs, each checked with valid_nats_server (nats_servers.hpp); an
   /// error quotes the entry and says what is wrong. "" and [] name none (out empty).

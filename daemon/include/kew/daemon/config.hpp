@@ -15,15 +15,16 @@
 
 namespace kew::daemon {
 
-enum class Transport { Udp, TcpClient, TcpServer, File, Nats, WatchedFile };
+enum class Transport { Udp, TcpClient, TcpServer, File, Nats, WatchedFile, Http };
 /// The names of `transport = ...`.
-inline constexpr util::NameTable<Transport, 6> kTransportNames({{
+inline constexpr util::NameTable<Transport, 7> kTransportNames({{
     {Transport::Udp, "udp"},
     {Transport::TcpClient, "tcp-client"},
     {Transport::TcpServer, "tcp-server"},
     {Transport::File, "file"},
     {Transport::Nats, "nats"},
     {Transport::WatchedFile, "watched-file"},
+    {Transport::Http, "http"},
 }});
 constexpr std::string_view to_string(Transport t) { return kTransportNames.name(t); }
 
@@ -56,14 +57,31 @@ struct InputConfig {
   /// udp: "HOST:PORT" to bind (HOST may be a multicast group, joined on `interface`);
   /// tcp-client: "HOST:PORT" to connect to; tcp-server: "HOST:PORT" to listen on;
   /// file: a path (read once, as fast as the pipeline takes it, unless `pace`);
-  /// nats: the subject to subscribe to (wildcards allowed), one message = one datagram.
+  /// nats: the subject to subscribe to (wildcards allowed), one message = one datagram;
+  /// watched-file: a path; http: the URL polled (http:// or https://).
   std::string address;
   std::string interface = "0.0.0.0";  ///< multicast: local interface address
-  double reconnect_min_s = 1.0;       ///< tcp-client backoff, doubling up to max
+  double reconnect_min_s = 1.0;       ///< tcp-client, http: backoff, doubling up to max
   double reconnect_max_s = 30.0;
   std::size_t max_connections = 4;    ///< tcp-server
   /// tcp-server: a feed connection that sends no byte for this long is closed (0: never).
   double idle_timeout_s = 60.0;
+  /// http: one request every poll_interval_s while the server answers (from the start
+  /// of one to the start of the next); each answer is one message of `format`.
+  double poll_interval_s = 1.0;
+  double timeout_s = 10.0;  ///< http: a request's connection and transfer together
+  /// http: a larger answer (after decompression) is refused and counted; also bounded
+  /// by the decoder's message limit ([decoding] max_snapshot_bytes).
+  std::size_t max_response_bytes = 32u << 20;
+  std::vector<std::string> headers;  ///< http: sent with every request, "Name: value"
+  /// http: the header named secret_header carries secret_file's text (an API key).
+  std::string secret_header;
+  std::string secret_file;
+  /// http: credentials_file holds OpenSky's credentials.json (OAuth2 client credentials,
+  /// a token from token_url) or one line "user:password" (HTTP basic).
+  std::string credentials_file;
+  std::string token_url;  ///< http: "" = OpenSky's token endpoint
+  std::string ca_file;    ///< http: PEM certificates trusted besides the system's
   bool pace = false;                  ///< file: replay paced like the recording
   double speed = 1.0;                 ///< file with pace: multiple of recorded speed
   /// Data day for ASTERIX time of day (UTC midnight, "YYYY-MM-DD"); empty: today (live)

@@ -31,6 +31,9 @@ struct InputStatistics {
   std::uint64_t oversized_datagrams = 0;
   std::uint64_t datagrams_dropped = 0;    ///< UDP: dropped by the kernel, the receive buffer full
   std::uint64_t messages_dropped = 0;     ///< NATS: dropped by the client while kewd fell behind
+  std::uint64_t polls = 0;                ///< http: answers taken (200)
+  std::uint64_t polls_unchanged = 0;      ///< http: answers "not modified" (304)
+  std::uint64_t poll_failures = 0;        ///< http: no answer, an error status, too large, no token
   Rejections rejected;                    ///< its decoders' rejections
 };
 

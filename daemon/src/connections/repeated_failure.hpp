@@ -1,6 +1,6 @@
 #pragma once
-// A failure that repeats while a NATS server is away (no connection, no stream, no
-// acknowledgement) goes to the log once, then at most every 30 s with how often it
+// A failure that repeats while a server is away (a NATS server: no connection, no
+// stream, no acknowledgement; an HTTP server polled) goes to the log once, then at most every 30 s with how often it
 // happened meanwhile; recovered() says so once it stops. One thread uses an instance.
 
 #include <chrono>
