@@ -72,6 +72,8 @@ class SnapshotServer:
         self.revoked = set()
         self.token_requests = []  # the form bodies POSTed to /token
         self.raw = None           # (headers, body) served instead of the document
+        self.refuse_for_s = None  # the next GET refused 429, asking to wait this long
+        self.get_times = []       # time.monotonic() of each GET
         server = self
 
         self.connections = set()
@@ -105,7 +107,13 @@ class SnapshotServer:
                 headers = {k.lower(): v for k, v in self.headers.items()}
                 with server.lock:
                     server.requests.append(headers)
+                    server.get_times.append(time.monotonic())
                     body, version, raw = server.body, server.version, server.raw
+                    refuse_for_s, server.refuse_for_s = server.refuse_for_s, None
+                if refuse_for_s is not None:
+                    # As OpenSky answers once a day's credits are spent.
+                    return self.answer(429, b"Too many requests",
+                                       {"X-Rate-Limit-Retry-After-Seconds": str(refuse_for_s)})
                 for name, value in server.require.items():
                     if headers.get(name) != value:
                         return self.answer(403, b"forbidden")
@@ -309,6 +317,25 @@ class HttpPoll(E2eCase):
         wait_until(lambda: health() == "healthy", 10, "ALIVE to say healthy again")
         self.assertIn("answering again", kewd.log())
         self.assertTrue(kewd.running())
+
+    def test_a_server_that_asks_to_wait_is_not_asked_sooner(self):
+        """A 429 naming X-Rate-Limit-Retry-After-Seconds (OpenSky's header once the day's
+        credits are spent): the next request waits that long, beyond reconnect_max_s,
+        and the poll goes on at its interval afterwards."""
+        server = self.serve()
+        kewd = self.start(SERVICE.format(workdir=self.workdir) + POLL.format(
+            format="aircraft-json", url=f"http://127.0.0.1:{server.port}/data/aircraft.json"))
+        wait_until(lambda: kewd.stats()["records"] > 0, 10, "the first snapshot read")
+        with server.lock:
+            server.refuse_for_s = 3
+        wait_until(lambda: kewd.stats()["inputs"][0]["poll_failures"] == 1, 10, "the refusal counted")
+        with server.lock:
+            refused_at = len(server.get_times)
+        wait_until(lambda: len(server.get_times) > refused_at, 10, "the next request")
+        with server.lock:
+            waited = server.get_times[refused_at] - server.get_times[refused_at - 1]
+        self.assertGreaterEqual(waited, 2.9, "asked again before the server's time")
+        wait_until(lambda: len(server.get_times) > refused_at + 5, 10, "polling at the interval again")
 
     def test_an_answer_larger_than_the_limit_is_refused(self):
         """A 50 MB answer with its length announced, and a gzip answer of a few kilobytes
