@@ -15,7 +15,7 @@
 #include "nats_connection.hpp"
 #include "pull_consumer.hpp"
 #include "repeated_failure.hpp"
-#include "stream_replicas.hpp"
+#include "stream_setup.hpp"
 
 namespace kew::daemon {
 
@@ -32,7 +32,6 @@ constexpr auto kRetryPeriod = std::chrono::seconds(1);
 // How long the server may take to say what a durable consumer still holds: a server that
 // does not answer within it counts as unreachable (design §4.1, §5.9).
 constexpr std::int64_t kAskWaitMs = 500;
-constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 
 /// Messages owned until decoded; the last one of a JetStream batch is acknowledged then
 /// (acknowledge-all: it acknowledges the batch).
@@ -206,45 +205,22 @@ class NatsInput final : public Input {
     return true;
   }
 
+  // Made when missing; one made by an earlier run or the operator keeps its subjects
+  // and limits, its replicas follow [nats] replicas.
   bool ensure_stream() {
-    jsStreamInfo* existing = nullptr;
-    jsErrCode missing = static_cast<jsErrCode>(0);
-    const natsStatus found =
-        js_GetStreamInfo(&existing, connection_.jetstream(), config_.stream.c_str(), nullptr, &missing);
-    jsStreamInfo_Destroy(existing);
-    if (found == NATS_OK) return keep_stream();
-    if (missing != JSStreamNotFoundErr) {
-      failures_.report(fmt::format("cannot read the JetStream stream {}: {}", config_.stream, nats::describe(found)));
+    const nats::StreamSetup setup = nats::ensure_stream(
+        connection_.jetstream(),
+        {config_.stream, {config_.address}, config_.stream_max_age_s, -1, config_.stream_replicas},
+        nats::IfExists::Keep);
+    if (!setup.ready) {
+      failures_.report(setup.note);
       return false;
     }
-    jsStreamConfig stream;
-    jsStreamConfig_Init(&stream);
-    stream.Name = config_.stream.c_str();
-    const char* subjects[] = {config_.address.c_str()};
-    stream.Subjects = subjects;
-    stream.SubjectsLen = 1;
-    stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
-    stream.Storage = js_FileStorage;
-    stream.Replicas = config_.stream_replicas;
-    jsStreamInfo* info = nullptr;
-    jsErrCode error = static_cast<jsErrCode>(0);
-    const natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
-    jsStreamInfo_Destroy(info);
-    if (s == NATS_OK) {
+    if (setup.created)
       spdlog::info("input {}: created the JetStream stream {} for {} ({} replicas)", config_.name, config_.stream,
                    config_.address, config_.stream_replicas);
-      return true;
-    }
-    if (error == kStreamNameInUse) return keep_stream();  // made by another meanwhile
-    failures_.report(fmt::format("cannot create the JetStream stream {}: {}", config_.stream, nats::describe(s)));
-    return false;
-  }
-
-  // Made by an earlier run or the operator: its subjects and limits stay theirs, its
-  // replicas follow [nats] replicas.
-  bool keep_stream() {
-    const std::string scaled = nats::ensure_replicas(connection_.jetstream(), config_.stream, config_.stream_replicas);
-    if (!scaled.empty()) spdlog::warn("input {}: {}", config_.name, scaled);
+    else if (!setup.note.empty())
+      spdlog::warn("input {}: {}", config_.name, setup.note);
     return true;
   }
 

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "stream_replicas.hpp"
+#include "stream_setup.hpp"
 
 namespace kew::daemon {
 
@@ -21,7 +21,6 @@ constexpr std::int64_t kPublishWaitMs = 5000;
 constexpr std::int64_t kReadWaitMs = 5000;
 // The alert stream has this long to take the events a checkpoint covers.
 constexpr auto kPublishedWait = std::chrono::seconds(60);
-constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 constexpr jsErrCode kNoMessageFound = static_cast<jsErrCode>(10037);
 
 using Message = std::unique_ptr<natsMsg, decltype(&natsMsg_Destroy)>;
@@ -200,32 +199,17 @@ void CheckpointPublisher::carry_out(Job& job) {
 
 bool CheckpointPublisher::ensure_stream() {
   if (stream_ready_) return true;
-  const std::string subjects_text = config_.checkpoint_stream + ".>";
-  const char* subjects[] = {subjects_text.c_str()};
-  jsStreamConfig stream;
-  jsStreamConfig_Init(&stream);
-  stream.Name = config_.checkpoint_stream.c_str();
-  stream.Subjects = subjects;
-  stream.SubjectsLen = 1;
-  stream.Storage = js_FileStorage;
-  stream.Replicas = config_.replicas;
-  jsStreamInfo* info = nullptr;
-  jsErrCode error = static_cast<jsErrCode>(0);
-  const natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
-  jsStreamInfo_Destroy(info);
-  if (s == NATS_OK || error == kStreamNameInUse) {
-    if (error == kStreamNameInUse) {
-      const std::string scaled = nats::ensure_replicas(connection_.jetstream(), config_.checkpoint_stream,
-                                                       config_.replicas);
-      if (!scaled.empty()) spdlog::warn("[nats] checkpoints: {}", scaled);
-    }
-    stream_ready_ = true;
-    return true;
+  const nats::StreamSetup setup =
+      nats::ensure_stream(connection_.jetstream(),
+                          {config_.checkpoint_stream, {config_.checkpoint_stream + ".>"}, 0, -1, config_.replicas},
+                          nats::IfExists::Keep);
+  if (!setup.ready) {
+    failures_.report(setup.note + "; no checkpoint written");
+    return false;
   }
-  failures_.report(fmt::format("cannot create the JetStream stream {}: {}{}; no checkpoint written",
-                               config_.checkpoint_stream, nats::describe(s),
-                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
-  return false;
+  if (!setup.note.empty()) spdlog::warn("[nats] checkpoints: {}", setup.note);
+  stream_ready_ = true;
+  return true;
 }
 
 std::optional<std::uint64_t> CheckpointPublisher::publish(const PairCheckpoint& checkpoint) {

@@ -4,7 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "repeated_failure.hpp"
-#include "stream_replicas.hpp"
+#include "stream_setup.hpp"
 
 namespace kew::daemon {
 

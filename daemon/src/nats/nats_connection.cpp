@@ -1,6 +1,6 @@
 #include "nats_connection.hpp"
 
-#include "stream_replicas.hpp"
+#include "stream_setup.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -48,7 +48,7 @@ std::uint64_t kept_seq(jsCtx* jetstream, const std::string& stream, std::uint64_
 /// key, its values removed `ttl_s` seconds after their last write (0: never), on
 /// `replicas` servers (1–5): made when missing, else bound as it is (another instance or
 /// an earlier run made it) and scaled to `replicas`, `scaled` then saying what was done
-/// or why it could not be (ensure_replicas, stream_replicas.hpp). Null when the server
+/// or why it could not be (ensure_replicas, stream_setup.hpp). Null when the server
 /// did not answer.
 kvStore* bind_key_value(jsCtx* jetstream, const std::string& name, double ttl_s, int replicas, std::string& scaled);
 

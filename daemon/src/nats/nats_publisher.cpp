@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "stream_setup.hpp"
+
 namespace kew::daemon {
 
 namespace {
@@ -15,7 +17,6 @@ constexpr auto kDrainOnStop = std::chrono::seconds(2);
 constexpr auto kRetryPeriod = std::chrono::milliseconds(250);
 constexpr std::int64_t kAcknowledgementWaitMs = 2000;
 constexpr std::int64_t kLearnWaitMs = 500;  // the stream's last message, asked of its leader
-constexpr jsErrCode kStreamNameInUse = static_cast<jsErrCode>(10058);
 
 /// A message with the seq header, destroyed with its owner.
 class OutgoingMessage {
@@ -167,44 +168,19 @@ void NatsPublisher::run() {
 bool NatsPublisher::ensure_stream() {
   if (!connection_.connected()) return false;
   const std::string alerts = config_.alerts_subject + ".>";
-  const char* subjects[] = {alerts.c_str(), config_.acks_subject.c_str()};
-  jsStreamConfig stream;
-  jsStreamConfig_Init(&stream);
-  stream.Name = config_.stream.c_str();
-  stream.Subjects = subjects;
-  stream.SubjectsLen = 2;
-  stream.MaxAge = static_cast<std::int64_t>(config_.stream_max_age_s * 1e9);
-  stream.MaxBytes = static_cast<std::int64_t>(config_.stream_max_bytes);
-  stream.Storage = js_FileStorage;
-  stream.Replicas = config_.replicas;
-  jsStreamInfo* info = nullptr;
-  jsErrCode error = static_cast<jsErrCode>(0);
-  natsStatus s = js_AddStream(&info, connection_.jetstream(), &stream, nullptr, &error);
-  if (s != NATS_OK && error == kStreamNameInUse) {
-    // Kept from an earlier run: its limits and replicas follow this configuration.
-    error = static_cast<jsErrCode>(0);
-    s = js_UpdateStream(&info, connection_.jetstream(), &stream, nullptr, &error);
-    if (s != NATS_OK) {
-      // It exists: alerts go on into it as it is, and the operator is told what differs.
-      failures_.report(fmt::format("the JetStream stream {} cannot take this configuration ({}, {}; {} replicas): "
-                                   "{}{}; publishing to it as it is",
-                                   config_.stream, alerts, config_.acks_subject, config_.replicas,
-                                   nats::describe(s),
-                                   error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
-      jsStreamInfo_Destroy(info);
-      return true;
-    }
+  const nats::StreamSetup setup = nats::ensure_stream(
+      connection_.jetstream(),
+      {config_.stream, {alerts, config_.acks_subject}, config_.stream_max_age_s,
+       static_cast<std::int64_t>(config_.stream_max_bytes), config_.replicas},
+      nats::IfExists::Update);  // kept from an earlier run: its limits and replicas follow this configuration
+  if (!setup.ready) {
+    failures_.report(setup.note + " (events wait in the outbox)");
+    return false;
   }
-  jsStreamInfo_Destroy(info);
-  if (s == NATS_OK) {
-    spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {}; {} replicas)", config_.stream, alerts,
-                 config_.acks_subject, config_.replicas);
-    return true;
-  }
-  failures_.report(fmt::format("cannot create the JetStream stream {}: {}{} (events wait in the outbox)",
-                               config_.stream, nats::describe(s),
-                               error ? fmt::format(" (JetStream error {})", static_cast<int>(error)) : ""));
-  return false;
+  if (!setup.note.empty()) failures_.report(setup.note);
+  spdlog::info("[nats] alerts kept in the JetStream stream {} ({}, {}; {} replicas)", config_.stream, alerts,
+               config_.acks_subject, config_.replicas);
+  return true;
 }
 
 std::future<std::uint64_t> NatsPublisher::mark_published() {
