@@ -37,22 +37,10 @@ void statistics_fields(Io& io, S& s) {
   io.field(s.last_data_time);
 }
 
-template <class Io, class K>
-void kinematics_fields(Io& io, K& k) {
-  io.field(k.position.x);
-  io.field(k.position.y);
-  io.field(k.velocity.x);
-  io.field(k.velocity.y);
-  io.field(k.altitude_m);
-  io.field(k.vertical_rate_mps);
-  io.field(k.level_off_m);
-  io.field(k.turn_rate_rps);
-}
-
 // The plane-free part of a snapshot (TrackStage::apply makes it).
 template <class Io, class P>
 void base_fields(Io& io, P& base) {
-  kinematics_fields(io, base.kinematics);
+  probe::checkpoint_fields(io, base.kinematics);
   io.field(base.t);
   io.field(base.scale);
   io.field(base.level_off_until_t);

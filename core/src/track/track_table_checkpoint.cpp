@@ -10,12 +10,6 @@ namespace {
 
 constexpr std::uint32_t kVersion = 1;
 
-template <class Io, class V>
-void vector_fields(Io& io, V& v) {
-  io.field(v.x);
-  io.field(v.y);
-}
-
 // A field added to Track is to be added here and to test_track_checkpoint's contents().
 static_assert(sizeof(Track) == 392, "Track changed: checkpoint its new fields (track_fields), then update this size");
 
@@ -55,13 +49,7 @@ void track_fields(Io& io, T& track) {
   io.field(track.turn_reference_t);
   io.field(track.turn_reference_trk_deg);
   io.field(track.has_turn_reference);
-  auto& k = track.kinematics;
-  vector_fields(io, k.position);
-  vector_fields(io, k.velocity);
-  io.field(k.altitude_m);
-  io.field(k.vertical_rate_mps);
-  io.field(k.level_off_m);
-  io.field(k.turn_rate_rps);
+  probe::checkpoint_fields(io, track.kinematics);
   io.field(track.plane);
   io.field(track.in_engine);
 }

@@ -32,6 +32,21 @@ struct Kinematics {
   bool levels_off() const { return level_off_m == level_off_m; }  // not NaN
 };
 
+/// The fields of `k` in checkpoint order (util/checkpoint_io.hpp: `io` is a
+/// CheckpointWriter or CheckpointReader): the one list every checkpoint holding a
+/// Kinematics writes and reads.
+template <class Io, class K>
+void checkpoint_fields(Io& io, K& k) {
+  io.field(k.position.x);
+  io.field(k.position.y);
+  io.field(k.velocity.x);
+  io.field(k.velocity.y);
+  io.field(k.altitude_m);
+  io.field(k.vertical_rate_mps);
+  io.field(k.level_off_m);
+  io.field(k.turn_rate_rps);
+}
+
 /// `k` moved on by dt ≥ 0 s: horizontally in a straight line (as the kinetic engine
 /// moves its points), vertically up to the level-off altitude, where it stays.
 inline Kinematics extrapolated(const Kinematics& k, double dt) {
