@@ -12,7 +12,9 @@
 #include "kew/protocol/gzip.hpp"
 #include "kew/protocol/ndjson.hpp"
 #include "kew/protocol/opensky.hpp"
+#include "kew/protocol/opensky_rest.hpp"
 #include "kew/protocol/readsb.hpp"
+#include "kew/protocol/readsb_trace.hpp"
 #include "kew/protocol/sbs.hpp"
 #include "text/decoder_chain.hpp"
 
@@ -85,25 +87,51 @@ Format classify_line(std::string_view line) {
   return Format::Auto;
 }
 
-/// An aircraft.json snapshot: an object whose "aircraft" or "ac" member is an array
-/// (readsb JSON lines never hold one), wherever that member stands in the head.
-bool looks_like_snapshot(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos || text[first] != '{') return false;
-  for (const std::string_view key : {"\"aircraft\"", "\"ac\""}) {
-    for (auto at = text.find(key); at != std::string_view::npos; at = text.find(key, at + 1)) {
-      auto p = text.find_first_not_of(" \t\r\n", at + key.size());
-      if (p == std::string_view::npos || text[p] != ':') continue;
-      p = text.find_first_not_of(" \t\r\n", p + 1);
-      if (p != std::string_view::npos && text[p] == '[') return true;
-    }
+/// Where the value of a `"key":` member of the JSON `text` starts, for each such member
+/// in turn (`from`: past the previous one); npos when there is none further. Text, not
+/// JSON: a key inside a string may match too, so callers ask for keys no string of their
+/// formats holds.
+std::size_t member_value(std::string_view text, std::string_view key, std::size_t from = 0) {
+  for (auto at = text.find(key, from); at != std::string_view::npos; at = text.find(key, at + 1)) {
+    auto p = text.find_first_not_of(" \t\r\n", at + key.size());
+    if (p == std::string_view::npos || text[p] != ':') continue;
+    p = text.find_first_not_of(" \t\r\n", p + 1);
+    if (p != std::string_view::npos) return p;
+  }
+  return std::string_view::npos;
+}
+
+/// True when some `"key":` member of `text` has a value starting with one of `starts`
+/// ("[" for an array), and then, when `then` is given, the next non-blank byte after that
+/// start is one of `then` ("[]": an array of arrays, or an empty one).
+bool has_member(std::string_view text, std::string_view key, std::string_view starts, std::string_view then = {}) {
+  for (auto p = member_value(text, key); p != std::string_view::npos; p = member_value(text, key, p)) {
+    if (starts.find(text[p]) == std::string_view::npos) continue;
+    if (then.empty()) return true;
+    const auto next = text.find_first_not_of(" \t\r\n", p + 1);
+    if (next != std::string_view::npos && then.find(text[next]) != std::string_view::npos) return true;
   }
   return false;
 }
 
+/// The formats whose stream is one JSON object after another, told apart by their members
+/// wherever they stand in the head: an aircraft.json snapshot's "aircraft" or "ac" array
+/// (readsb JSON lines never hold one), a readsb trace's "icao" and "trace" array, an OpenSky
+/// REST response's "states" array of arrays (or null). None of these keys is one of
+/// another of these formats, and no string of theirs holds one with its quotes.
+Format detect_json_snapshots(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos || text[first] != '{') return Format::Auto;
+  if (has_member(text, "\"aircraft\"", "[") || has_member(text, "\"ac\"", "[")) return Format::AircraftJson;
+  if (has_member(text, "\"trace\"", "[") && member_value(text, "\"icao\"") != std::string_view::npos)
+    return Format::ReadsbTrace;
+  if (has_member(text, "\"states\"", "[", "[]") || has_member(text, "\"states\"", "n")) return Format::OpenskyRest;
+  return Format::Auto;
+}
+
 Format detect_text(std::string_view text) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
-  if (looks_like_snapshot(text)) return Format::AircraftJson;
+  if (const Format snapshots = detect_json_snapshots(text); snapshots != Format::Auto) return snapshots;
   int lines = 0;
   while (!text.empty() && lines < kDetectMaxLines) {
     const auto newline = text.find('\n');
@@ -279,6 +307,10 @@ std::unique_ptr<Decoder> make_plain_decoder(Format format, const DecoderOptions&
       return make_readsb_decoder({.max_line_bytes = options.max_line_bytes});
     case Format::AircraftJson:
       return make_aircraft_json_decoder(options.aircraft_json);
+    case Format::OpenskyRest:
+      return make_opensky_rest_decoder(options.aircraft_json);
+    case Format::ReadsbTrace:
+      return make_readsb_trace_decoder(options.aircraft_json);
     case Format::AsterixRaw:
       return make_asterix_decoder(AsterixFraming::RawBlocks, options.asterix);
     case Format::AsterixFinalFormat:

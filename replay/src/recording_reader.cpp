@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "kew/protocol/gzip.hpp"
+#include "trace_merge.hpp"
 
 namespace kew::replay {
 
@@ -122,8 +123,13 @@ RecordingReader::RecordingReader(std::string path, protocol::Format format, cons
     : path_(std::move(path)) {
   if (path_ != kStandardInput && (is_pattern(path_) || std::filesystem::is_directory(path_))) {
     file_set_ = true;
-    files_ = in_data_order(files_named(path_), format, options);
+    files_ = files_named(path_);
     decoder_ = protocol::make_decoder(format, options);
+    if (TraceMerge::wanted(files_, format)) {
+      traces_ = std::make_unique<TraceMerge>(files_, format, options, decoder_->rejections());
+      return;
+    }
+    files_ = in_data_order(std::move(files_), format, options);
     chunk_.resize(kChunkBytes);
     if (files_.empty()) {
       decoder_->rejections().reject("no_files", path_ + ": no file to read");
@@ -198,7 +204,14 @@ void RecordingReader::feed_file_bytes(std::span<const std::byte> bytes) {
   unwrap_->feed(bytes, [this](const TrackReport& r) { ready_.push_back(r); });
 }
 
+std::uint64_t RecordingReader::bytes_read() const { return traces_ ? traces_->bytes_read() : bytes_read_; }
+
 bool RecordingReader::next(TrackReport& out) {
+  if (traces_) {
+    if (!traces_->next(out)) return false;
+    ++records_;
+    return true;
+  }
   if (ready_.empty() && !refill()) return false;
   out = std::move(ready_.front());
   ready_.pop_front();

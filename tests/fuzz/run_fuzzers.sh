@@ -57,6 +57,9 @@ seed() {
     fuzz_opensky_json) text_seed switzerland "$data/text/opensky_switzerland_first2000.json.gz" gunzip ;;
     fuzz_readsb) text_seed minutes "$data/text/readsb_20minutes.json" ;;
     fuzz_aircraft_json) text_seed history "$data/text/aircraft_json_history.json" ;;
+    fuzz_readsb_trace)
+      text_seed plain "$data/text/readsb_traces/trace_full_a0ee5d.json"
+      text_seed inflated "$data/text/readsb_traces/trace_full_aab1cf.json" gunzip ;;
     fuzz_gzip)
       mkdir -p "$work/seeds/$target"
       { printf '\003\020\200\360'; gzip -c "$data/text/canonical_sample.ndjson"; } >"$work/seeds/$target/member"
@@ -69,6 +72,8 @@ seed() {
       text_seed states "$data/text/opensky_states_sample.csv"
       text_seed minutes "$data/text/readsb_20minutes.json"
       text_seed history "$data/text/aircraft_json_history.json"
+      text_seed trace "$data/text/readsb_traces/trace_full_a0ee5d.json"
+      text_seed trace_gz "$data/text/readsb_traces/trace_full_aab1cf.json"
       text_seed switzerland_gz "$data/text/opensky_switzerland_first2000.json.gz" ;;
     fuzz_asterix_raw|fuzz_asterix_ff|fuzz_asterix_pcap|fuzz_asterix_datagram) prefixed_seeds "$data/asterix" ;;
     fuzz_asterix*) binary_seeds "$data/asterix" ;;

@@ -15,7 +15,9 @@ set(KEW_PROTOCOL_TESTS
   test_modbus_map.cpp
   test_ndjson.cpp
   test_opensky.cpp
+  test_opensky_rest.cpp
   test_readsb.cpp
+  test_readsb_trace.cpp
   test_sbs.cpp
   test_text_field_rules.cpp
 )

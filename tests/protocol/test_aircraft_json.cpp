@@ -22,10 +22,7 @@ using test::decode_all;
 
 std::vector<TrackReport> decode(std::string_view text, Rejections* rejections = nullptr,
                                 const AircraftJsonOptions& options = {}) {
-  auto decoder = make_aircraft_json_decoder(options);
-  std::vector<TrackReport> reports = decode_all(*decoder, text);
-  if (rejections) *rejections = decoder->rejections();
-  return reports;
+  return test::decode_counted(*make_aircraft_json_decoder(options), text, rejections);
 }
 
 // readsb / dump1090-fa as written to /run/readsb/aircraft.json (pretty-printed as they do).
@@ -119,17 +116,10 @@ TEST(AircraftJson, OneSnapshotADatagramRemembersWhatWasReportedUntilTheStreamEnd
   const std::string snapshot = R"({"now":1700000000,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":1}]})";
   const std::string later = R"({"now":1700000001,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":2}]})";
   auto decoder = make_aircraft_json_decoder();
-  std::size_t reports = 0;
-  const ReportSink count = [&](const TrackReport&) { ++reports; };
-  decoder->feed_text(snapshot, count);
-  decoder->end_message(count);  // a NATS message, a fetched snapshot
-  decoder->feed_text(later, count);
-  decoder->end_message(count);
-  EXPECT_EQ(reports, 1u) << "the same position in two messages is one record";
-  decoder->finish(count);
-  decoder->feed_text(later, count);
-  decoder->finish(count);
-  EXPECT_EQ(reports, 2u) << "after the end of the stream the decoder is as new";
+  // Each a NATS message, a fetched snapshot.
+  EXPECT_EQ(test::reports_of_messages(*decoder, {snapshot, later}, true), 1u)
+      << "the same position in two messages is one record";
+  EXPECT_EQ(test::reports_of_messages(*decoder, {later}, true), 1u) << "after the end of the stream the decoder is as new";
 }
 
 TEST(AircraftJson, ThroughAutoDetectionDatagramsRememberWhatWasReportedToo) {
@@ -138,17 +128,8 @@ TEST(AircraftJson, ThroughAutoDetectionDatagramsRememberWhatWasReportedToo) {
   const std::string snapshot = R"({"now":1700000000,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":1}]})";
   const std::string later = R"({"now":1700000001,"aircraft":[{"hex":"3c6586","alt_baro":1,"lat":1,"lon":1,"seen_pos":2}]})";
   auto decoder = make_decoder(Format::Auto);
-  std::size_t reports = 0;
-  const ReportSink count = [&](const TrackReport&) { ++reports; };
-  for (const std::string& message : {snapshot, later, later}) {
-    decoder->feed_text(message, count);
-    decoder->end_message(count);
-  }
-  EXPECT_EQ(reports, 1u);
-  decoder->finish(count);
-  decoder->feed_text(later, count);
-  decoder->end_message(count);
-  EXPECT_EQ(reports, 2u) << "finish() forgets";
+  EXPECT_EQ(test::reports_of_messages(*decoder, {snapshot, later, later}, true), 1u);
+  EXPECT_EQ(test::reports_of_messages(*decoder, {later}, false), 1u) << "finish() forgets";
 }
 
 TEST(AircraftJson, PositionsOlderThanTheLimitAreNotReported) {

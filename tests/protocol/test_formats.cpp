@@ -20,10 +20,11 @@ namespace {
 
 using test::decode_all;
 
-constexpr Format kAllFormats[] = {Format::Auto,         Format::Ndjson,     Format::Sbs,
+constexpr Format kAllFormats[] = {Format::Auto,         Format::Ndjson,      Format::Sbs,
                                   Format::OpenskyCsv,   Format::OpenskyJson, Format::ReadsbJson,
-                                  Format::AircraftJson, Format::AsterixRaw,  Format::AsterixFinalFormat,
-                                  Format::AsterixPcap,  Format::AsterixDatagram};
+                                  Format::AircraftJson, Format::OpenskyRest, Format::ReadsbTrace,
+                                  Format::AsterixRaw,   Format::AsterixFinalFormat, Format::AsterixPcap,
+                                  Format::AsterixDatagram};
 
 Format detect_file(const std::string& path, std::size_t head_bytes = 64 * 1024) {
   std::string head = test::read_file(path);
@@ -47,7 +48,8 @@ TEST(Formats, NamesRoundTrip) {
   EXPECT_FALSE(kFormatNames.parse("NDJSON"));
   EXPECT_FALSE(kFormatNames.parse(""));
   EXPECT_EQ(kFormatNames.list({Format::Auto, Format::AsterixDatagram}),
-            "ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, asterix-raw, asterix-ff, asterix-pcap");
+            "ndjson, sbs, opensky-csv, opensky-json, readsb, aircraft-json, opensky-rest, readsb-trace, asterix-raw, "
+            "asterix-ff, asterix-pcap");
 }
 
 TEST(Formats, DetectsEveryBundledTextFile) {
@@ -58,6 +60,8 @@ TEST(Formats, DetectsEveryBundledTextFile) {
       {"opensky_switzerland_first2000.json.gz", Format::OpenskyJson},
       {"opensky_states_sample.csv", Format::OpenskyCsv},
       {"aircraft_json_history.json", Format::AircraftJson},
+      {"readsb_traces/trace_full_a08846.json", Format::ReadsbTrace},
+      {"readsb_traces/trace_full_aab1cf.json", Format::ReadsbTrace},
   };
   for (const auto& [name, format] : expected)
     EXPECT_EQ(detect_file(test::bundled_path(name)), format) << name;
@@ -77,6 +81,24 @@ TEST(Formats, DetectsNothingInUnknownOrEmptyInput) {
             Format::Ndjson);
   EXPECT_EQ(detect("{\"flight\": \"N/A\", \"now\": 1693383001}\n"), Format::ReadsbJson);
   EXPECT_EQ(detect("CLK,,,,,,2024/04/29,14:13:20.000,2024/04/29,14:13:20.000\n"), Format::Sbs);
+}
+
+// The formats that are one JSON object after another are told apart by their members,
+// wherever those stand, and none of them takes another's stream.
+TEST(Formats, TellsTheJsonSnapshotFormatsApart) {
+  const auto detect = [](std::string_view text) { return detect_format(test::bytes_of(text)); };
+  EXPECT_EQ(detect(R"({"now":1,"aircraft":[{"hex":"a1b2c3","flight":"states"}]})"), Format::AircraftJson);
+  EXPECT_EQ(detect(R"({"now":1,"messages":2,"ac":[]})"), Format::AircraftJson);
+  EXPECT_EQ(detect(R"({"time":1,"states":[["a1b2c3","aircraft","trace",1,1,1,1,1,false]]})"), Format::OpenskyRest);
+  EXPECT_EQ(detect(R"({"states" : null, "time" : 1})"), Format::OpenskyRest);
+  EXPECT_EQ(detect(R"({"icao":"a1b2c3","timestamp":1,"trace":[[0,1,2,"ground"]]})"), Format::ReadsbTrace);
+  EXPECT_EQ(detect("{\"timestamp\": 1,\n\"trace\":[ \n[0,1,2,3] ],\n\"icao\":\"a1b2c3\" }"), Format::ReadsbTrace)
+      << "whatever the members' order";
+  EXPECT_EQ(detect(R"([{"timestamp":1533101250000,"icao24":"3003ae","latitude":45.8,"longitude":9.2,"altitude":1}])"),
+            Format::OpenskyJson);
+  EXPECT_EQ(detect(R"({"now":1693383000,"hex":"ab80bc","lat":39.8,"lon":-119.8,"alt_baro":9975})" "\n"),
+            Format::ReadsbJson);
+  EXPECT_EQ(detect(R"({"trace":[],"states":{}})"), Format::Auto) << "neither an icao nor a states array";
 }
 
 TEST(Formats, DetectsEverySharedRecording) {
@@ -194,7 +216,8 @@ INSTANTIATE_TEST_SUITE_P(
                     std::pair{"readsb_20minutes.json", Format::ReadsbJson},
                     std::pair{"opensky_switzerland_first2000.json.gz", Format::OpenskyJson},
                     std::pair{"opensky_states_sample.csv", Format::OpenskyCsv},
-                    std::pair{"aircraft_json_history.json", Format::AircraftJson}));
+                    std::pair{"aircraft_json_history.json", Format::AircraftJson},
+                    std::pair{"readsb_traces/trace_full_aab1cf.json", Format::ReadsbTrace}));
 
 TEST(AutoDecoder, UnknownStreamIsCountedOnceAndIgnored) {
   auto decoder = make_decoder(Format::Auto);

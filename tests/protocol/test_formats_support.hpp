@@ -1,14 +1,16 @@
 #pragma once
-// Helpers shared by the text-decoder tests: reading test data, feeding a decoder in
-// different chunkings, comparing reports field by field, summarising a decode.
+// Helpers shared by the text-decoder tests: reading test data, compressing it, feeding a
+// decoder in different chunkings, comparing reports field by field, summarising a decode.
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <random>
@@ -42,6 +44,21 @@ inline std::span<const std::byte> bytes_of(std::string_view text) {
   return std::as_bytes(std::span<const char>(text.data(), text.size()));
 }
 
+/// One gzip member holding `text` (zlib's deflate with the gzip wrapper).
+inline std::string gzip_member(std::string_view text, int level = 6) {
+  z_stream z{};
+  EXPECT_EQ(deflateInit2(&z, level, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&z, static_cast<uLong>(text.size())) + 64, '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
+  z.avail_in = static_cast<uInt>(text.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
 /// Feeds `input` cut at `cuts` (sorted offsets), then finish(); returns the reports.
 inline std::vector<TrackReport> decode_with_cuts(Decoder& decoder, std::string_view input,
                                                  const std::vector<std::size_t>& cuts) {
@@ -59,6 +76,27 @@ inline std::vector<TrackReport> decode_with_cuts(Decoder& decoder, std::string_v
 
 inline std::vector<TrackReport> decode_all(Decoder& decoder, std::string_view input) {
   return decode_with_cuts(decoder, input, {});
+}
+
+/// decode_all(), and the decoder's rejections copied to `*rejections` when given.
+inline std::vector<TrackReport> decode_counted(Decoder& decoder, std::string_view input, Rejections* rejections) {
+  std::vector<TrackReport> reports = decode_all(decoder, input);
+  if (rejections) *rejections = decoder.rejections();
+  return reports;
+}
+
+/// Feeds each of `messages` as one message (a datagram, a poll: feed, then
+/// end_message()), then ends the stream when `finish`; the number of reports made.
+inline std::size_t reports_of_messages(Decoder& decoder, std::initializer_list<std::string_view> messages,
+                                       bool finish) {
+  std::size_t reports = 0;
+  const ReportSink count = [&](const TrackReport&) { ++reports; };
+  for (const std::string_view message : messages) {
+    decoder.feed_text(message, count);
+    decoder.end_message(count);
+  }
+  if (finish) decoder.finish(count);
+  return reports;
 }
 
 inline std::vector<TrackReport> decode_byte_by_byte(Decoder& decoder, std::string_view input) {

@@ -1,7 +1,6 @@
 // GzipDecoder: streaming inflate in front of any decoder, concatenated members, and every
 // way a compressed stream goes wrong.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include "kew/protocol/gzip.hpp"
 #include "kew/protocol/ndjson.hpp"
@@ -11,21 +10,7 @@ namespace kew::protocol {
 namespace {
 
 using test::decode_all;
-
-/// One gzip member holding `text` (zlib's deflate with the gzip wrapper).
-std::string gzip_member(std::string_view text, int level = 6) {
-  z_stream z{};
-  EXPECT_EQ(deflateInit2(&z, level, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY), Z_OK);
-  std::string out(deflateBound(&z, static_cast<uLong>(text.size())) + 64, '\0');
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
-  z.avail_in = static_cast<uInt>(text.size());
-  z.next_out = reinterpret_cast<Bytef*>(out.data());
-  z.avail_out = static_cast<uInt>(out.size());
-  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
-  out.resize(z.total_out);
-  deflateEnd(&z);
-  return out;
-}
+using test::gzip_member;
 
 std::string canonical_lines(int count) {
   std::string text;

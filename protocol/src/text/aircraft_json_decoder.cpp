@@ -1,14 +1,7 @@
 // aircraft.json snapshots; the format is described in aircraft_json.hpp.
-#include <algorithm>
-#include <limits>
-#include <unordered_map>
-#include <vector>
-
-#include <fmt/format.h>
-
-#include "json_object_cutter.hpp"
 #include "kew/protocol/aircraft_json.hpp"
 #include "readsb_members.hpp"
+#include "snapshot_decoder.hpp"
 
 namespace kew::protocol {
 namespace {
@@ -17,75 +10,38 @@ using text::LineResult;
 
 // Above this "now" is taken as milliseconds (as opensky-json's timestamps).
 constexpr double kMillisecondTimeAbove = 1e11;
+// now − seen_pos of one position in two snapshots differs by their rounding (readsb
+// writes seen_pos to 0.1 s, now to 0.1 s or 1 ms): within this it is the same one.
+constexpr double kSamePosition_s = 0.15;
 
-class AircraftJsonDecoder final : public Decoder {
+class AircraftJsonDecoder final : public text::SnapshotDecoder {
  public:
   explicit AircraftJsonDecoder(const AircraftJsonOptions& options)
-      : options_(options),
-        max_bytes_(std::max<std::size_t>(options.max_snapshot_bytes, 64)),
-        cutter_("aircraft.json snapshot", max_bytes_),
-        json_(0) {}
+      : SnapshotDecoder("aircraft.json snapshot", options.max_snapshot_bytes,
+                        {.same_position_s = kSamePosition_s, .forget_after_s = options.max_position_age_s}),
+        max_position_age_s_(options.max_position_age_s) {}
 
   std::string_view format_name() const override { return "aircraft-json"; }
-  std::size_t max_message_bytes() const override { return max_bytes_; }
-
-  void feed(std::span<const std::byte> bytes, const ReportSink& sink) override {
-    cutter_.feed(
-        bytes, [&](std::string_view snapshot) { decode_snapshot(snapshot, sink); },
-        [&](std::string_view reason, std::string message) { rejections().reject(reason, message); });
-  }
-
-  // The end of the stream: the decoder is as new (a stream read again reports again).
-  void finish(const ReportSink& sink) override {
-    end_message(sink);
-    last_reported_.clear();
-    newest_now_ = -std::numeric_limits<double>::infinity();
-  }
-  // A datagram (a NATS message, a snapshot fetched) ends its framing, but the snapshots go
-  // on: what was reported stays known, so the next one reports only what is new.
-  void end_message(const ReportSink& /*sink*/) override {
-    const std::uint64_t snapshot = cutter_.object_number();
-    if (cutter_.finish())
-      rejections().reject("truncated", fmt::format("aircraft.json snapshot {}: cut by the end of the stream", snapshot));
-  }
 
  private:
-  void refuse(std::string_view where, const text::LineProblem& problem) {
-    rejections().reject(problem.reason, fmt::format("{}: {}: {}", where, problem.reason, problem.detail));
-  }
-
-  void decode_snapshot(std::string_view text, const ReportSink& sink) {
-    const std::string where = fmt::format("aircraft.json snapshot {}", cutter_.object_number());
+  std::optional<double> decode_snapshot(std::string_view text, const std::string& where) override {
     std::optional<double> now;
     std::optional<simdjson::dom::element> aircraft;
-    LineResult bad = json_.parse(text, [&](std::string_view key, simdjson::dom::element value) -> LineResult {
+    LineResult bad = json().parse(text, [&](std::string_view key, simdjson::dom::element value) -> LineResult {
       if (key == "now") return text::read_number(value, key, now);
       if (key == "aircraft" || key == "ac") aircraft = value;
       return std::nullopt;
     });
     if (!bad && !now) bad = text::problem("missing_field", "no \"now\"");
-    if (!bad && !aircraft) bad = text::problem("missing_field", "no \"aircraft\" or \"ac\"");
-    simdjson::dom::array list;
-    if (!bad && aircraft->get_array().get(list) != simdjson::SUCCESS)
-      bad = text::problem("wrong_type", "\"aircraft\" is not an array");
+    const double t_now = now && *now > kMillisecondTimeAbove ? *now / 1000.0 : now.value_or(0.0);
+    if (!bad)
+      bad = decode_entries(aircraft, "\"aircraft\" (or \"ac\")", where, "aircraft",
+                           [&](simdjson::dom::element entry) { return decode_aircraft(entry, t_now); });
     if (bad) {
       refuse(where, *bad);
-      return;
+      return std::nullopt;
     }
-    const double t_now = *now > kMillisecondTimeAbove ? *now / 1000.0 : *now;
-    ready_.clear();
-    std::size_t index = 0;
-    for (const simdjson::dom::element entry : list) {
-      ++index;
-      if (const LineResult problem = decode_aircraft(entry, t_now))
-        refuse(fmt::format("{} aircraft {}", where, index), *problem);
-    }
-    std::stable_sort(ready_.begin(), ready_.end(),
-                     [](const TrackReport& a, const TrackReport& b) { return a.t < b.t; });
-    for (const TrackReport& report : ready_) sink(report);
-    // A snapshot older than one read before (a history read out of order) forgets nothing.
-    newest_now_ = std::max(newest_now_, t_now);
-    forget_older_than(newest_now_ - options_.max_position_age_s);
+    return t_now;
   }
 
   LineResult decode_aircraft(simdjson::dom::element entry, double now) {
@@ -97,35 +53,13 @@ class AircraftJsonDecoder final : public Decoder {
     if (!m.hex) return text::problem("missing_field", "no \"hex\"");
     if (!m.lat || !m.lon) return std::nullopt;  // no position: nothing to report
     const double age = m.seen_pos ? *m.seen_pos : m.seen.value_or(0.0);
-    if (!(age >= 0.0) || age > options_.max_position_age_s) return std::nullopt;
+    if (!(age >= 0.0) || age > max_position_age_s_) return std::nullopt;
     TrackReport report;
     if (LineResult bad = text::fill_readsb_report(m, now - age, "aircraft-json", report)) return bad;
-    // The same position in a later snapshot (its age grown by the time between them).
-    std::uint32_t key = 0;
-    std::string id;
-    text::parse_address(*m.hex, id, key);
-    const auto reported = last_reported_.find(key);
-    if (reported != last_reported_.end() && report.t <= reported->second + kSamePosition_s) return std::nullopt;
-    if (LineResult bad = text::check_report(report)) return bad;
-    last_reported_[key] = report.t;
-    ready_.push_back(std::move(report));
-    return std::nullopt;
+    return offer(report);
   }
 
-  /// Every position reported before `t` is older than any a later snapshot may report.
-  void forget_older_than(double t) { std::erase_if(last_reported_, [t](const auto& e) { return e.second < t; }); }
-
-  // now − seen_pos of one position in two snapshots differs by their rounding (readsb
-  // writes seen_pos to 0.1 s, now to 0.1 s or 1 ms): within this it is the same one.
-  static constexpr double kSamePosition_s = 0.15;
-
-  AircraftJsonOptions options_;
-  std::size_t max_bytes_;
-  text::JsonObjectCutter cutter_;
-  text::JsonObjectParser json_;
-  std::unordered_map<std::uint32_t, double> last_reported_;  // address key → data time reported
-  std::vector<TrackReport> ready_;
-  double newest_now_ = -std::numeric_limits<double>::infinity();
+  double max_position_age_s_;
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include <simdjson.h>
 
+#include <array>
 #include <cstring>
 #include <optional>
 #include <string_view>
@@ -42,6 +43,21 @@ LineResult read_mode3a(simdjson::dom::element value, std::string_view key,
 /// ("bad_address" otherwise); null → nullopt.
 LineResult read_icao_address(simdjson::dom::element value, std::string_view key,
                              std::optional<std::uint32_t>& out);
+
+/// The first N elements of the array `value` into `out`, and in `size` how many it has
+/// (all of them, N or more); false when `value` is not an array. For arrays whose
+/// elements are fields by position (OpenSky's state vectors, readsb's trace rows).
+template <std::size_t N>
+bool array_elements(simdjson::dom::element value, std::array<simdjson::dom::element, N>& out, std::size_t& size) {
+  simdjson::dom::array array;
+  if (value.get_array().get(array) != simdjson::SUCCESS) return false;
+  size = 0;
+  for (const simdjson::dom::element element : array) {
+    if (size < N) out[size] = element;
+    ++size;
+  }
+  return true;
+}
 
 class JsonObjectParser {
  public:

@@ -4,6 +4,7 @@
 #include "json_object.hpp"
 #include "json_object_cutter.hpp"
 #include "kew/protocol/opensky.hpp"
+#include "opensky_state.hpp"
 
 namespace kew::protocol {
 namespace {
@@ -16,26 +17,24 @@ constexpr double kMillisecondTimestampAbove = 1e11;
 
 /// The members of one element that make a report.
 struct StateVector {
-  std::optional<double> timestamp, latitude, longitude, altitude, geoaltitude, groundspeed,
-      track, vertical_rate;
-  std::optional<std::string_view> icao24, callsign;
-  std::optional<bool> onground;
-  std::optional<std::uint16_t> squawk;
+  std::optional<double> timestamp;
+  text::OpenskyState state;
 };
 
 LineResult read_member(std::string_view key, simdjson::dom::element value, StateVector& s) {
+  text::OpenskyState& v = s.state;
   if (key == "timestamp") return text::read_number(value, key, s.timestamp);
-  if (key == "latitude") return text::read_number(value, key, s.latitude);
-  if (key == "longitude") return text::read_number(value, key, s.longitude);
-  if (key == "altitude") return text::read_number(value, key, s.altitude);
-  if (key == "geoaltitude") return text::read_number(value, key, s.geoaltitude);
-  if (key == "groundspeed") return text::read_number(value, key, s.groundspeed);
-  if (key == "track") return text::read_number(value, key, s.track);
-  if (key == "vertical_rate") return text::read_number(value, key, s.vertical_rate);
-  if (key == "icao24") return text::read_string(value, key, s.icao24);
-  if (key == "callsign") return text::read_string(value, key, s.callsign);
-  if (key == "onground") return text::read_bool(value, key, s.onground);
-  if (key == "squawk") return text::read_mode3a(value, key, s.squawk);
+  if (key == "latitude") return text::read_number(value, key, v.latitude);
+  if (key == "longitude") return text::read_number(value, key, v.longitude);
+  if (key == "altitude") return text::read_number(value, key, v.altitude);
+  if (key == "geoaltitude") return text::read_number(value, key, v.geoaltitude);
+  if (key == "groundspeed") return text::read_number(value, key, v.groundspeed);
+  if (key == "track") return text::read_number(value, key, v.track);
+  if (key == "vertical_rate") return text::read_number(value, key, v.vertical_rate);
+  if (key == "icao24") return text::read_string(value, key, v.icao24);
+  if (key == "callsign") return text::read_string(value, key, v.callsign);
+  if (key == "onground") return text::read_bool(value, key, v.onground);
+  if (key == "squawk") return text::read_mode3a(value, key, v.squawk);
   return std::nullopt;
 }
 
@@ -74,25 +73,8 @@ class OpenskyJsonDecoder final : public Decoder {
     });
     if (result) return result;
     if (!s.timestamp) return text::problem("missing_field", "no \"timestamp\"");
-    if (!s.icao24) return text::problem("missing_field", "no \"icao24\"");
-    if (!s.latitude || !s.longitude) return text::problem("no_position", "no latitude/longitude");
-    if (!s.altitude && !s.geoaltitude) return text::problem("no_altitude", "no altitude");
-    text::clear_report(report_);
-    std::uint32_t key = 0;
-    if (!text::parse_address(*s.icao24, report_.id, key))
-      return text::problem("bad_address", fmt::format("icao24 \"{}\"", *s.icao24));
-    report_.address = text::icao_address(key);
-    report_.source = "opensky";
-    report_.t = *s.timestamp > kMillisecondTimestampAbove ? *s.timestamp / 1000.0 : *s.timestamp;
-    report_.lat_deg = *s.latitude;
-    report_.lon_deg = *s.longitude;
-    report_.alt_ft = s.altitude ? *s.altitude : *s.geoaltitude;
-    report_.gs_kt = s.groundspeed;
-    report_.trk_deg = s.track;
-    report_.vr_fpm = s.vertical_rate;
-    report_.callsign.assign(text::trim(s.callsign.value_or(std::string_view{})));
-    report_.on_ground = s.onground.value_or(false);
-    report_.mode3a = s.squawk;
+    const double t = *s.timestamp > kMillisecondTimestampAbove ? *s.timestamp / 1000.0 : *s.timestamp;
+    if (LineResult bad = text::fill_opensky_report(s.state, t, report_)) return bad;
     if (LineResult bad = text::check_report(report_)) return bad;
     sink(report_);
     return std::nullopt;

@@ -8,10 +8,15 @@ namespace kew::protocol::text {
 
 namespace {
 
+constexpr std::array<std::string_view, 7> kNestedKeys{
+    "alt_geom", "baro_rate", "geom_rate", "squawk", "nav_altitude_mcp", "nav_altitude_fms", "track_rate"};
+
+}  // namespace
+
 // readsb writes "ground" for targets reporting on-ground; adsb_actions also writes
 // numbers as strings ("0") in this member. dump1090-mutability's "altitude" likewise.
-LineResult read_altitude(simdjson::dom::element value, std::string_view key, std::optional<double>& out,
-                         bool& ground) {
+LineResult read_readsb_altitude(simdjson::dom::element value, std::string_view key, std::optional<double>& out,
+                                bool& ground) {
   if (!value.is_string()) return read_number(value, key, out);
   std::optional<std::string_view> word;
   if (LineResult r = read_string(value, key, word)) return r;
@@ -25,11 +30,6 @@ LineResult read_altitude(simdjson::dom::element value, std::string_view key, std
   out = number;
   return std::nullopt;
 }
-
-constexpr std::array<std::string_view, 7> kNestedKeys{
-    "alt_geom", "baro_rate", "geom_rate", "squawk", "nav_altitude_mcp", "nav_altitude_fms", "track_rate"};
-
-}  // namespace
 
 void ReadsbMembers::complete_from(const ReadsbMembers& nested) {
   if (!alt_geom) alt_geom = nested.alt_geom;
@@ -45,7 +45,7 @@ LineResult read_readsb_member(std::string_view key, simdjson::dom::element value
   if (key == "now") return read_number(value, key, m.now);
   if (key == "lat") return read_number(value, key, m.lat);
   if (key == "lon") return read_number(value, key, m.lon);
-  if (key == "alt_baro") return read_altitude(value, key, m.alt_baro, m.alt_baro_ground);
+  if (key == "alt_baro") return read_readsb_altitude(value, key, m.alt_baro, m.alt_baro_ground);
   if (key == "alt_geom") return read_number(value, key, m.alt_geom);
   if (key == "gs") return read_number(value, key, m.gs);
   if (key == "gscp") return read_number(value, key, m.gscp);
@@ -57,7 +57,7 @@ LineResult read_readsb_member(std::string_view key, simdjson::dom::element value
   if (key == "track_rate") return read_number(value, key, m.track_rate);
   if (key == "seen_pos") return read_number(value, key, m.seen_pos);
   if (key == "seen") return read_number(value, key, m.seen);
-  if (key == "altitude") return read_altitude(value, key, m.altitude, m.altitude_ground);
+  if (key == "altitude") return read_readsb_altitude(value, key, m.altitude, m.altitude_ground);
   if (key == "speed") return read_number(value, key, m.speed);
   if (key == "vert_rate") return read_number(value, key, m.vert_rate);
   if (key == "hex") return read_string(value, key, m.hex);

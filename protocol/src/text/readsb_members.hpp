@@ -1,7 +1,8 @@
 #pragma once
 // The members of one aircraft as readsb, dump1090-fa and dump1090-mutability name them,
-// shared by the readsb JSON-lines decoder (readsb.hpp) and the aircraft.json snapshot
-// decoder (aircraft_json.hpp), and the report they make. Internal to kew_protocol.
+// shared by the readsb JSON-lines decoder (readsb.hpp), the aircraft.json snapshot
+// decoder (aircraft_json.hpp) and the trace decoder (readsb_trace.hpp), and the report
+// they make. Internal to kew_protocol.
 
 #include <array>
 #include <optional>
@@ -27,6 +28,11 @@ struct ReadsbMembers {
   /// Fills what this (top-level) set lacks from `nested` (adsb_actions' "flightdict").
   void complete_from(const ReadsbMembers& nested);
 };
+
+/// An altitude in feet, or readsb's string "ground" (`ground` set, `out` untouched), or
+/// a number written as a string (adsb_actions' "0"); null → nullopt.
+LineResult read_readsb_altitude(simdjson::dom::element value, std::string_view key, std::optional<double>& out,
+                                bool& ground);
 
 /// Reads member `key` into `m` when it is one of ReadsbMembers' (unknown keys: nothing).
 LineResult read_readsb_member(std::string_view key, simdjson::dom::element value, ReadsbMembers& m);

@@ -24,6 +24,8 @@ enum class Format {
   OpenskyJson,         ///< traffic-library state-vector JSON, opensky.hpp
   ReadsbJson,          ///< readsb JSON lines, readsb.hpp
   AircraftJson,        ///< aircraft.json snapshots, aircraft_json.hpp
+  OpenskyRest,         ///< OpenSky REST API state vectors, opensky_rest.hpp
+  ReadsbTrace,         ///< readsb trace files, readsb_trace.hpp
   AsterixRaw,          ///< ASTERIX data blocks back to back
   AsterixFinalFormat,  ///< ASTERIX in EUROCONTROL final format (.ff)
   AsterixPcap,         ///< ASTERIX in UDP datagrams of a pcap file
@@ -31,7 +33,7 @@ enum class Format {
 };
 
 /// The names of `format = ...` and `--format` (exact, lower case).
-inline constexpr util::NameTable<Format, 11> kFormatNames({{
+inline constexpr util::NameTable<Format, 13> kFormatNames({{
     {Format::Auto, "auto"},
     {Format::Ndjson, "ndjson"},
     {Format::Sbs, "sbs"},
@@ -39,6 +41,8 @@ inline constexpr util::NameTable<Format, 11> kFormatNames({{
     {Format::OpenskyJson, "opensky-json"},
     {Format::ReadsbJson, "readsb"},
     {Format::AircraftJson, "aircraft-json"},
+    {Format::OpenskyRest, "opensky-rest"},
+    {Format::ReadsbTrace, "readsb-trace"},
     {Format::AsterixRaw, "asterix-raw"},
     {Format::AsterixFinalFormat, "asterix-ff"},
     {Format::AsterixPcap, "asterix-pcap"},
@@ -52,7 +56,8 @@ struct DecoderOptions {
   double sbs_utc_offset_s = 0;
   /// Longest line (text formats) or JSON array element (opensky-json), bytes.
   std::size_t max_line_bytes = 4096;
-  /// aircraft.json snapshots: their size limit and the oldest position reported.
+  /// JSON snapshots: their size limit and the oldest position reported; aircraft-json's,
+  /// and opensky-rest's and readsb-trace's too (a trace uses only the size limit).
   AircraftJsonOptions aircraft_json;
 };
 

@@ -2,7 +2,9 @@
 // Reading recordings for replay (design §5.6): one file through its decoder, read in
 // chunks on demand; a directory or a glob pattern of files (a receiver's history_N.json
 // snapshots) as one stream through one decoder, the files in the order of their data;
-// and several recordings merged into one stream in data-time order.
+// a directory or pattern of readsb traces (one aircraft a file, each spanning the day)
+// merged record by record in data-time order (src/trace_merge.hpp); and several
+// recordings merged into one stream in data-time order.
 
 #include <cstdint>
 #include <cstdio>
@@ -16,6 +18,8 @@
 #include "kew/protocol/formats.hpp"
 
 namespace kew::replay {
+
+class TraceMerge;
 
 /// The path that names standard input (a recording piped in).
 inline constexpr std::string_view kStandardInput = "-";
@@ -33,8 +37,13 @@ class RecordingReader {
   /// files aside), read one after another through one decoder in the order of their
   /// newest data time (a snapshot's time: readsb's history_N.json files are numbered
   /// round a ring), each file gzip or not; a line left without its newline at a file's
-  /// end is ended there. A file that cannot be opened yields no records and counts
-  /// "file_unreadable"; a pattern or directory that names no file counts "no_files".
+  /// end is ended there. A set of readsb traces (`format` readsb-trace, or auto and the
+  /// files' first bytes say so) is instead merged record by record in data-time order
+  /// across its files, in memory bounded by the segments under way
+  /// (src/trace_merge.hpp); readsb's globe_history keeps them in 256 folders, named by
+  /// a pattern such as `DAY/traces/*/trace_full_*.json`. A file that cannot be opened
+  /// yields no records and counts "file_unreadable"; a pattern or directory that names
+  /// no file counts "no_files".
   RecordingReader(std::string path, protocol::Format format, const protocol::DecoderOptions& options);
   ~RecordingReader();
   RecordingReader(const RecordingReader&) = delete;
@@ -44,14 +53,15 @@ class RecordingReader {
   bool next(TrackReport& out);
 
   const std::string& path() const { return path_; }
-  /// The files read, in reading order (one, unless a directory or a pattern).
+  /// The files read, in reading order (one, unless a directory or a pattern; a set of
+  /// traces, merged, in name order).
   const std::vector<std::string>& files() const { return files_; }
   /// False when the file could not be opened (then counted "file_unreadable").
   bool is_open() const { return decoder_ != nullptr; }
   /// The decoder's rejections, plus file-level problems.
   Rejections& rejections() { return decoder_ ? decoder_->rejections() : own_rejections_; }
   const Rejections& rejections() const { return decoder_ ? decoder_->rejections() : own_rejections_; }
-  std::uint64_t bytes_read() const { return bytes_read_; }
+  std::uint64_t bytes_read() const;
   std::uint64_t records() const { return records_; }
 
  private:
@@ -63,6 +73,7 @@ class RecordingReader {
 
   std::string path_;
   std::vector<std::string> files_;
+  std::unique_ptr<TraceMerge> traces_;  // a set of readsb traces
   std::size_t next_file_ = 0;
   bool file_set_ = false;
   std::unique_ptr<protocol::Decoder> unwrap_;  // a set's current file: gzip, then the decoder
