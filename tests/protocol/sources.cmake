@@ -12,6 +12,7 @@ set(KEW_PROTOCOL_TESTS
   test_cat004_tshark.cpp
   test_formats.cpp
   test_gzip.cpp
+  test_json_object_cutter.cpp
   test_modbus_map.cpp
   test_ndjson.cpp
   test_opensky.cpp

@@ -5,6 +5,7 @@
 // accepted. Used by the opensky-json decoder (array elements) and the aircraft.json
 // decoder (snapshots). Internal to kew_protocol.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -40,6 +41,10 @@ class JsonObjectCutter {
   static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
   /// Advances the bracket counter; true when `c` closes the object.
   bool inside_object(char c);
+  /// Advances the bracket counter over [p, stop): the byte that closes the object, or
+  /// `stop`. Bytes that neither open nor close a string or a bracket are skipped in a
+  /// tight loop (most of a snapshot's bytes: numbers, keys, values).
+  const char* scan(const char* p, const char* stop);
   void resync(char c);
 
   std::string what_;
@@ -54,6 +59,38 @@ class JsonObjectCutter {
   std::uint64_t objects_ = 0;
   std::uint64_t stream_offset_ = 0;  // bytes before the current chunk
 };
+
+inline const char* JsonObjectCutter::scan(const char* p, const char* stop) {
+  while (p < stop) {
+    if (in_string_) {
+      if (escaped_) {
+        escaped_ = false;
+        ++p;
+        continue;
+      }
+      while (p < stop && *p != '"' && *p != '\\') ++p;
+      if (p == stop) break;
+      if (*p == '\\')
+        escaped_ = true;
+      else
+        in_string_ = false;
+      ++p;
+      continue;
+    }
+    while (p < stop && *p != '"' && *p != '{' && *p != '}' && *p != '[' && *p != ']') ++p;
+    if (p == stop) break;
+    if (*p == '"') {
+      in_string_ = true;
+    } else if (*p == '{' || *p == '[') {
+      ++depth_;
+    } else if (--depth_ == 0) {
+      mode_ = Mode::Between;
+      return p;
+    }
+    ++p;
+  }
+  return stop;
+}
 
 template <class OnObject, class OnProblem>
 void JsonObjectCutter::feed(std::span<const std::byte> bytes, OnObject&& on_object, OnProblem&& on_problem) {
@@ -77,8 +114,15 @@ void JsonObjectCutter::feed(std::span<const std::byte> bytes, OnObject&& on_obje
           garbage_reported_ = true;
         }
         break;
-      case Mode::InObject:
-        if (inside_object(*p)) {
+      case Mode::InObject: {
+        // The bytes up to the limit, then the one at the limit only if it closes the object.
+        const char* const limit = object_begin + (max_object_bytes_ - object_.size());
+        p = scan(p, std::min(end, limit));
+        if (p == end) {
+          p = end - 1;  // the loop's step ends it
+          break;
+        }
+        if (p < limit || inside_object(*p)) {
           std::string_view object(object_begin, static_cast<std::size_t>(p + 1 - object_begin));
           if (!object_.empty()) {
             object_.append(object);
@@ -87,7 +131,7 @@ void JsonObjectCutter::feed(std::span<const std::byte> bytes, OnObject&& on_obje
           on_object(object);
           object_.clear();
           object_begin = nullptr;
-        } else if (object_.size() + static_cast<std::size_t>(p + 1 - object_begin) > max_object_bytes_) {
+        } else {
           on_problem("object_too_long",
                      fmt::format("{} {}: longer than {} bytes, skipped", what_, objects_, max_object_bytes_));
           object_.clear();
@@ -96,6 +140,7 @@ void JsonObjectCutter::feed(std::span<const std::byte> bytes, OnObject&& on_obje
           resync_after_close_ = false;
         }
         break;
+      }
       case Mode::Resync:
         resync(*p);
         break;
