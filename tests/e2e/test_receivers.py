@@ -8,13 +8,15 @@ Run by ctest; by hand: KEWD=... KEW_REPLAY=... python3 -m unittest test_receiver
 import json
 import os
 import subprocess
+import sys
 import time
 
 from kewd_harness import KEW_REPLAY, wait_until
 from test_kewd import SERVICE, E2eCase
 
-HISTORY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "text",
-                       "aircraft_json_history.json")
+TEXT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "text")
+HISTORY = os.path.join(TEXT_DATA, "aircraft_json_history.json")
+KEW_EVAL = os.environ.get("KEW_EVAL", "kew-eval")
 
 WATCHED = """
 [[input]]
@@ -69,3 +71,38 @@ class WatchedFile(E2eCase):
                                  else sum(stats["inputs"][0]["rejected"].values()), 0)
                 self.assertEqual(stats["rejected_total"], 0, stats["rejected"])
                 kewd.terminate()
+
+
+class ReceiverHistory(E2eCase):
+    def test_a_history_directory_scores_as_the_positions_it_shows(self):
+        """A receiver's history: twenty minutes of real readsb positions (tests/data/text,
+        19 aircraft) written as 1,200 history_N.json snapshots, one a second, as readsb's
+        history is kept. kew-replay reads the directory with no refusal, one record per
+        position (the same second's second position of an aircraft is the one readsb
+        shows); kew-eval scores it as it scores the positions themselves (readsb lines):
+        the same losses, each detected or missed alike."""
+        lines = os.path.join(TEXT_DATA, "readsb_20minutes.json")
+        history = self.path("history")
+        subprocess.run([sys.executable, os.path.join(TEXT_DATA, "make_aircraft_json_history.py"), lines, history],
+                       check=True, capture_output=True)
+        self.assertEqual(len(os.listdir(history)), 1200)
+        replayed = subprocess.run([KEW_REPLAY, "--stats-json", self.path("replay.json"), history],
+                                  capture_output=True, text=True, check=True)
+        with open(self.path("replay.json"), encoding="utf-8") as f:
+            stats = json.load(f)
+        seconds = {}
+        for line in open(lines, encoding="utf-8"):
+            record = json.loads(line)
+            if "lat" in record:
+                seconds.setdefault(record["hex"], set()).add(record["now"])
+        self.assertEqual(stats["rejected_total"], 0, replayed.stderr)
+        self.assertEqual(stats["records"], sum(len(s) for s in seconds.values()), "one record per position")
+
+        def score(recording):
+            out = subprocess.run([KEW_EVAL, "--json", recording], capture_output=True, text=True, check=True)
+            column = json.loads(out.stdout)["runs"][0]
+            return {k: column[k] for k in ("loss_events", "detected", "missed", "unwarnable")}
+
+        from_history, from_lines = score(history), score(lines)
+        self.assertGreater(from_lines["loss_events"], 0, "the recording has losses to score")
+        self.assertEqual(from_history, from_lines)
