@@ -52,6 +52,19 @@ def snapshots():
     return [line.encode() for line in open(HISTORY, encoding="utf-8") if line.strip()]
 
 
+def opensky_states(document):
+    """An aircraft.json snapshot as OpenSky's /api/states/all answers it: state vectors,
+    SI units, the position's time in whole seconds."""
+    snapshot = json.loads(document)
+    states = []
+    for a in snapshot["aircraft"]:
+        t = int(snapshot["now"] - a["seen_pos"])
+        states.append([a["hex"], a["flight"], "United States", t, int(snapshot["now"]), a["lon"], a["lat"],
+                       round(a["alt_baro"] * 0.3048, 2), False, round((a["gs"] or 0) * 1852 / 3600, 2),
+                       a["track"], 0.0, None, None, "1200", False, 0])
+    return json.dumps({"time": int(snapshot["now"]), "states": states}).encode()
+
+
 class SnapshotServer:
     """One document at every path, replaced by set(); answers as a web server serves a
     static file: ETag and Last-Modified, 304 to a matching If-None-Match, gzip when the
@@ -272,6 +285,29 @@ class HttpPoll(E2eCase):
                 self.assertRegex(metrics, r'kew_input_polls_total{input="receiver",result="unchanged"} [1-9]')
                 self.assertRegex(metrics, r'kew_input_polls_total{input="receiver",result="failed"} 0\n')
                 kewd.terminate()
+
+    def test_opensky_rest_answers_polled_with_a_token(self):
+        """OpenSky's REST API as a loopback server: state-vector answers (the 120
+        snapshots as /api/states/all gives them), an OAuth2 token for OpenSky's JSON
+        credentials: kewd takes each position once, as kew-replay reads the same answers
+        from a directory."""
+        documents = [opensky_states(d) for d in snapshots()]
+        expected = self.replayed_records(documents)
+        self.assertGreater(expected, 90)
+        credentials = self.path("credentials.json")
+        with open(credentials, "w", encoding="utf-8") as f:
+            json.dump({"clientId": "kew-api-client", "clientSecret": "s"}, f)
+        server = self.serve(first=documents[0], tokens=True)
+        base = f"http://127.0.0.1:{server.port}"
+        kewd = self.start(SERVICE.format(workdir=self.workdir) + POLL.format(
+            format="opensky-rest", url=f"{base}/api/states/all?lamin=40.5&lomin=-119.5&lamax=41&lomax=-118.9")
+            + f'credentials_file = "{credentials}"\ntoken_url = "{base}/token"\n')
+        self.play(kewd, server, documents)
+        wait_until(lambda: kewd.stats()["records"] >= expected, 10, "every position taken")
+        stats = kewd.stats()
+        self.assertEqual(stats["records"], expected)
+        self.assertEqual(stats["rejected_total"], 0, stats["rejected"])
+        self.assertEqual(len(server.issued), 1)
 
     def test_a_certificate_nobody_vouches_for_is_refused(self):
         """The same TLS server without ca_file: libcurl checks the certificate against the
