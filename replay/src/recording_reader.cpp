@@ -37,29 +37,28 @@ std::vector<std::string> files_named(const std::string& path) {
   return files;
 }
 
-/// The whole of a file, inflated when it is gzip; empty when it cannot be read.
-std::string file_text(const std::string& path) {
+/// The start of a file (its first `limit` bytes after inflating, gzip or not), or the
+/// whole of it when `limit` is 0; empty when it cannot be read.
+std::string file_text(const std::string& path, std::size_t limit = 0) {
   std::string bytes;
   if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
     char buffer[65536];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) bytes.append(buffer, n);
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) {
+      bytes.append(buffer, n);
+      if (limit && bytes.size() >= limit) break;  // enough for the head, even inflated
+    }
     std::fclose(f);
   }
   const auto raw = std::as_bytes(std::span<const char>(bytes.data(), bytes.size()));
-  if (!protocol::has_gzip_magic(raw)) return bytes;
+  if (!protocol::has_gzip_magic(raw)) return limit ? bytes.substr(0, limit) : bytes;
   // JSON compresses about tenfold: room for far more than that, not for a bomb.
-  const std::size_t room = std::min<std::size_t>(64 * bytes.size() + 65536, std::size_t{1} << 30);
+  const std::size_t room = limit ? limit : std::min<std::size_t>(64 * bytes.size() + 65536, std::size_t{1} << 30);
   const std::vector<std::byte> inflated = protocol::gunzip_prefix(raw, room);
   return std::string(reinterpret_cast<const char*>(inflated.data()), inflated.size());
 }
 
-/// The time of an aircraft.json snapshot file (its "now", UTC s), if it is one.
-std::optional<double> snapshot_time(const std::string& path, protocol::Format format) {
-  const std::string text = file_text(path);
-  const auto head = std::as_bytes(std::span<const char>(text.data(), std::min<std::size_t>(text.size(), 65536)));
-  if (format != protocol::Format::AircraftJson &&
-      (format != protocol::Format::Auto || protocol::detect_format(head) != protocol::Format::AircraftJson))
-    return std::nullopt;
+/// The value of the member "now" in `text`, milliseconds taken as such; nullopt without one.
+std::optional<double> now_member(const std::string& text) {
   const auto key = text.find("\"now\"");
   if (key == std::string::npos) return std::nullopt;
   const auto colon = text.find(':', key);
@@ -68,6 +67,20 @@ std::optional<double> snapshot_time(const std::string& path, protocol::Format fo
   const double now = std::strtod(text.c_str() + colon + 1, &end);
   if (end == text.c_str() + colon + 1) return std::nullopt;
   return now > 1e11 ? now / 1000.0 : now;  // the aggregators' milliseconds
+}
+
+/// The time of an aircraft.json snapshot file (its "now", UTC s), if it is one. readsb and
+/// dump1090 write "now" first; the aggregators' answers may end with it, so the whole
+/// file is read only when its head has none.
+std::optional<double> snapshot_time(const std::string& path, protocol::Format format) {
+  constexpr std::size_t kHeadBytes = 65536;
+  const std::string head = file_text(path, kHeadBytes);
+  const auto head_bytes = std::as_bytes(std::span<const char>(head.data(), head.size()));
+  if (format != protocol::Format::AircraftJson &&
+      (format != protocol::Format::Auto || protocol::detect_format(head_bytes) != protocol::Format::AircraftJson))
+    return std::nullopt;
+  if (const std::optional<double> now = now_member(head)) return now;
+  return head.size() < kHeadBytes ? std::nullopt : now_member(file_text(path));
 }
 
 /// `files` ordered by their data (ties: by name): an aircraft.json snapshot by its time,

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -117,6 +119,37 @@ TEST(RecordingReader, ADirectoryOrAPatternOfSnapshotsIsOneStreamInDataOrder) {
   RecordingReader none((dir / "nothing_*.json").string(), protocol::Format::Auto, {});
   EXPECT_EQ(read_all(none).size(), 0u);
   EXPECT_EQ(none.rejections().count("no_files"), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+// The aggregators' answers end with "now" (in milliseconds) after their "ac" list: a
+// directory of answers larger than the head read for the time is ordered by it all the
+// same, and read once each.
+TEST(RecordingReader, AggregatorAnswersAreOrderedByTheNowTheyEndWith) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("kew_answers_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const double t0 = 1700000000.0;
+  for (int i = 0; i < 3; ++i) {
+    std::string ac;
+    for (int k = 0; k < 400; ++k) {  // ~100 KB: "now" beyond the first 64 KiB
+      ac += fmt::format("{}{{\"hex\":\"{:06x}\",\"alt_baro\":{},\"lat\":{:.5f},\"lon\":{:.5f},\"seen_pos\":0.5,"
+                        "\"flight\":\"PAD{:05d}\",\"category\":\"A3\",\"nav_qnh\":1013.6,\"rssi\":-20.1}}",
+                        k ? "," : "", 0xa00000 + k, 20000 + 100 * k, 40.0 + 0.01 * k + 0.001 * i, -100.0 + 0.01 * k, k);
+    }
+    // Named against their order: answer_2 is the oldest.
+    std::ofstream(dir / ("answer_" + std::to_string(2 - i) + ".json"))
+        << fmt::format("{{\"ac\":[{}],\"msg\":\"No error\",\"now\":{:.0f},\"total\":400}}", ac, (t0 + i) * 1000);
+  }
+  RecordingReader set(dir.string(), protocol::Format::Auto, {});
+  const std::vector<TrackReport> got = read_all(set);
+  EXPECT_EQ(set.rejections().total(), 0u) << set.rejections().last_reason();
+  ASSERT_EQ(set.files().size(), 3u);
+  EXPECT_EQ(std::filesystem::path(set.files()[0]).filename(), "answer_2.json");
+  EXPECT_EQ(std::filesystem::path(set.files()[2]).filename(), "answer_0.json");
+  ASSERT_EQ(got.size(), 1200u);
+  for (std::size_t i = 1; i < got.size(); ++i) EXPECT_LE(got[i - 1].t, got[i].t) << i;
   std::filesystem::remove_all(dir);
 }
 

@@ -35,8 +35,9 @@ class RecordingReader {
   /// format when `format` is Auto; gzip is transparent). A directory, or a path with a
   /// glob pattern (`*`, `?`, `[`), is every regular file it names (a directory's hidden
   /// files aside), read one after another through one decoder in the order of their
-  /// newest data time (a snapshot's time: readsb's history_N.json files are numbered
-  /// round a ring), each file gzip or not; a line left without its newline at a file's
+  /// newest data time (a snapshot's time, its "now", read from its head unless it ends
+  /// with it: readsb's history_N.json files are numbered round a ring), each file gzip
+  /// or not; a line left without its newline at a file's
   /// end is ended there. A set of readsb traces (`format` readsb-trace, or auto and the
   /// files' first bytes say so) is instead merged record by record in data-time order
   /// across its files, in memory bounded by the segments under way
