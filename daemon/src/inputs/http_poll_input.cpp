@@ -124,7 +124,7 @@ class HttpPollInput final : public Input {
       if (!authorization) return failed(schedule, error, std::nullopt);
       request.headers.push_back(*authorization);
     }
-    const HttpResponse response = client_.perform(request, &abort_);
+    HttpResponse response = client_.perform(request, &abort_);
     const std::optional<double> retry_after = response.retry_after_s(unix_seconds());
     switch (response.outcome) {
       case HttpOutcome::Aborted: return std::nullopt;
@@ -147,7 +147,7 @@ class HttpPollInput final : public Input {
     last_modified_ = last_modified ? std::string(*last_modified) : std::string();
     ++polls_;
     failures_.recovered("answering again");
-    if (!hand_over(response.body)) return std::nullopt;
+    if (!hand_over(std::move(response.body))) return std::nullopt;
     return schedule.after_success(retry_after);
   }
 
@@ -161,10 +161,10 @@ class HttpPollInput final : public Input {
   // Gives an answer to the I/O thread and waits until it is decoded: one answer at a
   // time, so a slow pipeline slows the polling rather than piling answers up. False
   // when the input stops meanwhile.
-  bool hand_over(const std::string& body) {
+  bool hand_over(std::string body) {
     std::unique_lock lock(mutex_);
     in_flight_ = true;
-    asio::post(io_, [this, body] { take(body); });
+    asio::post(io_, [this, body = std::move(body)] { take(body); });
     changed_.wait(lock, [this] { return stopping_ || !in_flight_; });
     return !stopping_;
   }
