@@ -91,6 +91,15 @@ void TableReader::host_name_list(std::string_view key, std::vector<std::string>&
               });
 }
 
+void TableReader::word_list(std::string_view key, std::vector<std::string>& out) {
+  string_list(key, "words", "a word without blanks", out, [](std::string text) -> std::optional<std::string> {
+    if (text.empty()) return std::nullopt;
+    for (const char c : text)
+      if (static_cast<unsigned char>(c) <= ' ' || c == 0x7f) return std::nullopt;
+    return text;
+  });
+}
+
 void TableReader::http_url(std::string_view key, std::string& out) {
   const toml::node* node = take(key);
   if (!node) return;

@@ -1,7 +1,8 @@
 """A hot-standby pair of kewd on one real NATS server (design §5.9, reliability.md "Hot
 standby"): a killed active replaced with no event lost or repeated, acknowledgements and
-subscribers carried across the takeover, a chain of failures and restarts, stalls of one
-instance and of the whole host, and the bus away for 10 s.
+subscribers carried across the takeover, notifications delivered once across it, a chain
+of failures and restarts, stalls of one instance and of the whole host, and the bus away
+for 10 s.
 
 Run by ctest with a real `nats-server` (Debian's, with JetStream); by hand:
 KEWD=... KEW_REPLAY=... KEW_GEN=... KEW_WATCH=... python3 -m unittest test_hot_standby -v
@@ -18,6 +19,7 @@ import urllib.request
 from kewd_harness import (KEW_WATCH, Subscriber, count_lines, generate, nats_publish, offline_alerts, replay_to,
                           wait_until)
 from test_http import WebSocket
+from test_notify import Endpoint, passing
 from test_nats import (SERVICE, UDP_INPUT, NatsCase, check_alert_lifecycles, stream_first_seq, stream_messages,
                        watch)
 
@@ -410,6 +412,39 @@ class HotStandby(NatsCase):
         self.assertIn("still active for the outputs that need no bus", first.log())
         kept = watch(self.nats.url, "--since", "0", "-n", str(len(expected)))
         self.assertEqual(kept, expected, "JetStream holds every event once, in order")
+
+    def test_a_takeover_delivers_each_notification_once(self):
+        endpoint = Endpoint()
+        self.addCleanup(endpoint.close)
+        notify = f"""
+[[notify]]
+name = "hook"
+url = "{endpoint.url}/kew"
+backoff_max_s = 1
+"""
+        first, second = self.start_pair({name: SERVICE + notify + pair_member(name, [self.nats.url]) for name in "ab"})
+        expected = offline_alerts(first.config_path, self.recording)
+        owed = [e["seq"] for _, e in passing([json.loads(line) for line in expected])]
+        on_first = Subscriber(first.alert_port)
+        feeder = threading.Thread(target=replay_to, args=(
+            f"nats://127.0.0.1:{self.nats.port}/kew.feed.tma", self.recording, "--speed", "4"))
+        feeder.start()
+        # Killed with messages delivered and messages owed, the endpoint refusing the rest.
+        wait_until(lambda: len(endpoint.requests()) >= len(owed) // 3, 60, "a third of the messages")
+        endpoint.fail_until = time.monotonic() + 3.0
+        time.sleep(1.0)
+        first.process.kill()
+        second.wait_log("active now (hot standby b)", timeout_s=30)
+        feeder.join()
+        second.wait_records(count_lines(self.recording))
+        wait_until(lambda: len(endpoint.requests()) >= len(owed), 60, "every message")
+        time.sleep(2.0)
+        delivered = [int(r["headers"]["Kew-Seq"]) for r in endpoint.requests()]
+        self.assertEqual(delivered, owed, "each event once, in order, across the takeover")
+        self.assertEqual([r["body"] for r in endpoint.requests()],
+                         [line for line in expected if json.loads(line)["seq"] in set(owed)])
+        self.assertTrue(on_first.alert_lines(), "the active spoke before it died")
+        self.assertEqual(second.stats()["notify"][0]["queued"], 0)
 
 
 def active_alerts(kewd):

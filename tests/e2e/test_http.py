@@ -4,6 +4,7 @@ input (oversized headers, 1,000 connections, slow clients, garbage on the WebSoc
 leaves kewd serving and counting. A real kewd on loopback, fed by kew-replay."""
 
 import base64
+import csv
 import http.client
 import json
 import os
@@ -304,6 +305,39 @@ class Routes(HttpCase):
         _, _, data = self.request(kewd, "GET", "/metrics")
         result = subprocess.run([promtool, "check", "metrics"], input=data, capture_output=True)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+
+
+class MapData(HttpCase):
+    def test_aerodromes_are_the_eligibility_table_and_map_config_is_http_s(self):
+        """GET /api/aerodromes is the table [eligibility] aerodromes_file names (here a
+        small one of our own, so that the route cannot be reading another); GET
+        /api/map-config is [http] tile_url and tile_attribution, empty by default."""
+        kewd = self.start()
+        self.assertEqual(self.get_json(kewd, "/api/map-config"), {"tile_url": "", "tile_attribution": ""})
+        bundled = self.get_json(kewd, "/api/aerodromes")
+        source = os.path.join(os.path.dirname(__file__), "..", "..", "data", "aerodromes.csv")
+        with open(source) as f:
+            rows = list(csv.DictReader(f))
+        self.assertEqual([a["icao"] for a in bundled], [r["ident"] for r in rows], "the default table, in its order")
+        for a, r in zip(bundled, rows):
+            self.assertEqual((a["name"], a["lat"], a["lon"], a["elevation_ft"]),
+                             (r["name"], float(r["lat_deg"]), float(r["lon_deg"]), float(r["elevation_ft"])))
+        kewd.kill()
+
+        table = os.path.join(self.workdir, "aerodromes.csv")
+        with open(table, "w") as f:
+            f.write('ident,lat_deg,lon_deg,elevation_ft,name\n88NV,40.7577,-119.216,3912,\n'
+                    'EGLL,51.4706,-0.461941,83,"London Heathrow ""LHR"""\n')
+        kewd = Kewd(CONFIG.format(web_root=self.web_root, http_extra='tile_url = "https://tiles.example/{z}/{x}/{y}.png"\n'
+                                  'tile_attribution = "© OpenStreetMap contributors <b>"\n')
+                    + f'\n[eligibility]\naerodromes_file = "{table}"\n', self.workdir)
+        self.daemons.append(kewd)
+        self.assertEqual(self.get_json(kewd, "/api/aerodromes"), [
+            {"icao": "88NV", "name": "", "lat": 40.7577, "lon": -119.216, "elevation_ft": 3912},
+            {"icao": "EGLL", "name": 'London Heathrow "LHR"', "lat": 51.4706, "lon": -0.461941, "elevation_ft": 83}])
+        self.assertEqual(self.get_json(kewd, "/api/map-config"),
+                         {"tile_url": "https://tiles.example/{z}/{x}/{y}.png",
+                          "tile_attribution": "© OpenStreetMap contributors <b>"})
 
 
 class WebSocketStream(HttpCase):

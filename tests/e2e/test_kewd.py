@@ -742,6 +742,9 @@ class Install(E2eCase):
         # the tree was staged: the lower limit's, and kew-gen's global scenario's.
         table = os.path.join(prefix, "share", "kew", "aerodromes.csv")
         self.assertTrue(os.path.isfile(table), table)
+        # The Prometheus alerting rules, as the package ships them.
+        rules = os.path.join(prefix, "share", "kew", "prometheus", "kew-rules.yml")
+        self.assertTrue(os.path.isfile(rules), rules)
         self.assertIn(f"aerodromes file: {table} (", result.stdout)
         generated = subprocess.run([os.path.join(prefix, "bin", "kew-gen"), "--scenario", "global", "--aircraft", "3",
                                     "--duration", "8", "--no-header"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,

@@ -80,7 +80,10 @@ def start_browser():
     return webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
 
 
-class WebMap(unittest.TestCase):
+class BrowserCase(unittest.TestCase):
+    """A test of the page in Chromium: skipped, saying so, without a browser; a working
+    directory, self.kewd and self.driver closed at the end."""
+
     def setUp(self):
         missing = browser_missing()
         if missing:
@@ -100,6 +103,12 @@ class WebMap(unittest.TestCase):
             Subscriber.opened.pop().close()
         self._dir.cleanup()
 
+    def js(self, script, *args):
+        return self.driver.execute_script(script, *args)
+
+
+class WebMap(BrowserCase):
+
     def start_kewd(self):
         self.kewd = Kewd(CONFIG.format(workdir=self.workdir, web_root=WEB_ROOT), self.workdir)
         with open(self.kewd.config_path, "rb") as f:
@@ -117,9 +126,6 @@ class WebMap(unittest.TestCase):
             return self.get(path)
         except OSError:
             return None
-
-    def js(self, script, *args):
-        return self.driver.execute_script(script, *args)
 
     def page(self, selector, attribute):
         """The attribute of each element the CSS selector finds, in page order."""

@@ -41,13 +41,15 @@ grep -Eq -- "-Werror( |$)" "$work/build.log" || fail "the package was not built 
 [ -f "$deb" ] || fail "$deb was not built (found: $(ls "$work"))"
 echo "test_deb: built $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
 
-# Contents: binaries, the unit, the conffile, manual pages, the map, the aerodrome table.
+# Contents: binaries, the unit, the conffile, manual pages, the map, the aerodrome table,
+# the alerting rules.
 contents=$(dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|')
 for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-gen /usr/bin/kew-eval \
             /usr/bin/kew-decode /lib/systemd/system/kewd.service /etc/kew/kew.toml \
             /usr/share/man/man8/kewd.8.gz /usr/share/man/man5/kew.toml.5.gz /usr/share/man/man1/kew-replay.1.gz \
             /usr/share/man/man1/kew-gen.1.gz /usr/share/man/man1/kew-watch.1.gz /usr/share/man/man1/kew-decode.1.gz \
             /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/kew/aerodromes.csv \
+            /usr/share/kew/prometheus/kew-rules.yml \
             /usr/share/doc/kew/copyright \
             /usr/share/doc/kew/examples/nats/nats-server.conf \
             /usr/share/doc/kew/examples/nats/nats-server.service.d/kew.conf \

@@ -12,7 +12,7 @@ window.Kew = window.Kew || {};
 
 (function (Kew) {
   const REPLAY_THRESHOLD_S = 30; // |data time − wall time| beyond which the replay clock shows
-  const LABEL_MIN_ZOOM = 6;
+  const PAIR_MAX_ZOOM = 12; // selecting an alert zooms in to its pair, at most this far
 
   const state = {
     tracks: new Map(), // key -> track record
@@ -27,25 +27,29 @@ window.Kew = window.Kew || {};
   let fitted = false;
   let userMoved = false;
   let alertedBefore = new Map();
+  let selectedAlert = null; // the alert chosen in the list
 
   const $ = (id) => document.getElementById(id);
 
   // --- the map -------------------------------------------------------------------------
   const map = L.map("map", { worldCopyJump: true, minZoom: 2, maxZoom: 14, zoomSnap: 0.5 }).setView([48, 5], 5);
   map.attributionControl.setPrefix("Leaflet");
-  map.attributionControl.addAttribution("Base map: Natural Earth (public domain)");
-  Kew.addBaseMap(map);
+  // A tile server when kewd's [http] tile_url names one, else the offline base map.
+  Kew.getJson("api/map-config").catch(() => ({})).then((config) => Kew.addBaseLayer(map, config));
   const aircraft = new Kew.AircraftLayer(map);
   const alertLines = new Kew.AlertLines(map);
   const zones = new Kew.ZoneLayer(map);
-  L.control.layers(null, { zones: zones.group }, { position: "bottomleft" }).addTo(map);
+  const reference = new Kew.ReferenceLayer(map);
+  reference.load();
+  L.control.layers(null, Object.assign({ zones: zones.group }, reference.overlays()), { position: "bottomleft" }).addTo(map);
+  const labels = new Kew.LabelLayout(map, { aircraft, alertLines, reference }, () => $("show-labels").checked);
+  const audible = new Kew.AudibleCue($("audible"));
   const ZONES_INTERVAL_MS = 10000;
   const refreshZones = () =>
     Kew.getJson("api/zones").then((z) => zones.update(z)).catch(() => {});
   map.on("dragstart zoomstart", (e) => {
     if (e.hard !== true && fitted) userMoved = true;
   });
-  map.on("zoomend", updateLabelVisibility);
 
   const connection = new Kew.Connection({
     onSnapshot: (objects) => applySnapshot(objects),
@@ -71,7 +75,7 @@ window.Kew = window.Kew || {};
   });
 
   $("ack-all").addEventListener("click", (e) => acknowledge({ all: true }, e.currentTarget));
-  $("show-labels").addEventListener("change", updateLabelVisibility);
+  $("show-labels").addEventListener("change", () => labels.request());
   $("show-trails").addEventListener("change", (e) => aircraft.showTrails(e.target.checked, state.tracks));
 
   const legend = $("altitude-legend");
@@ -171,6 +175,7 @@ window.Kew = window.Kew || {};
 
   function applyAlert(o) {
     if (!o.id || !o.a || !o.b) return;
+    audible.consider(o, state.alerts.get(o.id));
     if (o.state === "end") state.alerts.delete(o.id);
     else state.alerts.set(o.id, o);
     alertsDirty = true;
@@ -247,6 +252,8 @@ window.Kew = window.Kew || {};
     if (moved || alertsDirty) {
       alertLines.update(state.alerts, state.tracks);
       highlightAlerted();
+      if (selectedAlert && !state.alerts.has(selectedAlert)) selectedAlert = null;
+      labels.update(state.alerts, selectedAlert);
     }
     if (alertsDirty) {
       alertList.render(state.alerts);
@@ -287,22 +294,22 @@ window.Kew = window.Kew || {};
     fitted = true;
   }
 
+  // Zooms to the pair: both aircraft in view (where their tracks are and where the alert
+  // saw them) with a margin that leaves room for their labels, as close as PAIR_MAX_ZOOM;
+  // the pair's labels are then laid out first.
   function centreOnAlert(id) {
     const a = state.alerts.get(id);
     if (!a) return;
-    const bounds = L.latLngBounds(Kew.alertEnds(a, state.tracks));
+    const seen = [a.a, a.b].filter((p) => typeof p.lat === "number" && typeof p.lon === "number").map((p) => [p.lat, p.lon]);
+    const bounds = L.latLngBounds(Kew.alertEnds(a, state.tracks).concat(seen));
     userMoved = true;
-    map.fitBounds(bounds, { padding: [120, 120], maxZoom: Math.max(map.getZoom(), 9) });
+    selectedAlert = id;
+    map.fitBounds(bounds, { padding: [120, 120], maxZoom: PAIR_MAX_ZOOM });
+    labels.update(state.alerts, selectedAlert);
     for (const li of document.querySelectorAll("#alert-list .selected")) li.classList.remove("selected");
     const row = document.querySelector('#alert-list [data-alert-id="' + CSS.escape(id) + '"]');
     if (row) row.classList.add("selected");
   }
-
-  function updateLabelVisibility() {
-    const show = $("show-labels").checked && map.getZoom() >= LABEL_MIN_ZOOM;
-    $("map").classList.toggle("hide-labels", !show);
-  }
-  updateLabelVisibility();
 
   // The pipeline's clock now: /api/status's data_t moved on by the local time since.
   function dataClock() {

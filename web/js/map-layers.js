@@ -21,7 +21,7 @@ window.Kew = window.Kew || {};
   // The base map: Natural Earth land (with its coastlines as outlines) and country borders,
   // vendored in web/vendor (web/LICENSES.md). Drawn on its own canvas under everything.
   Kew.addBaseMap = function (map) {
-    const renderer = L.canvas({ padding: 0.5 });
+    const renderer = L.canvas({ pane: "basemap", padding: 0.5 }); // under the zones and reference layers
     map.createPane("basemap");
     map.getPane("basemap").style.zIndex = 150;
     return fetch("vendor/naturalearth-50m.json")
@@ -73,7 +73,7 @@ window.Kew = window.Kew || {};
         const icon = L.divIcon({
           className: "aircraft",
           iconSize: [0, 0],
-          html: (hasHeading ? AIRCRAFT_SVG : NO_HEADING_SVG) +
+          html: '<div class="leader"></div>' + (hasHeading ? AIRCRAFT_SVG : NO_HEADING_SVG) +
                 '<div class="ac-label"><span class="ac-name"></span><span class="ac-data"></span></div>',
         });
         const marker = L.marker([track.lat, track.lon], { icon, keyboard: false, interactive: false }).addTo(this.map);
@@ -83,6 +83,7 @@ window.Kew = window.Kew || {};
         m = {
           marker, el, hasHeading,
           sym: el.querySelector(".ac-symbol"),
+          label: el.querySelector(".ac-label"),
           name: el.querySelector(".ac-name"),
           data: el.querySelector(".ac-data"),
           lat: track.lat, lon: track.lon, color: "", rot: null, nameText: "", dataText: "",
@@ -93,6 +94,7 @@ window.Kew = window.Kew || {};
         m.lat = track.lat;
         m.lon = track.lon;
       }
+      m.gnd = track.gnd;
       const color = Kew.altitudeColor(track);
       if (color !== m.color) {
         m.el.style.color = color;
@@ -191,6 +193,9 @@ window.Kew = window.Kew || {};
         } else {
           entry.line.setLatLngs(ends);
         }
+        // The figures sit at the middle of the pair (map-labels.js moves them off it when
+        // they would overprint).
+        entry.line.getTooltip().setLatLng([(ends[0][0] + ends[1][0]) / 2, (ends[0][1] + ends[1][1]) / 2]);
         if (entry.severity !== a.severity || entry.ack !== a.ack) {
           entry.line.setStyle({ color: Kew.SEVERITY_COLOR[a.severity] || "#888", dashArray: a.ack ? "8 6" : null });
           const el = entry.line.getElement();

@@ -129,6 +129,21 @@ void check_input_files(const Config& c) {
   }
 }
 
+/// A notifier's URL, token and certificate files: kewd reads them at start.
+void check_notify_files(const Config& c) {
+  for (const NotifyConfig& n : c.notify) {
+    for (const auto& [key, path] : {std::pair{"url_file", &n.url_file}, std::pair{"token_file", &n.token_file},
+                                    std::pair{"ca_file", &n.ca_file}}) {
+      if (path->empty()) continue;
+      std::error_code ec;
+      if (!fs::is_regular_file(*path, ec))
+        refuse(c, fmt::format("[notify {}] {} = \"{}\" is not a file", n.name, key, *path));
+      if (::access(path->c_str(), R_OK) != 0)
+        refuse(c, fmt::format("[notify {}] {} = \"{}\" cannot be read: {}", n.name, key, *path, std::strerror(errno)));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Listener> listeners(const Config& c) {
@@ -156,6 +171,7 @@ std::vector<std::string> check_config(const Config& c, const CheckOptions& optio
   check_writable(check, "[service] record_file", c.service.record_file, false);
   check_state_directory(check);
   check_input_files(c);
+  check_notify_files(c);
   if (!c.service.alert_log.empty() && c.service.alert_log == c.service.record_file)
     refuse(c, fmt::format("[service] record_file = \"{}\" is the alert log too: give each its own file",
                           c.service.record_file));

@@ -5,6 +5,7 @@
 
 #include "kew/config/document.hpp"
 #include "kew/config/nats_subject.hpp"
+#include "notify.hpp"
 
 namespace kew::daemon {
 
@@ -60,6 +61,19 @@ void read_modbus(TableReader& r, ModbusConfig& m) {
   r.ip_list("acknowledge_from", m.acknowledge_from);
 }
 
+/// A map tile URL template: http(s)://, with {z}, {x} and {y}, no white space (design §5.8).
+void tile_url(TableReader& r, std::string& out) {
+  r.string("tile_url", out);
+  if (out.empty() || !r.node("tile_url")) return;
+  const bool web = out.starts_with("http://") || out.starts_with("https://");
+  const bool whole = out.find("{z}") != std::string::npos && out.find("{x}") != std::string::npos &&
+                     out.find("{y}") != std::string::npos;
+  if (!web || !whole || out.find_first_of(" \t\r\n") != std::string::npos)
+    r.fail(r.node("tile_url"), fmt::format("tile_url = \"{}\" must be an http:// or https:// URL template with {{z}}, "
+                                           "{{x}} and {{y}} and no white space",
+                                           out));
+}
+
 void read_http(TableReader& r, HttpConfig& h) {
   r.boolean("enabled", h.enabled);
   r.address("listen", h.listen);
@@ -74,6 +88,8 @@ void read_http(TableReader& r, HttpConfig& h) {
   r.number("request_timeout_s", h.request_timeout_s, 0.1, 3600.0);
   r.number("write_timeout_s", h.write_timeout_s, 0.1, 3600.0);
   r.integer("client_queue_bytes", h.client_queue_bytes, 65536, std::int64_t{1} << 36);
+  tile_url(r, h.tile_url);
+  r.string("tile_attribution", h.tile_attribution);
 }
 
 /// A subject key: dot-separated tokens, none empty, no white space; wildcards ('*', a
@@ -235,6 +251,13 @@ Config read_config(const config::Document& document) {
       if (c.inputs[k].name == input.name)
         r.fail(nullptr, "name \"" + input.name + "\" is the name of input " + std::to_string(k + 1) + " already");
     c.inputs.push_back(std::move(input));
+  });
+  document.each_table("notify", [&](TableReader& r, std::size_t) {
+    NotifyConfig notify;
+    read_notify(r, notify);
+    for (const NotifyConfig& other : c.notify)
+      if (other.name == notify.name) r.fail(nullptr, "name \"" + notify.name + "\" is another notifier's already");
+    c.notify.push_back(std::move(notify));
   });
   for (InputConfig& input : c.inputs) {
     if (input.transport != Transport::Nats) continue;

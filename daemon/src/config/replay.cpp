@@ -24,9 +24,10 @@ void apply_replay(Config& config, const ReplaySettings& replay) {
   service.alert_log = replay.alert_log.empty() ? std::string() : std::filesystem::absolute(replay.alert_log).string();
   service.record_file.clear();
   service.state_directory.clear();
-  // Replayed alerts must never reach a live display or a PLC.
+  // Replayed alerts must never reach a live display, a PLC or a person's phone.
   config.cat004.enabled = false;
   config.modbus.enabled = false;
+  config.notify.clear();
   config.modbus.allow_remote = false;
   // Nor a production bus (its subscribers, MQTT integrations, a hot-standby lease).
   config.nats = NatsConfig{};

@@ -39,7 +39,7 @@ HttpServer::HttpServer(asio::io_context& io, const tcp::endpoint& endpoint, cons
       write_timeout_(seconds(config.write_timeout_s)),
       source_(std::move(source)),
       router_(config.web_root.empty() ? default_web_root() : config.web_root, config.leaflet_root, config.host_names,
-              source_, stats_.bad_requests) {
+              source_, stats_.bad_requests, config) {
   // Refusals go to the log rate-limited per reason (their counts are in /metrics).
   stats_.bad_requests.set_reporter([](std::string_view reason, std::string_view message) {
     spdlog::info("http: refused a request ({}): {}", reason, message);

@@ -3,10 +3,12 @@
 // thread, so it reads the pipeline as it is between two records.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "kew/eligibility/aerodromes.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 
 namespace kew::daemon::http {
@@ -23,6 +25,9 @@ struct HttpSource {
   /// POST /api/ack from `client` ("HOST:PORT"): the same acknowledgement as Modbus coil 0,
   /// reported "by":"web". Returns the ids acknowledged.
   std::function<std::vector<std::string>(const protocol::AckRequest& request, std::string_view client)> acknowledge;
+  /// GET /api/aerodromes: the table the eligibility lower limit uses ([eligibility]
+  /// aerodromes_file); null: an empty list.
+  std::shared_ptr<const eligibility::AerodromeTable> aerodromes;
 };
 
 }  // namespace kew::daemon::http

@@ -170,6 +170,31 @@ void write_latency(Exposition& e, const LatencyHistogram& h) {
   e.sample("kew_record_to_alert_latency_seconds_count", {}, num(h.count()));
 }
 
+
+/// One sample per notifier of each family (design §5.10).
+void notify_metrics(Exposition& e, const std::vector<protocol::NotifyStatistics>& notifiers) {
+  struct Family {
+    std::string_view name, type, help;
+    double (*value)(const protocol::NotifyStatistics&);
+  };
+  static constexpr std::array<Family, 5> kFamilies{{
+      {"kew_notify_delivered_total", "counter", "Messages each notifier's endpoint took.",
+       [](const protocol::NotifyStatistics& n) { return num(n.delivered); }},
+      {"kew_notify_failures_total", "counter", "Delivery attempts that failed (no answer, or not 2xx).",
+       [](const protocol::NotifyStatistics& n) { return num(n.failures); }},
+      {"kew_notify_dropped_total", "counter", "Events dropped from a notifier's full outbox.",
+       [](const protocol::NotifyStatistics& n) { return num(n.dropped); }},
+      {"kew_notify_queued", "gauge", "Events waiting in each notifier's outbox.",
+       [](const protocol::NotifyStatistics& n) { return num(n.queued); }},
+      {"kew_notify_failing", "gauge", "1 while a notifier has failed for longer than its failing_after_s.",
+       [](const protocol::NotifyStatistics& n) { return n.failing ? 1.0 : 0.0; }},
+  }};
+  for (const Family& family : kFamilies) {
+    e.family(family.name, family.type, family.help);
+    for (const protocol::NotifyStatistics& n : notifiers) e.sample(family.name, {{"notifier", n.name}}, family.value(n));
+  }
+}
+
 void write_listeners(Exposition& e, const MetricsSources& s) {
   e.single("kew_subscribers", "gauge", "Alert stream subscribers connected.", num(s.subscribers));
   e.single("kew_subscriber_queued_bytes", "gauge", "Bytes queued for every alert stream subscriber together.",
@@ -181,6 +206,16 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
   if (s.alert_log_queued_bytes)
     e.single("kew_alert_log_queued_bytes", "gauge", "Bytes of alert events waiting for the alert log.",
              num(*s.alert_log_queued_bytes));
+  if (s.alert_log_errors)
+    e.single("kew_alert_log_errors_total", "counter",
+             "Alert log errors: failed writes, truncations, rotations and syncs.",
+             num(*s.alert_log_errors));
+  if (s.health) {
+    e.family("kew_health", "gauge",
+             "kewd's health verdict (ALIVE \"health\"): 1 for the current reason, 0 for the others.");
+    for (const auto& [reason, name] : protocol::kHealthReasonNames.entries())
+      e.sample("kew_health", {{"reason", name}}, reason == *s.health ? 1.0 : 0.0);
+  }
   if (s.nats) {
     const protocol::NatsStatistics& n = *s.nats;
     e.single("kew_nats_connected", "gauge", "1 while the publisher is connected to its NATS server.",
@@ -204,6 +239,7 @@ void write_listeners(Exposition& e, const MetricsSources& s) {
                num(n.checkpoints_written));
     }
   }
+  if (!s.notify.empty()) notify_metrics(e, s.notify);
   if (!s.http) return;
   const HttpStatistics& h = *s.http;
   e.single("kew_http_connections", "gauge", "HTTP and WebSocket connections open.", num(s.http_connections));

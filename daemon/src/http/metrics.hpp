@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kew/pipeline/pipeline.hpp"
+#include "kew/protocol/encoders/alert_json.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/util/rejections.hpp"
 
@@ -59,7 +60,11 @@ struct MetricsSources {
   const HttpStatistics* http = nullptr;
   std::uint64_t http_connections = 0, websockets = 0, websocket_queued_bytes = 0;
   std::optional<std::uint64_t> alert_log_queued_bytes;
+  std::optional<std::uint64_t> alert_log_errors;  ///< with an alert log
+  /// The health verdict of ALIVE (kew_health); absent leaves the family out.
+  std::optional<protocol::HealthReason> health;
   std::optional<protocol::NatsStatistics> nats;  ///< with [nats] url
+  std::vector<protocol::NotifyStatistics> notify;  ///< one per [[notify]]
   const LatencyHistogram* latency = nullptr;
   double start_time_unix_s = 0.0;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <iterator>
 
 #include <boost/beast/http/field.hpp>
 #include <boost/beast/http/verb.hpp>
@@ -35,13 +36,44 @@ std::optional<config::HostPort> parse_host_header(std::string_view text) {
 
 std::string_view path_of(std::string_view target) { return target.substr(0, target.find('?')); }
 
+/// {"tile_url":"…","tile_attribution":"…"}: what the map's page needs of [http].
+std::string map_config_json(const HttpConfig& map) {
+  std::string out = "{\"tile_url\":";
+  protocol::append_json_string(out, map.tile_url);
+  out += ",\"tile_attribution\":";
+  protocol::append_json_string(out, map.tile_attribution);
+  out += "}\n";
+  return out;
+}
+
+/// [{"icao":…,"name":…,"lat":…,"lon":…,"elevation_ft":…}, …] in the table's order; "name"
+/// is "" when the table has none.
+std::string aerodromes_json(const eligibility::AerodromeTable* table) {
+  std::string out = "[";
+  if (table) {
+    out.reserve(table->size() * 80);
+    for (const eligibility::Aerodrome& a : table->aerodromes()) {
+      if (out.size() > 1) out += ",\n";
+      out += "{\"icao\":";
+      protocol::append_json_string(out, a.ident);
+      out += ",\"name\":";
+      protocol::append_json_string(out, a.name);
+      fmt::format_to(std::back_inserter(out), ",\"lat\":{},\"lon\":{},\"elevation_ft\":{}}}", a.lat_deg, a.lon_deg,
+                     a.elevation_ft);
+    }
+  }
+  out += "]\n";
+  return out;
+}
+
 }  // namespace
 
 Router::Router(std::string web_root, std::string leaflet_root, std::vector<std::string> host_names,
-               const HttpSource& source, Rejections& refusals)
+               const HttpSource& source, Rejections& refusals, const HttpConfig& map)
     : web_(std::move(web_root)),
       leaflet_(std::move(leaflet_root)),
       host_names_(std::move(host_names)),
+      map_config_(map_config_json(map)),
       source_(source),
       refusals_(refusals) {}
 
@@ -63,6 +95,11 @@ Reply Router::handle(const Request& request, std::string_view client, std::uint1
   if (path == "/api/alerts") return {200, "application/json", source_.alerts()};
   if (path == "/api/status") return {200, "application/json", source_.status()};
   if (path == "/api/zones") return {200, "application/json", source_.zones()};
+  if (path == "/api/map-config") return {200, "application/json", map_config_};
+  if (path == "/api/aerodromes") {
+    if (aerodromes_.empty()) aerodromes_ = aerodromes_json(source_.aerodromes.get());
+    return {200, "application/json", aerodromes_};
+  }
   if (path == "/metrics") return {200, "text/plain; version=0.0.4; charset=utf-8", source_.metrics()};
   if (path == "/ws") return refuse(426, "not_websocket", "/ws is a WebSocket: send an upgrade request");
   constexpr std::string_view kLeaflet = "/leaflet";

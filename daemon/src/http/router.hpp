@@ -11,6 +11,7 @@
 #include <boost/beast/http/string_body.hpp>
 
 #include "http_source.hpp"
+#include "kew/daemon/config.hpp"
 #include "kew/util/rejections.hpp"
 #include "static_files.hpp"
 
@@ -27,9 +28,9 @@ struct Reply {
 class Router {
  public:
   /// `refusals` counts the requests refused (by reason: not_found, method_not_allowed,
-  /// ack_*...).
+  /// ack_*...). `map` gives GET /api/map-config its tile server.
   Router(std::string web_root, std::string leaflet_root, std::vector<std::string> host_names,
-         const HttpSource& source, Rejections& refusals);
+         const HttpSource& source, Rejections& refusals, const HttpConfig& map = {});
 
   /// Answers `request` from `client` ("HOST:PORT") received on `port`.
   Reply handle(const Request& request, std::string_view client, std::uint16_t port);
@@ -51,6 +52,8 @@ class Router {
   StaticFiles web_;
   StaticFiles leaflet_;
   std::vector<std::string> host_names_;
+  std::string map_config_;  ///< GET /api/map-config, made once
+  std::string aerodromes_;  ///< GET /api/aerodromes, made at the first request
   const HttpSource& source_;
   Rejections& refusals_;
 };

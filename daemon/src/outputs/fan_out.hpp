@@ -1,5 +1,5 @@
 #pragma once
-// The fan-out of kewd's events (design §5.1): each alert, acknowledgement and status is
+// The fan-out of kewd's events (design §3.4): each alert, acknowledgement and status is
 // encoded once and handed to every output, through the standby gate for those that hot
 // standby silences (Audience).
 

@@ -1,6 +1,6 @@
 #pragma once
-// What every kewd output implements (design §5.1): the alert log, the subscriber stream,
-// the WebSocket clients, NATS, CAT004 and the Modbus alarm map each receive the service's
+// What every kewd output implements (design §3.4): the alert log, the subscriber stream,
+// the WebSocket clients, NATS, CAT004, the Modbus alarm map and the notifiers each receive the service's
 // events through this one interface, from the FanOut that encodes each event once.
 
 #include <cstdint>
@@ -21,7 +21,8 @@ using SharedLine = std::shared_ptr<const std::string>;
 
 /// Who reads an output, which decides what hot standby lets through to it (design §5.9).
 enum class Audience : std::uint8_t {
-  /// This instance's own record (the alert log): every alert event, active or standby.
+  /// This instance's own record (the alert log, a notifier's outbox): every alert event,
+  /// active or standby.
   Journal,
   /// Clients connected to this instance (subscribers, WebSocket): alerts and
   /// acknowledgements only while active; its ALIVE always, so that a client of a standby

@@ -1,5 +1,5 @@
 #pragma once
-// The one owner of kewd's periodic work (design §5.1): each task runs on the service's
+// The one owner of kewd's periodic work (design §3.3): each task runs on the service's
 // I/O thread at its period, read again before each wait so that a reloaded interval
 // applies from the next one, until stop().
 

@@ -13,6 +13,8 @@
 #include "../outputs/cat004_output.hpp"
 #include "../outputs/modbus_output.hpp"
 #include "../outputs/nats_output.hpp"
+#include "../outputs/notify_output.hpp"
+#include "../nats/notify_progress_store.hpp"
 #include "../outputs/subscriber_output.hpp"
 #include "../outputs/websocket_output.hpp"
 #include "../standby/pair_member.hpp"
@@ -96,6 +98,7 @@ void Service::open_outputs() {
   if (config_.cat004.enabled) fan_out_->add(std::make_unique<Cat004Output>(io_, config_.cat004));
   if (!config_.nats.servers.empty())
     nats_ = &fan_out_->add(std::make_unique<NatsOutput>(config_.nats, continuity_.run_id(), pipeline_, speaking_right_));
+  open_notifiers();
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
     modbus.listen = listen_address(modbus.listen, options_.listen_any);
@@ -107,6 +110,22 @@ void Service::open_outputs() {
           speaking_right_ ? ModbusServer::SpeakingCheck([right = speaking_right_] { return right->may_speak(); })
                           : ModbusServer::SpeakingCheck());
     }));
+  }
+}
+
+void Service::open_notifiers() {
+  // Outboxes live with the numbering, which their seqs follow (design §5.10).
+  const std::string directory = continuity_.state_path().empty() ? std::string() : state_directory(config_.service);
+  for (const NotifyConfig& notify : config_.notify) {
+    std::unique_ptr<ProgressStore> store;
+    std::function<bool()> may_speak;
+    if (speaking_right_) {
+      store = std::make_unique<NatsProgressStore>(config_.nats, notify.name);
+      may_speak = [right = speaking_right_] { return right->may_speak(); };
+    }
+    const std::string outbox = directory.empty() ? std::string() : directory + "/notify-" + notify.name + ".outbox";
+    notifiers_.push_back(&fan_out_->add(std::make_unique<NotifyOutput>(
+        std::make_unique<Notifier>(notify, outbox, std::move(store), std::move(may_speak)))));
   }
 }
 
@@ -151,6 +170,7 @@ int Service::run() {
   sd_notifyf(0, "READY=1\nSTATUS=serving alerts on port %u", static_cast<unsigned>(subscribers_->port()));
   io_.run();
   if (alert_log_) alert_log_->close();
+  for (NotifyOutput* notifier : notifiers_) notifier->close();
   intake_->flush_record_file();
   save_numbering();
   spdlog::info("kewd stopped: {} records, {} alerts opened", pipeline_.statistics().records,
@@ -272,8 +292,10 @@ void Service::save_numbering() {
 }
 
 ServiceStatus::Conditions Service::conditions() const {
+  const bool notify_failing =
+      std::any_of(notifiers_.begin(), notifiers_.end(), [](const NotifyOutput* n) { return n->failing(); });
   return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active(),
-          pair_ && pair_->syncing(), silence_.unreachable()};
+          pair_ && pair_->syncing(), silence_.unreachable(), notify_failing};
 }
 
 void Service::on_alert(const AlertEvent& event) {
@@ -435,7 +457,10 @@ std::string Service::metrics_text() const {
     m.websocket_queued_bytes = http_->queued_bytes();
   }
   m.alert_log_queued_bytes = service.alert_log_queued_bytes;
+  m.alert_log_errors = service.alert_log_errors;
+  m.health = status_.health(std::chrono::steady_clock::now(), conditions());
   m.nats = service.nats;
+  m.notify = service.notify;
   m.latency = &intake_->latency();
   m.start_time_unix_s = status_.started_unix_s();
   return http::metrics_text(m);
@@ -447,6 +472,7 @@ http::HttpSource Service::http_source() {
   source.alerts = [this] { return views_.alerts(); };
   source.status = [this] { return views_.status(); };
   source.zones = [this] { return views_.zones(); };
+  source.aerodromes = config_.pipeline.eligibility.aerodromes;
   source.snapshot = [this] { return views_.snapshot(); };
   source.metrics = [this] { return metrics_text(); };
   source.acknowledge = [this](const protocol::AckRequest& request, std::string_view client) {

@@ -1,7 +1,7 @@
 #pragma once
 // kewd's service: one Boost.Asio I/O thread runs the inputs, the pipeline (so alerts
 // are deterministic for a given record order) and the outputs behind one fan-out
-// (design §5.1); the Modbus server has its own thread and receives copies of the alarm
+// (design §3.3, §3.4); the Modbus server has its own thread and receives copies of the alarm
 // state.
 
 #include <chrono>
@@ -37,6 +37,7 @@ struct PairCheckpoint;
 class SpeakingRight;
 class ModbusOutput;
 class NatsOutput;
+class NotifyOutput;
 class WebSocketOutput;
 
 struct ServiceOptions {
@@ -65,6 +66,7 @@ class Service {
 
  private:
   void open_outputs();
+  void open_notifiers();
   void open_inputs();
   /// A record decoded by inputs_[input].
   void on_report(const TrackReport& report, std::size_t input);
@@ -125,6 +127,7 @@ class Service {
   ModbusOutput* modbus_ = nullptr;
   NatsOutput* nats_ = nullptr;
   WebSocketOutput* websockets_ = nullptr;
+  std::vector<NotifyOutput*> notifiers_;
   std::string start_line_;  // this run's START object, for each new subscriber
 
   ServiceStatus status_;

@@ -31,7 +31,10 @@ protocol::HealthReason ServiceStatus::health(Clock::time_point now, const Condit
   if (conditions.standby)
     return conditions.syncing ? protocol::HealthReason::StandbySyncing : protocol::HealthReason::Standby;
   if (conditions.feed_unreachable) return protocol::HealthReason::FeedUnreachable;
-  return feed_.reason(now);
+  const protocol::HealthReason feed = feed_.reason(now);
+  // The feed first: without records there is nothing to notify.
+  if (feed == protocol::HealthReason::Healthy && conditions.notify_failing) return protocol::HealthReason::NotifyFailing;
+  return feed;
 }
 
 protocol::AliveStatus ServiceStatus::alive(Clock::time_point now, const Conditions& conditions) const {

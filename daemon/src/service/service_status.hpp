@@ -23,6 +23,7 @@ class ServiceStatus {
     bool standby = false;            ///< hot standby, not active
     bool syncing = false;            ///< standby, and not in step with the active
     bool feed_unreachable = false;   ///< a durable feed's NATS server cannot be reached
+    bool notify_failing = false;     ///< a notifier has failed for longer than its grace
   };
 
   /// `pipeline` outlives this; `track_timeout_s` (s, > 0) makes a silent feed stale.

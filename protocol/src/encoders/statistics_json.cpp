@@ -227,6 +227,20 @@ std::string stats_json(const Pipeline& pipeline, const ServiceStatistics& servic
     }
     c.close();
   }
+  if (!service.notify.empty()) {
+    m.array("notify");
+    for (const NotifyStatistics& n : service.notify) {
+      Members c = m.element();
+      c.string("name", n.name);
+      c.integer("delivered", n.delivered);
+      c.integer("failures", n.failures);
+      c.integer("dropped", n.dropped);
+      c.integer("queued", n.queued);
+      c.boolean("failing", n.failing);
+      c.close();
+    }
+    m.close_array();
+  }
   if (service.modbus) {
     const ModbusStatistics& s = *service.modbus;
     Members c = m.object("modbus");

@@ -61,6 +61,15 @@ class TableReader {
     if (!value || excluded) fail(node, fmt::format("{} = \"{}\": expected one of {}", key, text, names.list(except)));
     out = *value;
   }
+  /// A list of names of `names` (["new", "ended"]); the error lists them.
+  template <class Enum, std::size_t N>
+  void choice_list(std::string_view key, std::vector<Enum>& out, const util::NameTable<Enum, N>& names) {
+    const std::string each = "one of " + names.list();
+    string_list(key, "names", each, out, [&](const std::string& text) { return names.parse(text); });
+  }
+  /// A list of words: non-empty strings without blanks or control characters (callsign
+  /// patterns, region names, addresses), kept as written.
+  void word_list(std::string_view key, std::vector<std::string>& out);
   /// A list of 12-bit Mode 3/A codes, each a string of four octal digits ("7777").
   void mode3a_list(std::string_view key, std::vector<std::uint16_t>& out);
   /// A "HOST:PORT" string, checked with parse_host_port (address.hpp) and kept as text.

@@ -47,8 +47,8 @@ inline constexpr std::array<std::string_view, 11> kSharedSections = {
     "pipeline", "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar", "region", "regions"};
 /// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
 /// kewd file and leaves them unread.
-inline constexpr std::array<std::string_view, 6> kDaemonSections = {"service", "cat004", "modbus", "http", "nats",
-                                                                   "input"};
+inline constexpr std::array<std::string_view, 7> kDaemonSections = {"service", "cat004", "modbus", "http", "nats",
+                                                                   "input",   "notify"};
 
 /// Reads the shared tables of `document`, after refusing any top-level key that is
 /// neither a shared nor a kewd table, and loads the aerodrome table. Throws ConfigError

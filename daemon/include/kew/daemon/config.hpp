@@ -1,7 +1,7 @@
 #pragma once
 // kewd's configuration (design §5.7): the tables every tool shares (config::SharedConfig,
-// read by kew_config) and kewd's own [service], [cat004], [modbus], [http] and [[input]] tables,
-// read here. Every key, its unit and its default is documented in deploy/kew.toml.
+// read by kew_config) and kewd's own [service], [cat004], [modbus], [http], [[input]] and
+// [[notify]] tables, read here. Every key, its unit and its default is documented in deploy/kew.toml.
 
 #include <cstdint>
 #include <string>
@@ -10,6 +10,7 @@
 
 #include "kew/config/config_error.hpp"
 #include "kew/config/shared_config.hpp"
+#include "kew/daemon/notify_config.hpp"
 #include "kew/protocol/formats.hpp"
 #include "kew/util/name_table.hpp"
 
@@ -231,6 +232,10 @@ struct HttpConfig {
   double request_timeout_s = 10.0;        ///< a request must arrive whole within this
   double write_timeout_s = 30.0;          ///< a reply or WebSocket client that stalls this long is closed
   std::size_t client_queue_bytes = 16u << 20;  ///< WebSocket bytes queued per client before cut-off
+  /// The map's tile server, a URL template with {z}, {x} and {y} (http or https); "" =
+  /// the offline Natural Earth base map. Served to the page by GET /api/map-config.
+  std::string tile_url;
+  std::string tile_attribution;  ///< shown on the map with tile_url's tiles (plain text)
 };
 
 /// A kewd file: the shared tables (pipeline, decoding) and kewd's own.
@@ -241,6 +246,7 @@ struct Config : config::SharedConfig {
   HttpConfig http;
   NatsConfig nats;
   std::vector<InputConfig> inputs;
+  std::vector<NotifyConfig> notify;
   std::string origin;  ///< the file's name in messages ("" for the built-in defaults)
 };
 
@@ -270,8 +276,8 @@ struct ReplaySettings {
 /// replay: its shared tables and [service] limits stay; its [[input]] tables are replaced
 /// by one paced `file` input named "replay" reading `replay.file`; every listener is on
 /// loopback (allow_remote cleared: check_config then refuses any other address); the
-/// outputs that reach other systems or write files (CAT004, Modbus, record_file, the
-/// state directory, the alert log unless `replay.alert_log`) are off. Relative paths
+/// outputs that reach other systems or write files (CAT004, Modbus, notifiers,
+/// record_file, the state directory, the alert log unless `replay.alert_log`) are off. Relative paths
 /// are made absolute.
 void apply_replay(Config& config, const ReplaySettings& replay);
 

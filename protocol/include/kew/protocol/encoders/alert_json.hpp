@@ -50,8 +50,11 @@ enum class HealthReason : std::uint8_t {
   /// An input lost data before kewd read it (UDP datagrams the kernel dropped, NATS
   /// messages the client dropped) in the last seconds.
   InputDropping,
+  /// A notifier ([[notify]]) has failed to deliver for longer than its failing_after_s:
+  /// alerts wait in its outbox (design §5.10).
+  NotifyFailing,
 };
-inline constexpr util::NameTable<HealthReason, 9> kHealthReasonNames({{
+inline constexpr util::NameTable<HealthReason, 10> kHealthReasonNames({{
     {HealthReason::Healthy, "healthy"},
     {HealthReason::NoData, "no_data"},
     {HealthReason::FeedStale, "feed_stale"},
@@ -61,6 +64,7 @@ inline constexpr util::NameTable<HealthReason, 9> kHealthReasonNames({{
     {HealthReason::Standby, "standby"},
     {HealthReason::StandbySyncing, "standby_syncing"},
     {HealthReason::FeedUnreachable, "feed_unreachable"},
+    {HealthReason::NotifyFailing, "notify_failing"},
 }});
 
 /// Figures of the once-a-second ALIVE object.

@@ -76,6 +76,16 @@ struct NatsStatistics {
   bool began_from_checkpoint = false;
 };
 
+/// One [[notify]] endpoint (design §5.10).
+struct NotifyStatistics {
+  std::string name;
+  std::uint64_t delivered = 0;  ///< messages the endpoint took
+  std::uint64_t failures = 0;   ///< delivery attempts that failed
+  std::uint64_t dropped = 0;    ///< events dropped from its full outbox
+  std::uint64_t queued = 0;     ///< events waiting now
+  bool failing = false;         ///< failing longer than its failing_after_s
+};
+
 struct ModbusStatistics {
   std::uint64_t requests = 0;              ///< complete requests answered or refused
   std::uint64_t exceptions = 0;            ///< exception responses sent
@@ -99,6 +109,7 @@ struct ServiceStatistics {
   std::optional<Cat004Statistics> cat004;  ///< when CAT004 is enabled
   std::optional<ModbusStatistics> modbus;  ///< when Modbus is enabled
   std::optional<NatsStatistics> nats;      ///< when [nats] url is set
+  std::vector<NotifyStatistics> notify;    ///< one per [[notify]]
   std::optional<std::uint64_t> alert_log_errors;  ///< when an alert log is written
   /// When an alert log is written: bytes of events waiting for it (a failing disk) and
   /// lines dropped because more than the queue's bound waited.

@@ -1,0 +1,140 @@
+#include "message_template.hpp"
+
+#include <cmath>
+#include <ctime>
+
+#include <fmt/format.h>
+
+#include "kew/protocol/ndjson_writer.hpp"
+#include "kew/util/units.hpp"
+
+namespace kew::daemon {
+
+namespace {
+
+std::string party_name(const AlertParty& party) { return party.callsign.empty() ? party.id : party.callsign; }
+
+std::string clock_time(double utc_s) {
+  const std::time_t whole = static_cast<std::time_t>(std::floor(utc_s));
+  std::tm tm{};
+  gmtime_r(&whole, &tm);
+  return fmt::format("{:02}:{:02}:{:02}Z", tm.tm_hour, tm.tm_min, tm.tm_sec);
+}
+
+std::string duration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  if (s < 60) return fmt::format("{} s", s);
+  return s % 60 == 0 ? fmt::format("{} min", s / 60) : fmt::format("{} min {} s", s / 60, s % 60);
+}
+
+std::string apart(double horizontal_m, double vertical_ft) {
+  return fmt::format("{:.1f} NM / {:.0f} ft", horizontal_m / units::kMetresPerNauticalMile, vertical_ft);
+}
+
+std::string upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// ntfy's priorities 1 (min) … 5 (max) and tags (emoji short codes), from
+/// https://docs.ntfy.sh/publish/ ("Message priority", "Tags & emojis").
+int ntfy_priority(const OutboxEntry& e) {
+  if (e.latest.state == AlertState::End) return 2;
+  return e.highest == Severity::Loss ? 5 : e.highest == Severity::Warning ? 4 : 3;
+}
+std::string_view ntfy_tag(const OutboxEntry& e) {
+  if (e.latest.state == AlertState::End) return "white_check_mark";
+  return e.highest == Severity::Loss ? "rotating_light" : e.highest == Severity::Warning ? "warning" : "airplane";
+}
+/// Gotify's priorities 0 … 10; its Android client rings from 8 (https://gotify.net/docs/msgextras).
+int gotify_priority(const OutboxEntry& e) {
+  if (e.latest.state == AlertState::End) return 2;
+  return e.highest == Severity::Loss ? 10 : e.highest == Severity::Warning ? 8 : 5;
+}
+
+std::string json_text(std::string_view text) {
+  std::string out;
+  protocol::append_json_string(out, text);
+  return out;
+}
+
+}  // namespace
+
+std::string message_title(const std::string& title, const OutboxEntry& entry) {
+  const AlertEvent& e = entry.latest;
+  const std::string what = e.state == AlertState::End ? "ended" : upper(to_string(e.severity));
+  return fmt::format("{}: {} {} / {}", title, what, party_name(e.a), party_name(e.b));
+}
+
+std::string message_text(const OutboxEntry& entry) {
+  const AlertEvent& e = entry.latest;
+  std::string text;
+  if (e.state == AlertState::End) {
+    text = fmt::format("Alert ended ({}) after {}; highest severity {}.\n", to_string(e.end_reason),
+                       duration(e.t - e.opened_t), to_string(entry.highest));
+  } else if (e.severity == Severity::Loss || e.t_los_s <= 0) {
+    text = fmt::format("Separation lost: {} apart now.\n", apart(e.sep_h_m, e.sep_v_ft));
+  } else {
+    text = fmt::format("Loss of separation predicted in {}; {} apart now.\n", duration(e.t_los_s),
+                       apart(e.sep_h_m, e.sep_v_ft));
+  }
+  if (e.state != AlertState::End)
+    text += fmt::format("Closest in {}: {}.\n", duration(e.t_cpa_s), apart(e.cpa_h_m, e.cpa_v_ft));
+  for (const AlertParty* p : {&e.a, &e.b}) {
+    const std::string who = p->callsign.empty() ? p->id : fmt::format("{} ({})", p->callsign, p->id);
+    text += fmt::format("{} {:.0f} ft, {:.0f} kt, track {:03.0f}.\n", who, p->alt_ft, p->gs_kt, p->trk_deg);
+  }
+  if (entry.states.size() > 1) {
+    text += "Events:";
+    for (std::size_t i = 0; i < entry.states.size(); ++i) text += (i ? ", " : " ") + std::string(to_string(entry.states[i]));
+    text += ".\n";
+  }
+  text += fmt::format("Alert {} opened {}", e.number, clock_time(e.opened_t));
+  if (!e.region.empty()) text += fmt::format(", region {}", e.region);
+  text += ".";
+  return text;
+}
+
+NotifyMessage render_message(const NotifyConfig& config, const OutboxEntry& entry, const std::string& token) {
+  NotifyMessage m;
+  const std::string title = message_title(config.title, entry);
+  switch (config.format) {
+    case NotifyTemplate::Json:
+      // One event per message: the stream's object, newline and all.
+      m.body = entry.lines.back();
+      m.headers.push_back("Content-Type: application/json");
+      break;
+    case NotifyTemplate::Ntfy:
+      m.body = message_text(entry);
+      m.headers.push_back("Content-Type: text/plain; charset=utf-8");
+      m.headers.push_back("Title: " + title);
+      m.headers.push_back(fmt::format("Priority: {}", ntfy_priority(entry)));
+      m.headers.push_back(fmt::format("Tags: {}", ntfy_tag(entry)));
+      break;
+    case NotifyTemplate::Gotify:
+      m.body = fmt::format("{{\"title\":{},\"message\":{},\"priority\":{}}}", json_text(title),
+                           json_text(message_text(entry)), gotify_priority(entry));
+      m.headers.push_back("Content-Type: application/json");
+      break;
+    case NotifyTemplate::Slack:
+    case NotifyTemplate::Mattermost:
+      m.body = fmt::format("{{\"text\":{}}}", json_text("*" + title + "*\n" + message_text(entry)));
+      m.headers.push_back("Content-Type: application/json");
+      break;
+    case NotifyTemplate::Discord:
+      m.body = fmt::format("{{\"content\":{}}}", json_text("**" + title + "**\n" + message_text(entry)));
+      m.headers.push_back("Content-Type: application/json");
+      break;
+  }
+  if (!token.empty()) {
+    if (config.format == NotifyTemplate::Gotify) m.headers.push_back("X-Gotify-Key: " + token);
+    else m.headers.push_back("Authorization: Bearer " + token);
+  }
+  m.headers.push_back(fmt::format("Kew-Seq: {}", entry.seqs.back()));
+  m.headers.push_back("Kew-Alert: " + entry.latest.id);
+  for (const std::string& header : config.headers) m.headers.push_back(header);
+  return m;
+}
+
+}  // namespace kew::daemon
