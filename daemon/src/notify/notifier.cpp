@@ -1,5 +1,7 @@
 #include "notifier.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -200,7 +202,13 @@ void Notifier::run() {
   while (!stopping_) {
     const double now = now_s();
     if (now - last_sync_s >= 1.0) {
-      outbox_.sync();
+      // The disk may be slow: the I/O thread must not wait for it on this lock.
+      if (const int fd = outbox_.sync_handle(); fd >= 0) {
+        lock.unlock();
+        ::fdatasync(fd);
+        ::close(fd);
+        lock.lock();
+      }
       last_sync_s = now;
       if (const std::uint64_t drops = outbox_.take_new_drops())
         spdlog::error("[notify {}] outbox full ({} events): the oldest {} events were dropped", config_.name,

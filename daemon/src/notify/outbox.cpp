@@ -258,8 +258,9 @@ void Outbox::rewrite() {
   if (!done_.also.empty()) text += fmt::format("D {}\n", fmt::join(done_.also, " "));
   const std::string temporary = path_ + ".new";
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0640);
-  const bool written = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()) &&
-                       ::fdatasync(fd) == 0;
+  // Not forced to the disk here (the caller holds its notifier's lock): sync_handle()
+  // does that outside the lock once a second; a crash of kewd alone loses nothing.
+  const bool written = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
   if (fd >= 0) ::close(fd);
   if (!written || ::rename(temporary.c_str(), path_.c_str()) != 0) {
     ++write_errors_;
@@ -270,13 +271,20 @@ void Outbox::rewrite() {
   if (fd_ < 0) ++write_errors_;
   file_bytes_ = text.size();
   live_bytes_ = live;
+  dirty_ = true;
+}
+
+int Outbox::sync_handle() {
+  if (fd_ < 0 || !dirty_) return -1;
   dirty_ = false;
+  return ::dup(fd_);
 }
 
 void Outbox::sync() {
-  if (fd_ < 0 || !dirty_) return;
-  if (::fdatasync(fd_) != 0) ++write_errors_;
-  dirty_ = false;
+  if (const int fd = sync_handle(); fd >= 0) {
+    if (::fdatasync(fd) != 0) ++write_errors_;
+    ::close(fd);
+  }
 }
 
 }  // namespace kew::daemon

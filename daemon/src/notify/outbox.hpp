@@ -76,6 +76,9 @@ class Outbox {
   std::optional<double> oldest_queued_s() const;
   /// Forces what was written to the disk (once a second, when something was).
   void sync();
+  /// For sync() outside the caller's lock: a duplicate of the file's descriptor to
+  /// fdatasync and close, or -1 when nothing was written since the last.
+  int sync_handle();
 
  private:
   bool take(const AlertEvent& event, NotifyState state, std::string line, double now_s);
