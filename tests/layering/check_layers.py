@@ -39,6 +39,7 @@ CORE = {
     "eligibility": {"geo", "probe", "track", "util"},
     "region": {"geo", "geometry"},
     "zone": {"geo", "geometry", "kinetic", "probe", "region", "util"},
+    "volume": {"geometry", "util"},
     "pipeline": {"alert", "eligibility", "geo", "geometry", "kinetic", "probe", "region", "track", "util",
                  "zone"},
 }
