@@ -91,6 +91,13 @@ void TableReader::host_name_list(std::string_view key, std::vector<std::string>&
               });
 }
 
+void TableReader::text_list(std::string_view key, std::vector<std::string>& out) {
+  string_list(key, "strings", "a non-empty string on one line", out, [](std::string text) -> std::optional<std::string> {
+    if (text.empty() || text.find_first_of("\r\n") != std::string::npos) return std::nullopt;
+    return text;
+  });
+}
+
 void TableReader::word_list(std::string_view key, std::vector<std::string>& out) {
   string_list(key, "words", "a word without blanks", out, [](std::string text) -> std::optional<std::string> {
     if (text.empty()) return std::nullopt;

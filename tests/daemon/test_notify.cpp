@@ -16,6 +16,7 @@
 #include "message_template.hpp"
 #include "notify_filter.hpp"
 #include "outbox.hpp"
+#include "kew/util/wildcard.hpp"
 
 namespace kew::daemon {
 namespace {
@@ -57,7 +58,7 @@ NotifyConfig config(NotifyTemplate format) {
   return c;
 }
 
-TEST(NotifyPattern, MatchesWildcardsWithoutCase) {
+TEST(Wildcard, MatchesWithoutCase) {
   struct Case {
     const char* pattern;
     const char* text;
@@ -73,7 +74,7 @@ TEST(NotifyPattern, MatchesWildcardsWithoutCase) {
                                                   {"a*b*c", "aXbYbc", true},
                                                   {"a*b*c", "aXbYb", false},
                                                   {"3c6444", "3C6444", true}})
-    EXPECT_EQ(matches_pattern(c.pattern, c.text), c.match) << c.pattern << " ~ " << c.text;
+    EXPECT_EQ(util::matches_wildcard(c.pattern, c.text), c.match) << c.pattern << " ~ " << c.text;
 }
 
 TEST(NotifyFilter, FollowsEachAlertsSeverity) {

@@ -1,33 +1,9 @@
 #include "notify_filter.hpp"
 
 #include <algorithm>
-#include <cctype>
+#include "kew/util/wildcard.hpp"
 
 namespace kew::daemon {
-
-bool matches_pattern(std::string_view pattern, std::string_view text) {
-  // Iterative wildcard match: on a mismatch after a '*', the star takes one more character.
-  std::size_t p = 0, t = 0, star = std::string_view::npos, resume = 0;
-  const auto same = [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
-  };
-  while (t < text.size()) {
-    if (p < pattern.size() && (pattern[p] == '?' || (pattern[p] != '*' && same(pattern[p], text[t])))) {
-      ++p;
-      ++t;
-    } else if (p < pattern.size() && pattern[p] == '*') {
-      star = p++;
-      resume = t;
-    } else if (star != std::string_view::npos) {
-      p = star + 1;
-      t = ++resume;
-    } else {
-      return false;
-    }
-  }
-  while (p < pattern.size() && pattern[p] == '*') ++p;
-  return p == pattern.size();
-}
 
 NotifyFilter::NotifyFilter(const NotifyConfig& config) : config_(config) {}
 
@@ -38,9 +14,9 @@ bool NotifyFilter::concerns(const AlertEvent& event) const {
   if (config_.callsigns.empty() && config_.addresses.empty()) return true;
   for (const AlertParty* party : {&event.a, &event.b}) {
     for (const std::string& pattern : config_.callsigns)
-      if (!party->callsign.empty() && matches_pattern(pattern, party->callsign)) return true;
+      if (!party->callsign.empty() && util::matches_wildcard(pattern, party->callsign)) return true;
     for (const std::string& pattern : config_.addresses)
-      if (matches_pattern(pattern, party->id)) return true;
+      if (util::matches_wildcard(pattern, party->id)) return true;
   }
   return false;
 }

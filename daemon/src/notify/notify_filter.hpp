@@ -12,9 +12,6 @@
 
 namespace kew::daemon {
 
-/// '*' any run of characters, '?' one; letters compared without case.
-bool matches_pattern(std::string_view pattern, std::string_view text);
-
 class NotifyFilter {
  public:
   explicit NotifyFilter(const NotifyConfig& config);

@@ -67,6 +67,10 @@ class TableReader {
     const std::string each = "one of " + names.list();
     string_list(key, "names", each, out, [&](const std::string& text) { return names.parse(text); });
   }
+  /// A list of non-empty strings without line breaks (["Mon-Fri 0600-1800"]).
+  void text_list(std::string_view key, std::vector<std::string>& out);
+  /// The node of `key`, taken as read (the caller reads it itself); nullptr when absent.
+  const toml::node* take_node(std::string_view key) { return take(key); }
   /// A list of words: non-empty strings without blanks or control characters (callsign
   /// patterns, region names, addresses), kept as written.
   void word_list(std::string_view key, std::vector<std::string>& out);
@@ -105,6 +109,22 @@ class TableReader {
   /// An array of positions [[lat, lon], ...]; an error names the entry (from 1) and its line.
   void position_list(std::string_view key, std::vector<geo::GeodeticPosition>& out);
 
+  /// An inline or nested table `key` ({ lat = 1.0, lon = 2.0 }): calls read(TableReader&)
+  /// on it, then refuses the keys `read` did not take; false when the key is absent.
+  template <class Read>
+  bool subtable(std::string_view key, Read&& read) {
+    const toml::node* node = take(key);
+    if (!node) return false;
+    const toml::table* t = node->as_table();
+    if (!t) fail(node, fmt::format("{} must be a table ({{ key = value, ... }})", key));
+    TableReader reader(*t, origin_, name_ + " " + std::string(key));
+    read(reader);
+    reader.finish();
+    return true;
+  }
+
+  /// The file's name in messages.
+  std::string_view origin() const { return origin_; }
   /// The node of `key`, nullptr when absent (to point a message about it at its line).
   const toml::node* node(std::string_view key) const { return table_.get(key); }
   /// The table itself (a message about the table as a whole: its header's line).
