@@ -118,6 +118,12 @@ void TableReader::http_url(std::string_view key, std::string& out) {
   const bool spaces = url.find_first_of(" \t\r\n") != std::string_view::npos;
   if ((scheme != "http" && scheme != "https") || rest.empty() || rest.front() == '/' || spaces)
     fail(node, fmt::format("{} must be an http:// or https:// URL with a host (\"https://host/path\")", key));
+  // A password in the URL would be in every log line that names the URL, and in the
+  // configuration everyone may read: credentials come from files.
+  if (rest.substr(0, rest.find_first_of("/?#")).find('@') != std::string_view::npos)
+    fail(node, fmt::format("{}: a user or password in the URL (user:password@host) would be logged and readable "
+                           "by everyone; give them in a file (credentials_file, token_file, url_file)",
+                           key));
   out = url;
 }
 

@@ -57,11 +57,19 @@ TEST(HttpInputConfig, DefaultsSuitAReceiversAircraftJson) {
   EXPECT_TRUE(in.secret_file.empty());
 }
 
+TEST(HttpInputConfig, AnAtSignAfterTheHostIsNoUser) {
+  const Config c = parse_config(kInput + "address = \"https://adsb.example/api?by=ops@example.org#a@b\"\n", "t.toml");
+  EXPECT_EQ(c.inputs[0].address, "https://adsb.example/api?by=ops@example.org#a@b");
+}
+
 TEST(HttpInputConfig, RefusesMistakesAtTheirLine) {
   expect_error(kInput + "address = \"127.0.0.1:8080\"\n", "t.toml:4: [input 1] address must be an http:// or https:// URL");
   expect_error(kInput + "address = \"ftp://h/a.json\"\n", "http:// or https:// URL");
   expect_error(kInput + "address = \"http:///a.json\"\n", "with a host");
   expect_error(kInput + "address = \"http://h/a b.json\"\n", "with a host");
+  // Every log line that names the URL would show the password.
+  expect_error(kInput + "address = \"https://user:secret@adsb.example/api\"\n", "user:password@host");
+  expect_error(kInput + "address = \"http://token@adsb.example/api\"\n", "credentials_file");
   expect_error(kInput + "address = \"http://h/a.json\"\nheaders = [\"no colon\"]\n", "\"Name: value\" on one line");
   expect_error(kInput + "address = \"http://h/a.json\"\nheaders = [\"Bad Name: x\"]\n", "\"Name: value\"");
   expect_error(kInput + "address = \"http://h/a.json\"\nsecret_header = \"api-auth\"\n",

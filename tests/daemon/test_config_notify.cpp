@@ -88,6 +88,7 @@ TEST(NotifyConfig, RefusesMistakesAtTheirLine) {
   expect_error(head, "url or url_file");
   expect_error(head + "url = \"http://h/x\"\nurl_file = \"/etc/u\"\n", "url or url_file");
   expect_error(head + "url = \"ftp://h/x\"\n", "http:// or https://");
+  expect_error(head + "url = \"https://user:tk_secret@ntfy.example/kew\"\n", "user:password@host");
   expect_error(head + "url = \"http://h/x\"\ntemplate = \"pager\"\n", "expected one of json, ntfy");
   expect_error(head + "url_file = \"/u\"\ntemplate = \"discord\"\ntoken_file = \"/t\"\n", "takes no token");
   expect_error(head + "url = \"http://h/x\"\nmin_severity = \"none\"\n", "min_severity");

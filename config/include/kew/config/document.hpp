@@ -83,7 +83,8 @@ class TableReader {
   void ip_list(std::string_view key, std::vector<std::string>& out);
   /// A list of host names (["kew.example"]): letters, digits, '-' and '.', kept lower-case.
   void host_name_list(std::string_view key, std::vector<std::string>& out);
-  /// An http:// or https:// URL with a host (a poll input's address), kept as written.
+  /// An http:// or https:// URL with a host (a poll input's address), kept as written;
+  /// a user or password in it (user:password@host) is refused: credentials come from files.
   void http_url(std::string_view key, std::string& out);
   /// HTTP request headers, ["Name: value", ...]: a name of token characters (RFC 9110
   /// §5.1), a colon, a value without line breaks.
