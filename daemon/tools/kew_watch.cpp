@@ -27,6 +27,7 @@
 #include "kew/config/nats_servers.hpp"
 #include "nats_connection.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
+#include "kew/protocol/utc_text.hpp"
 #include "kew/protocol/version.hpp"
 #include "kew/util/units.hpp"
 
@@ -53,14 +54,6 @@ struct Flags {
   std::optional<std::uint64_t> since;
 };
 
-std::string utc(double t) {
-  if (!std::isfinite(t)) return "--:--:--";
-  const std::time_t seconds = static_cast<std::time_t>(std::floor(t));
-  std::tm tm{};
-  gmtime_r(&seconds, &tm);
-  return fmt::format("{:02}:{:02}:{:02}Z", tm.tm_hour, tm.tm_min, tm.tm_sec);
-}
-
 std::string party(const kew::AlertParty& p) {
   const std::string level = std::isfinite(p.alt_ft) ? fmt::format("FL{:03.0f}", p.alt_ft / 100.0) : "FL---";
   return fmt::format("{} {:<8} {}", p.id, p.callsign.empty() ? "-" : p.callsign, level);
@@ -76,7 +69,7 @@ std::string state_name(const kew::AlertEvent& e) {
 }
 
 void print_alert(const kew::AlertEvent& e, const char* state) {
-  std::string line = fmt::format("{} {:<6} {:<7} {} x {}", utc(e.t), state, kew::to_string(e.severity), party(e.a),
+  std::string line = fmt::format("{} {:<6} {:<7} {} x {}", kew::protocol::utc_time_of_day(e.t), state, kew::to_string(e.severity), party(e.a),
                                  party(e.b));
   if (e.state != kew::AlertState::End) {
     line += fmt::format("  t_los {:>3.0f} s  cpa {:.1f} NM {:.0f} ft in {:.0f} s", e.t_los_s, e.cpa_h_m / kMetresPerNauticalMile,
@@ -103,7 +96,7 @@ Shown show(const Flags& flags, const kew::protocol::AlertStreamReader& reader, c
   } else if (kind == StreamObjectClass::Start) {
     // kewd (re)started: a new run id; alerts open before it ended with reason "restart".
     std::printf("START  kewd %s run %s started %s\n", reader.text().c_str(), reader.run().c_str(),
-                utc(reader.start_t()).c_str());
+                kew::protocol::utc_time_of_day(reader.start_t()).c_str());
   } else if (kind == StreamObjectClass::Alerts) {
     std::printf("%zu active alerts\n", reader.alerts().size());
     for (const kew::AlertEvent& e : reader.alerts()) print_alert(e, "ACTIVE");
@@ -118,7 +111,7 @@ Shown show(const Flags& flags, const kew::protocol::AlertStreamReader& reader, c
     const std::string health =
         a.degraded() ? ", degraded: " + std::string(kew::protocol::kHealthReasonNames.name(a.health)) : "";
     std::printf("%s ALIVE  %llu tracks, %llu alerts, %.0f records/s%s\n",
-                a.last_data_t ? utc(*a.last_data_t).c_str() : "--:--:--", static_cast<unsigned long long>(a.tracks),
+                a.last_data_t ? kew::protocol::utc_time_of_day(*a.last_data_t).c_str() : "--:--:--", static_cast<unsigned long long>(a.tracks),
                 static_cast<unsigned long long>(a.alerts), a.records_per_s, health.c_str());
   }
   if (kind == StreamObjectClass::Error) {

@@ -113,34 +113,31 @@ void check_state_directory(Check& check) {
     fail(fmt::format("cannot be {}: {}", fs::exists(status) ? "written" : "created", std::strerror(errno)));
 }
 
-/// An http input's secret, credentials and certificate files: kewd reads them at start.
-void check_input_files(const Config& c) {
-  for (std::size_t i = 0; i < c.inputs.size(); ++i) {
-    const InputConfig& in = c.inputs[i];
-    for (const auto& [key, path] : {std::pair{"secret_file", &in.secret_file}, std::pair{"credentials_file", &in.credentials_file},
-                                    std::pair{"ca_file", &in.ca_file}}) {
-      if (path->empty()) continue;
-      std::error_code ec;
-      if (!fs::is_regular_file(*path, ec))
-        refuse(c, fmt::format("[input {}] {} = \"{}\" is not a file", i + 1, key, *path));
-      if (::access(path->c_str(), R_OK) != 0)
-        refuse(c, fmt::format("[input {}] {} = \"{}\" cannot be read: {}", i + 1, key, *path, std::strerror(errno)));
-    }
-  }
+/// A file kewd reads at start (`table` and `key` name the setting): a regular file it
+/// can read.
+void check_readable_file(const Config& c, std::string_view table, std::string_view key, const std::string& path) {
+  if (path.empty()) return;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) refuse(c, fmt::format("[{}] {} = \"{}\" is not a file", table, key, path));
+  if (::access(path.c_str(), R_OK) != 0)
+    refuse(c, fmt::format("[{}] {} = \"{}\" cannot be read: {}", table, key, path, std::strerror(errno)));
 }
 
-/// A notifier's URL, token and certificate files: kewd reads them at start.
-void check_notify_files(const Config& c) {
+/// An http input's secret, credentials and certificate files, and a notifier's URL, token
+/// and certificate files.
+void check_secret_files(const Config& c) {
+  for (std::size_t i = 0; i < c.inputs.size(); ++i) {
+    const InputConfig& in = c.inputs[i];
+    const std::string table = fmt::format("input {}", i + 1);
+    check_readable_file(c, table, "secret_file", in.secret_file);
+    check_readable_file(c, table, "credentials_file", in.credentials_file);
+    check_readable_file(c, table, "ca_file", in.ca_file);
+  }
   for (const NotifyConfig& n : c.notify) {
-    for (const auto& [key, path] : {std::pair{"url_file", &n.url_file}, std::pair{"token_file", &n.token_file},
-                                    std::pair{"ca_file", &n.ca_file}}) {
-      if (path->empty()) continue;
-      std::error_code ec;
-      if (!fs::is_regular_file(*path, ec))
-        refuse(c, fmt::format("[notify {}] {} = \"{}\" is not a file", n.name, key, *path));
-      if (::access(path->c_str(), R_OK) != 0)
-        refuse(c, fmt::format("[notify {}] {} = \"{}\" cannot be read: {}", n.name, key, *path, std::strerror(errno)));
-    }
+    const std::string table = "notify " + n.name;
+    check_readable_file(c, table, "url_file", n.url_file);
+    check_readable_file(c, table, "token_file", n.token_file);
+    check_readable_file(c, table, "ca_file", n.ca_file);
   }
 }
 
@@ -170,8 +167,7 @@ std::vector<std::string> check_config(const Config& c, const CheckOptions& optio
   check_writable(check, "[service] alert_log", c.service.alert_log, true);
   check_writable(check, "[service] record_file", c.service.record_file, false);
   check_state_directory(check);
-  check_input_files(c);
-  check_notify_files(c);
+  check_secret_files(c);
   if (!c.service.alert_log.empty() && c.service.alert_log == c.service.record_file)
     refuse(c, fmt::format("[service] record_file = \"{}\" is the alert log too: give each its own file",
                           c.service.record_file));

@@ -1,11 +1,11 @@
 #include "message_template.hpp"
 
 #include <cmath>
-#include <ctime>
 
 #include <fmt/format.h>
 
 #include "kew/protocol/ndjson_writer.hpp"
+#include "kew/protocol/utc_text.hpp"
 #include "kew/util/units.hpp"
 
 namespace kew::daemon {
@@ -13,13 +13,6 @@ namespace kew::daemon {
 namespace {
 
 std::string party_name(const AlertParty& party) { return party.callsign.empty() ? party.id : party.callsign; }
-
-std::string clock_time(double utc_s) {
-  const std::time_t whole = static_cast<std::time_t>(std::floor(utc_s));
-  std::tm tm{};
-  gmtime_r(&whole, &tm);
-  return fmt::format("{:02}:{:02}:{:02}Z", tm.tm_hour, tm.tm_min, tm.tm_sec);
-}
 
 std::string duration(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
@@ -90,7 +83,7 @@ std::string message_text(const OutboxEntry& entry) {
     for (std::size_t i = 0; i < entry.states.size(); ++i) text += (i ? ", " : " ") + std::string(to_string(entry.states[i]));
     text += ".\n";
   }
-  text += fmt::format("Alert {} opened {}", e.number, clock_time(e.opened_t));
+  text += fmt::format("Alert {} opened {}", e.number, protocol::utc_time_of_day(e.opened_t));
   if (!e.region.empty()) text += fmt::format(", region {}", e.region);
   text += ".";
   return text;
