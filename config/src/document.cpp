@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "kew/config/address.hpp"
+#include "kew/config/aip_coordinates.hpp"
 #include "kew/config/nats_servers.hpp"
 #include "kew/config/utc_day.hpp"
 
@@ -217,8 +218,18 @@ void TableReader::position(std::string_view key, std::optional<geo::GeodeticPosi
 void TableReader::position_list(std::string_view key, std::vector<geo::GeodeticPosition>& out) {
   const toml::node* node = take(key);
   if (!node) return;
+  if (const std::optional<std::string> text = node->value<std::string>()) {
+    std::string error;
+    std::optional<std::vector<geo::GeodeticPosition>> positions = parse_aip_coordinates(*text, error);
+    if (!positions) fail(node, fmt::format("{}: {}", key, error));
+    out = std::move(*positions);
+    return;
+  }
   const toml::array* array = node->as_array();
-  if (!array) fail(node, fmt::format("{} must be an array of positions [[lat, lon], ...]", key));
+  if (!array)
+    fail(node, fmt::format("{} must be an array of positions [[lat, lon], ...] or a text of AIP coordinates "
+                           "(\"471234N 0083456E - 471500N 0084000E - ...\")",
+                           key));
   std::vector<geo::GeodeticPosition> positions;
   for (const toml::node& element : *array) {
     const auto position = lat_lon(element);

@@ -10,6 +10,7 @@
 #include "kew/config/aerodromes.hpp"
 #include "kew/config/document.hpp"
 #include "kew/config/regions.hpp"
+#include "kew/config/volumes.hpp"
 #include "parameter_ranges.hpp"
 
 namespace kew::config {
@@ -203,6 +204,8 @@ SharedConfig read_shared_config(const Document& document) {
   });
   // After [probe]: a region's vertical_ft is checked against its altimetry tolerance.
   config.pipeline.regions = read_regions(document, config.pipeline, &config.regions_geojson);
+  // After [eligibility]: a band above an aerodrome takes its elevation from the table.
+  config.pipeline.volumes = read_volumes(document, config.pipeline.eligibility.aerodromes.get());
   // Without a configured reference the radars' mean position is a better centre than
   // whatever record comes first (design §4.2). Longitudes are averaged as given: radars
   // of one feed do not straddle ±180°.

@@ -1,6 +1,10 @@
 #include "kew/config/volumes.hpp"
 
+#include <simdjson.h>
+
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -11,12 +15,108 @@ namespace kew::config {
 
 namespace {
 
+namespace dom = simdjson::dom;
 using volume::LatLon;
 using volume::Ring;
 using volume::VerticalBand;
 using volume::WatchedVolume;
 
 constexpr double kNoValue = NAN;
+constexpr double kRadiusNmLo = 0.001, kRadiusNmHi = 4800.0;  // a circle's, fixed or followed
+constexpr double kBandFtLo = -100000.0, kBandFtHi = 200000.0;
+
+// ---- One reader of a volume's keys, in both forms ----
+
+// A volume's shape, as its form (a [[volume]] table or a GeoJSON Feature) gives it.
+struct Shape {
+  enum class Kind { Polygon, Circle, Follow } kind = Kind::Polygon;
+  Ring outer;                   ///< Polygon
+  std::vector<Ring> holes;      ///< Polygon
+  LatLon centre;                ///< Circle
+  double radius_nm = kNoValue;  ///< Circle, Follow
+  std::string follow;           ///< Follow: the followed aircraft's address or callsign
+  /// Where a message about the outer ring, the holes or the circle points: a TOML key's
+  /// line; nullptr in GeoJSON, whose messages name the Feature instead.
+  const toml::node* outer_node = nullptr;
+  const toml::node* holes_node = nullptr;
+  const toml::node* circle_node = nullptr;
+};
+
+// The keys of a volume in a [[volume]] table or a GeoJSON Feature's properties. `form`
+// reads the keys of its shape (form.read_keys(r), with the others) and, once every key
+// is read and no unknown key is left (a misspelt key is named before what its absence
+// implies), the shape itself (form.shape(r)).
+template <class Form>
+WatchedVolume read_volume(TableReader& r, Form& form, const eligibility::AerodromeTable* aerodromes) {
+  WatchedVolume v;
+  r.string("name", v.name);
+  if (v.name.empty())
+    r.fail(r.node("name") ? r.node("name") : r.table_node(), "a volume needs a name (a non-empty string)");
+  r.choice("kind", v.kind, volume::kVolumeKindNames);
+  form.read_keys(r);
+  VerticalBand band{kNoValue, kNoValue};
+  r.number("floor_ft", band.floor_ft, kBandFtLo, kBandFtHi);
+  r.number("ceiling_ft", band.ceiling_ft, kBandFtLo, kBandFtHi);
+  std::string reference = "msl", aerodrome;
+  r.string("reference", reference);
+  r.string("aerodrome", aerodrome);
+  std::vector<std::string> active;
+  r.text_list("active", active);
+  r.word_list("callsigns", v.traffic.callsigns);
+  r.word_list("addresses", v.traffic.addresses);
+  r.mode3a_list("squawks", v.traffic.squawks);
+  r.number("lookahead_s", v.lookahead_s, 1.0, volume::kMaxHorizon_s);
+  r.number("warning_s", v.warning_s, 1.0, volume::kMaxHorizon_s);
+  r.finish();
+
+  const Shape shape = form.shape(r);
+  if (std::isnan(band.floor_ft) || std::isnan(band.ceiling_ft))
+    r.fail(r.table_node(), "a volume needs floor_ft and ceiling_ft");
+  if (reference == "aerodrome") {
+    if (aerodrome.empty()) r.fail(r.node("reference"), "reference = \"aerodrome\" needs aerodrome = \"ICAO\"");
+    const eligibility::Aerodrome* a = aerodromes ? aerodromes->find(aerodrome) : nullptr;
+    if (!a) r.fail(r.node("aerodrome"), fmt::format("aerodrome = \"{}\" is not in the aerodrome table", aerodrome));
+    band.floor_ft += a->elevation_ft;
+    band.ceiling_ft += a->elevation_ft;
+  } else if (reference != "msl") {
+    r.fail(r.node("reference"), fmt::format("reference = \"{}\": expected msl or aerodrome", reference));
+  } else if (!aerodrome.empty()) {
+    r.fail(r.node("aerodrome"), "aerodrome names the elevation of reference = \"aerodrome\"");
+  }
+
+  if (shape.kind == Shape::Kind::Follow) {
+    if (reference == "aerodrome")
+      r.fail(r.node("reference"), "a followed volume's band is relative to the followed aircraft");
+    if (!(band.floor_ft < band.ceiling_ft)) r.fail(r.node("ceiling_ft"), "ceiling_ft must be above floor_ft");
+    v.follow = shape.follow;
+    v.follow_radius_m = shape.radius_nm * units::kMetresPerNauticalMile;
+    v.follow_band = band;
+  } else {
+    const bool circle = shape.kind == Shape::Kind::Circle;
+    const volume::VolumeResult made =
+        circle ? volume::Volume::circle(shape.centre, shape.radius_nm * units::kMetresPerNauticalMile, band)
+               : volume::Volume::polygon(shape.outer, shape.holes, band);
+    if (!made.volume) {
+      const toml::node* where = made.error == volume::VolumeError::BandInverted ? r.node("ceiling_ft")
+                                : circle                                        ? shape.circle_node
+                                : made.ring == 0                                ? shape.outer_node
+                                                                                : shape.holes_node;
+      const std::string hole = !circle && made.ring > 0 ? fmt::format(" (hole {})", made.ring) : "";
+      r.fail(where, fmt::format("the volume is refused: {}{}", volume::kVolumeErrorNames.name(made.error), hole));
+    }
+    v.area = made.volume;
+  }
+
+  std::string error;
+  const auto schedule = volume::WeeklySchedule::parse(active, error);
+  if (!schedule) r.fail(r.node("active"), "active: " + error);
+  v.schedule = *schedule;
+  if (v.warning_s > v.lookahead_s)
+    r.fail(r.node("warning_s"), fmt::format("warning_s = {} is beyond lookahead_s = {}", v.warning_s, v.lookahead_s));
+  return v;
+}
+
+// ---- TOML: [[volume]] ----
 
 Ring ring_of(const std::vector<geo::GeodeticPosition>& positions) {
   Ring ring;
@@ -43,99 +143,334 @@ std::vector<Ring> read_holes(TableReader& r) {
   return holes;
 }
 
-}  // namespace
-
-std::vector<WatchedVolume> read_volumes(const Document& document, const eligibility::AerodromeTable* aerodromes) {
-  std::vector<WatchedVolume> volumes;
-  document.each_table("volume", [&](TableReader& r, std::size_t) {
-    WatchedVolume v;
-    r.string("name", v.name);
-    if (v.name.empty()) r.fail(r.node("name") ? r.node("name") : r.table_node(), "a volume needs a name");
-    for (const WatchedVolume& other : volumes)
-      if (other.name == v.name) r.fail(r.node("name"), fmt::format("name \"{}\" is another volume's already", v.name));
-    r.choice("kind", v.kind, volume::kVolumeKindNames);
-
-    std::vector<geo::GeodeticPosition> polygon;
-    r.position_list("polygon", polygon);
-    const std::vector<Ring> holes = read_holes(r);
-    std::optional<geo::GeodeticPosition> centre;
-    double radius_nm = kNoValue;
-    const bool circle = r.subtable("circle", [&](TableReader& c) {
+// The shape of a [[volume]] table: polygon with holes, circle, or follow with radius_nm.
+class TableShape {
+ public:
+  void read_keys(TableReader& r) {
+    r.position_list("polygon", polygon_);
+    holes_ = read_holes(r);
+    circle_ = r.subtable("circle", [&](TableReader& c) {
       double lat = kNoValue, lon = kNoValue;
       c.number("lat", lat, -90.0, 90.0);
       c.number("lon", lon, -180.0, 180.0);
-      c.number("radius_nm", radius_nm, 0.001, 4800.0);
-      if (std::isnan(lat) || std::isnan(lon) || std::isnan(radius_nm))
+      c.number("radius_nm", circle_radius_nm_, kRadiusNmLo, kRadiusNmHi);
+      if (std::isnan(lat) || std::isnan(lon) || std::isnan(circle_radius_nm_))
         c.fail(c.table_node(), "a circle needs lat, lon and radius_nm");
-      centre = geo::GeodeticPosition{lat, lon};
+      centre_ = LatLon{lat, lon};
     });
-    r.string("follow", v.follow);
-    double follow_radius_nm = kNoValue;
-    r.number("radius_nm", follow_radius_nm, 0.001, 4800.0);
-    const int shapes = !polygon.empty() + circle + !v.follow.empty();
+    r.string("follow", follow_);
+    r.number("radius_nm", follow_radius_nm_, kRadiusNmLo, kRadiusNmHi);
+  }
+
+  Shape shape(const TableReader& r) const {
+    const int shapes = !polygon_.empty() + circle_ + !follow_.empty();
     if (shapes != 1)
       r.fail(r.table_node(), "a volume is one of polygon = [[lat, lon], ...], circle = { lat, lon, radius_nm } "
                              "or follow = \"ADDRESS or CALLSIGN\" with radius_nm");
-    if (!holes.empty() && polygon.empty()) r.fail(r.node("holes"), "holes belong to a polygon");
-    if (!std::isnan(follow_radius_nm) && v.follow.empty())
+    if (!holes_.empty() && polygon_.empty()) r.fail(r.node("holes"), "holes belong to a polygon");
+    if (!std::isnan(follow_radius_nm_) && follow_.empty())
       r.fail(r.node("radius_nm"), "radius_nm (beside follow) is a followed circle's; a fixed circle is "
                                   "circle = { lat, lon, radius_nm }");
-
-    VerticalBand band{kNoValue, kNoValue};
-    r.number("floor_ft", band.floor_ft, -100000.0, 200000.0);
-    r.number("ceiling_ft", band.ceiling_ft, -100000.0, 200000.0);
-    if (std::isnan(band.floor_ft) || std::isnan(band.ceiling_ft))
-      r.fail(r.table_node(), "a volume needs floor_ft and ceiling_ft");
-    std::string reference = "msl", aerodrome;
-    r.string("reference", reference);
-    r.string("aerodrome", aerodrome);
-    if (reference == "aerodrome") {
-      if (aerodrome.empty()) r.fail(r.node("reference"), "reference = \"aerodrome\" needs aerodrome = \"ICAO\"");
-      const eligibility::Aerodrome* a = aerodromes ? aerodromes->find(aerodrome) : nullptr;
-      if (!a) r.fail(r.node("aerodrome"), fmt::format("aerodrome = \"{}\" is not in the aerodrome table", aerodrome));
-      band.floor_ft += a->elevation_ft;
-      band.ceiling_ft += a->elevation_ft;
-    } else if (reference != "msl") {
-      r.fail(r.node("reference"), fmt::format("reference = \"{}\": expected msl or aerodrome", reference));
-    } else if (!aerodrome.empty()) {
-      r.fail(r.node("aerodrome"), "aerodrome names the elevation of reference = \"aerodrome\"");
-    }
-    if (!v.follow.empty() && reference == "aerodrome")
-      r.fail(r.node("reference"), "a followed volume's band is relative to the followed aircraft");
-
-    if (!v.follow.empty()) {
-      if (std::isnan(follow_radius_nm)) r.fail(r.node("follow"), "follow needs radius_nm");
-      if (!(band.floor_ft < band.ceiling_ft)) r.fail(r.node("ceiling_ft"), "ceiling_ft must be above floor_ft");
-      v.follow_radius_m = follow_radius_nm * units::kMetresPerNauticalMile;
-      v.follow_band = band;
+    Shape s;
+    s.outer_node = r.node("polygon");
+    s.holes_node = r.node("holes");
+    s.circle_node = r.node("circle");
+    if (!follow_.empty()) {
+      if (std::isnan(follow_radius_nm_)) r.fail(r.node("follow"), "follow needs radius_nm");
+      s.kind = Shape::Kind::Follow;
+      s.follow = follow_;
+      s.radius_nm = follow_radius_nm_;
+    } else if (circle_) {
+      s.kind = Shape::Kind::Circle;
+      s.centre = centre_;
+      s.radius_nm = circle_radius_nm_;
     } else {
-      const volume::VolumeResult made =
-          circle ? volume::Volume::circle({centre->lat_deg, centre->lon_deg}, radius_nm * units::kMetresPerNauticalMile, band)
-                 : volume::Volume::polygon(ring_of(polygon), holes, band);
-      if (!made.volume) {
-        const char* key = circle ? "circle" : made.ring == 0 ? "polygon" : "holes";
-        const std::string where = !circle && made.ring > 0 ? fmt::format(" (hole {})", made.ring) : "";
-        r.fail(made.error == volume::VolumeError::BandInverted ? r.node("ceiling_ft") : r.node(key),
-               fmt::format("the volume is refused: {}{}", volume::kVolumeErrorNames.name(made.error), where));
-      }
-      v.area = made.volume;
+      s.outer = ring_of(polygon_);
+      s.holes = holes_;
     }
+    return s;
+  }
 
-    std::vector<std::string> active;
-    r.text_list("active", active);
-    std::string error;
-    const auto schedule = volume::WeeklySchedule::parse(active, error);
-    if (!schedule) r.fail(r.node("active"), "active: " + error);
-    v.schedule = *schedule;
-    r.word_list("callsigns", v.traffic.callsigns);
-    r.word_list("addresses", v.traffic.addresses);
-    r.mode3a_list("squawks", v.traffic.squawks);
-    r.number("lookahead_s", v.lookahead_s, 1.0, volume::kMaxHorizon_s);
-    r.number("warning_s", v.warning_s, 1.0, volume::kMaxHorizon_s);
-    if (v.warning_s > v.lookahead_s)
-      r.fail(r.node("warning_s"), fmt::format("warning_s = {} is beyond lookahead_s = {}", v.warning_s, v.lookahead_s));
+ private:
+  std::vector<geo::GeodeticPosition> polygon_;
+  std::vector<Ring> holes_;
+  bool circle_ = false;
+  LatLon centre_;
+  double circle_radius_nm_ = kNoValue;
+  std::string follow_;
+  double follow_radius_nm_ = kNoValue;
+};
+
+// ---- GeoJSON (RFC 7946) ----
+
+// Appends a JSON value to `out` as TOML (numbers, booleans, strings, arrays, objects), so
+// that one TableReader reads a Feature's properties with the types, ranges and messages
+// of a [[volume]] table. False for a null, which TOML cannot hold.
+bool append_json(dom::element value, toml::array& out) {
+  switch (value.type()) {
+    case dom::element_type::INT64:
+      out.push_back(value.get_int64().value_unsafe());
+      return true;
+    case dom::element_type::UINT64:
+    case dom::element_type::DOUBLE:
+      out.push_back(value.get_double().value_unsafe());
+      return true;
+    case dom::element_type::BOOL:
+      out.push_back(value.get_bool().value_unsafe());
+      return true;
+    case dom::element_type::STRING:
+      out.push_back(std::string(value.get_string().value_unsafe()));
+      return true;
+    case dom::element_type::ARRAY: {
+      const dom::array elements = value.get_array().value_unsafe();
+      toml::array array;
+      for (const dom::element element : elements)
+        if (!append_json(element, array)) return false;
+      out.push_back(std::move(array));
+      return true;
+    }
+    case dom::element_type::OBJECT: {
+      const dom::object members = value.get_object().value_unsafe();
+      toml::table table;
+      for (const dom::key_value_pair member : members) {
+        toml::array one;
+        if (!append_json(member.value, one)) return false;
+        table.insert(member.key, std::move(*one.get(0)));
+      }
+      out.push_back(std::move(table));
+      return true;
+    }
+    case dom::element_type::NULL_VALUE:
+      return false;
+  }
+  return false;
+}
+
+// A Feature's properties as a TOML table; a null property is an absent key. "" or what
+// is wrong with them.
+std::string properties_table(dom::object properties, toml::table& table) {
+  for (const dom::key_value_pair member : properties) {
+    if (member.value.is_null()) continue;
+    toml::array one;
+    if (!append_json(member.value, one))
+      return fmt::format("properties.{} holds a null inside it: leave the entry out", member.key);
+    if (!table.insert(member.key, std::move(*one.get(0))).second)
+      return fmt::format("properties.{} is given twice", member.key);
+  }
+  return "";
+}
+
+bool has_type(dom::object object, std::string_view type) {
+  std::string_view text;
+  return object["type"].get_string().get(text) == simdjson::SUCCESS && text == type;
+}
+
+// A GeoJSON position [lon, lat] or [lon, lat, elevation] (elevation ignored), in range.
+std::optional<LatLon> lon_lat(dom::element element) {
+  dom::array position;
+  if (element.get_array().get(position) != simdjson::SUCCESS || position.size() < 2 || position.size() > 3)
+    return std::nullopt;
+  double lon = 0.0, lat = 0.0;
+  if (position.at(0).get_double().get(lon) != simdjson::SUCCESS ||
+      position.at(1).get_double().get(lat) != simdjson::SUCCESS)
+    return std::nullopt;
+  if (!(std::abs(lat) <= 90.0 && std::abs(lon) <= 180.0)) return std::nullopt;
+  return LatLon{lat, lon};
+}
+constexpr std::string_view kLonLat =
+    "[lon, lat] (GeoJSON order: longitude first, in [-180, 180], then latitude, in [-90, 90])";
+
+// The shape of a Feature: its geometry, a Polygon or a Point with properties.radius_nm.
+class FeatureShape {
+ public:
+  explicit FeatureShape(dom::object feature) : feature_(feature) {}
+
+  void read_keys(TableReader& r) {
+    if (r.node("follow"))
+      r.fail(r.node("follow"), "follow is refused in GeoJSON: a followed volume has no geometry of its own; write "
+                               "it as a [[volume]] table with follow and radius_nm");
+    for (const std::string_view key : {"polygon", "holes", "circle"})
+      if (r.node(key))
+        r.fail(r.node(key), fmt::format("properties.{} is refused: the Feature's geometry is the volume's shape (a "
+                                        "Polygon with its holes, or a Point with properties.radius_nm)",
+                                        key));
+    r.number("radius_nm", radius_nm_, kRadiusNmLo, kRadiusNmHi);
+  }
+
+  Shape shape(const TableReader& r) const {
+    dom::object geometry;
+    std::string_view type;
+    dom::element coordinates;
+    if (feature_["geometry"].get_object().get(geometry) != simdjson::SUCCESS ||
+        geometry["type"].get_string().get(type) != simdjson::SUCCESS)
+      r.fail(nullptr, "needs a geometry: a Polygon, or a Point with properties.radius_nm");
+    if (type == "MultiPolygon")
+      r.fail(nullptr, "a MultiPolygon is not supported: give each polygon a Feature of its own, with its own name");
+    if (type != "Polygon" && type != "Point")
+      r.fail(nullptr, fmt::format("geometry type \"{}\" is not a volume: a Polygon, or a Point with "
+                                  "properties.radius_nm",
+                                  type));
+    if (geometry["coordinates"].get(coordinates) != simdjson::SUCCESS)
+      r.fail(nullptr, fmt::format("the {} has no coordinates", type));
+    Shape s;
+    if (type == "Polygon") {
+      if (!std::isnan(radius_nm_)) r.fail(nullptr, "properties.radius_nm is for a Point (a circle), not a Polygon");
+      std::vector<Ring> rings = polygon_rings(r, coordinates);
+      s.outer = std::move(rings.front());
+      s.holes.assign(std::make_move_iterator(rings.begin() + 1), std::make_move_iterator(rings.end()));
+    } else {
+      if (std::isnan(radius_nm_)) r.fail(nullptr, "a Point needs properties.radius_nm (the circle's radius)");
+      const auto centre = lon_lat(coordinates);
+      if (!centre) r.fail(nullptr, fmt::format("a Point's coordinates must be {}", kLonLat));
+      s.kind = Shape::Kind::Circle;
+      s.centre = *centre;
+      s.radius_nm = radius_nm_;
+    }
+    return s;
+  }
+
+ private:
+  // A Polygon's rings, the exterior one first, each without its closing position.
+  static std::vector<Ring> polygon_rings(const TableReader& r, dom::element coordinates) {
+    constexpr std::string_view kRings = "a Polygon's coordinates are an array of rings, each an array of positions";
+    dom::array rings;
+    if (coordinates.get_array().get(rings) != simdjson::SUCCESS) r.fail(nullptr, kRings);
+    if (rings.size() == 0) r.fail(nullptr, "a Polygon needs its exterior ring");
+    std::vector<Ring> out;
+    for (const dom::element element : rings) {
+      const std::string which = out.empty() ? "exterior ring" : fmt::format("hole {}", out.size());
+      dom::array ring;
+      if (element.get_array().get(ring) != simdjson::SUCCESS) r.fail(nullptr, kRings);
+      Ring positions;
+      for (const dom::element position : ring) {
+        const auto p = lon_lat(position);
+        if (!p) r.fail(nullptr, fmt::format("Polygon {}: position {} must be {}", which, positions.size() + 1, kLonLat));
+        positions.push_back(*p);
+      }
+      if (positions.size() < 4 || positions.front().lat_deg != positions.back().lat_deg ||
+          positions.front().lon_deg != positions.back().lon_deg)
+        r.fail(nullptr, fmt::format("Polygon {} is not closed: at least 4 positions, the last equal to the first "
+                                    "(RFC 7946 §3.1.6)",
+                                    which));
+      positions.pop_back();
+      out.push_back(std::move(positions));
+    }
+    return out;
+  }
+
+  dom::object feature_;
+  double radius_nm_ = kNoValue;
+};
+
+// "feature 2 "ED-R 138"" (or "feature 2" without a name): how messages name a Feature.
+std::string feature_label(std::size_t index, const toml::table& properties) {
+  const toml::node* name = properties.get("name");
+  if (name && name->is_string() && !name->as_string()->get().empty())
+    return fmt::format("feature {} \"{}\"", index + 1, name->as_string()->get());
+  return fmt::format("feature {}", index + 1);
+}
+
+WatchedVolume read_feature(dom::element feature, const std::string& origin, std::size_t index,
+                           const eligibility::AerodromeTable* aerodromes) {
+  dom::object object;
+  toml::table table;
+  std::string problem;  // found before the reader that reports it exists
+  dom::element properties;
+  dom::object members;
+  if (feature.get_object().get(object) != simdjson::SUCCESS || !has_type(object, "Feature"))
+    problem = "is not a GeoJSON Feature (an object with \"type\": \"Feature\")";
+  else if (object["properties"].get(properties) == simdjson::SUCCESS && !properties.is_null()) {
+    // (No properties: "a volume needs a name".)
+    if (properties.get_object().get(members) != simdjson::SUCCESS) problem = "properties must be an object";
+    else problem = properties_table(members, table);
+  }
+  TableReader r(table, origin, feature_label(index, table));
+  if (!problem.empty()) r.fail(nullptr, problem);
+  FeatureShape shape(object);
+  return read_volume(r, shape, aerodromes);
+}
+
+// Where each name was given, to refuse a second use.
+struct Names {
+  std::vector<std::string> names, places;
+  /// The place of an earlier volume named `name`, or nullptr.
+  const std::string* taken(const std::string& name) const {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return &places[i];
+    return nullptr;
+  }
+  void add(std::string name, std::string place) {
+    names.push_back(std::move(name));
+    places.push_back(std::move(place));
+  }
+};
+
+std::string feature_place(std::size_t index, const std::string& name) {
+  return fmt::format("[feature {} \"{}\"]", index + 1, name);
+}
+
+}  // namespace
+
+std::vector<WatchedVolume> parse_volumes_geojson(std::string_view text, const std::string& origin,
+                                                 const eligibility::AerodromeTable* aerodromes) {
+  dom::parser parser;
+  const simdjson::padded_string padded(text);
+  dom::element document;
+  if (const auto error = parser.parse(padded).get(document))
+    throw ConfigError(fmt::format("{}: not valid JSON ({})", origin, simdjson::error_message(error)));
+  dom::object collection;
+  dom::array features;
+  if (document.get_object().get(collection) != simdjson::SUCCESS || !has_type(collection, "FeatureCollection"))
+    throw ConfigError(fmt::format("{}: not a GeoJSON FeatureCollection (an object with \"type\": "
+                                  "\"FeatureCollection\")",
+                                  origin));
+  if (collection["features"].get_array().get(features) != simdjson::SUCCESS)
+    throw ConfigError(fmt::format("{}: a FeatureCollection needs a \"features\" array", origin));
+  std::vector<WatchedVolume> volumes;
+  Names names;
+  for (const dom::element feature : features) {
+    WatchedVolume v = read_feature(feature, origin, volumes.size(), aerodromes);
+    const std::string place = feature_place(volumes.size(), v.name);
+    if (const std::string* earlier = names.taken(v.name))
+      throw ConfigError(fmt::format("{}: {} name \"{}\" is already the name of {}", origin, place, v.name, *earlier));
+    names.add(v.name, place);
+    volumes.push_back(std::move(v));
+  }
+  return volumes;
+}
+
+std::vector<WatchedVolume> read_volumes(const Document& document, const eligibility::AerodromeTable* aerodromes,
+                                        std::string* geojson_path) {
+  std::vector<WatchedVolume> volumes;
+  Names names;
+  document.each_table("volume", [&](TableReader& r, std::size_t index) {
+    TableShape shape;
+    WatchedVolume v = read_volume(r, shape, aerodromes);
+    if (const std::string* earlier = names.taken(v.name))
+      r.fail(r.node("name"), fmt::format("name \"{}\" is already the name of {}", v.name, *earlier));
+    names.add(v.name, fmt::format("[volume {}]", index + 1));
     volumes.push_back(std::move(v));
   });
+  std::string path;
+  document.section("volumes", [&](TableReader& r) {
+    r.path_beside_file("geojson", path);
+    if (path.empty()) return;
+    std::vector<WatchedVolume> from_file;
+    try {
+      from_file = parse_volumes_geojson(read_config_file(path), path, aerodromes);
+    } catch (const ConfigError& e) {
+      r.fail(r.node("geojson"), e.what());
+    }
+    for (std::size_t i = 0; i < from_file.size(); ++i) {
+      const std::string place = feature_place(i, from_file[i].name);
+      if (const std::string* earlier = names.taken(from_file[i].name))
+        r.fail(r.node("geojson"),
+               fmt::format("{}: {} name \"{}\" is already the name of {}", path, place, from_file[i].name, *earlier));
+      names.add(from_file[i].name, fmt::format("{} {}", path, place));
+      volumes.push_back(std::move(from_file[i]));
+    }
+  });
+  if (geojson_path) *geojson_path = path;
   return volumes;
 }
 

@@ -68,10 +68,21 @@ std::string state_name(const kew::AlertEvent& e) {
   return "?";
 }
 
+/// An area proximity warning: the aircraft, the volume and when it enters, in place of
+/// the pair and its closest approach.
+std::string area_warning(const kew::AlertEvent& e) {
+  std::string text = fmt::format("{} → {}", party(e.a), e.volume);
+  if (!e.volume_kind.empty()) text += fmt::format(" ({})", e.volume_kind);
+  if (e.state == kew::AlertState::End) return text;
+  if (e.severity == kew::Severity::Loss || e.t_los_s <= 0) return text + "  inside now";
+  return text + fmt::format("  entry in {:.0f} s", e.t_los_s);
+}
+
 void print_alert(const kew::AlertEvent& e, const char* state) {
-  std::string line = fmt::format("{} {:<6} {:<7} {} x {}", kew::protocol::utc_time_of_day(e.t), state, kew::to_string(e.severity), party(e.a),
-                                 party(e.b));
-  if (e.state != kew::AlertState::End) {
+  std::string line = fmt::format("{} {:<6} {:<7} ", kew::protocol::utc_time_of_day(e.t), state, kew::to_string(e.severity));
+  if (e.kind == kew::AlertKind::Apw) line += area_warning(e);
+  else line += fmt::format("{} x {}", party(e.a), party(e.b));
+  if (e.kind == kew::AlertKind::Stca && e.state != kew::AlertState::End) {
     line += fmt::format("  t_los {:>3.0f} s  cpa {:.1f} NM {:.0f} ft in {:.0f} s", e.t_los_s, e.cpa_h_m / kMetresPerNauticalMile,
                         e.cpa_v_ft, e.t_cpa_s);
     line += fmt::format("  by {}", kew::to_string(e.hypothesis));

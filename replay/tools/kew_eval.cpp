@@ -26,15 +26,20 @@
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
 #include "kew/protocol/version.hpp"
+#include "kew/replay/area_evaluation.hpp"
+#include "kew/replay/area_truth.hpp"
 #include "kew/replay/evaluation.hpp"
 #include "kew/replay/explanation.hpp"
 #include "kew/replay/recording_reader.hpp"
 #include "kew/replay/state_based.hpp"
 #include "kew/replay/truth.hpp"
+#include "kew_eval_apw.hpp"
+#include "kew_eval_format.hpp"
 #include "tool_config.hpp"
 
 namespace {
 
+using namespace kew::replay::tools;  // formatting (kew_eval_format.hpp) and the APW output
 using kew::replay::AlertSpan;
 using kew::replay::Evaluation;
 using kew::replay::EvaluationFigures;
@@ -67,8 +72,9 @@ struct Column {
   kew::replay::ScoringParameters parameters;
   std::optional<std::uint64_t> records;            // records given to the pipeline
   std::optional<std::uint64_t> pipeline_rejected;  // of those, refused by the pipeline
-  std::vector<AlertSpan> alerts;
+  std::vector<AlertSpan> alerts;  // the pair alerts
   Evaluation evaluation;
+  AreaRun area;  // the area proximity warnings: their alerts, truth and scores
   std::vector<kew::replay::LossExplanation> explanations;  // --explain, configuration runs
 };
 
@@ -108,7 +114,8 @@ void run_pipeline(const kew::config::SharedConfig& config, const std::vector<kew
   pipeline.end_of_input();
   column.records = pipeline.statistics().records;
   column.pipeline_rejected = pipeline.rejections().total();
-  column.alerts = collector.alerts();
+  column.alerts = kew::replay::alerts_of_kind(collector.alerts(), kew::AlertKind::Stca);
+  column.area.alerts = kew::replay::alerts_of_kind(collector.alerts(), kew::AlertKind::Apw);
 }
 
 /// kew with every eligibility rule of design §4.5 off (--baseline raw): the one-address
@@ -155,68 +162,9 @@ bool read_alert_log(const std::string& path, Column& column, std::string& error)
     if (event.state == kew::AlertState::New && event.opened_t == 0.0) event.opened_t = event.t;
     collector.add(event);
   }
-  column.alerts = collector.alerts();
+  column.alerts = kew::replay::alerts_of_kind(collector.alerts(), kew::AlertKind::Stca);
+  column.area.alerts = kew::replay::alerts_of_kind(collector.alerts(), kew::AlertKind::Apw);
   return true;
-}
-
-// --- formatting ---------------------------------------------------------------------
-
-/// Fixed decimals, never "-0".
-std::string fixed(double value, int decimals) {
-  std::string s = fmt::format("{:.{}f}", value, decimals);
-  if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
-  return s;
-}
-
-/// UTC ISO-8601 of a data time (UTC s), with milliseconds when `millis`.
-std::string utc(double t, bool millis) {
-  if (!std::isfinite(t)) return "null";
-  double whole = std::floor(t);
-  long ms = millis ? std::lround((t - whole) * 1000.0) : 0;
-  if (ms == 1000) {
-    whole += 1.0;
-    ms = 0;
-  }
-  using namespace std::chrono;
-  const sys_seconds s{seconds{static_cast<long long>(whole)}};
-  const sys_days day = floor<days>(s);
-  const year_month_day ymd{day};
-  const hh_mm_ss<seconds> hms{s - day};
-  std::string out = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}", static_cast<int>(ymd.year()),
-                                static_cast<unsigned>(ymd.month()), static_cast<unsigned>(ymd.day()),
-                                hms.hours().count(), hms.minutes().count(), hms.seconds().count());
-  if (millis) out += fmt::format(".{:03}", ms);
-  return out + "Z";
-}
-
-std::string party(const std::string& source, const std::string& id, const std::string& callsign) {
-  std::string out = source.empty() ? id : source + ":" + id;
-  if (!callsign.empty()) out += " (" + callsign + ")";
-  return out;
-}
-
-std::string track_party(const Truth& truth, kew::replay::TruthTrackId t) {
-  const kew::replay::TruthTrack& track = truth.track(t);
-  return party(track.source, track.id, track.callsign);
-}
-
-std::string class_name(const kew::replay::ScoredAlert& s) {
-  std::string out(kew::replay::kAlertClassNames.name(s.cls));
-  if (s.reason != kew::replay::IneligibleReason::None)
-    out += "/" + std::string(kew::replay::kIneligibleReasonNames.name(s.reason));
-  return out;
-}
-
-std::string json_string(std::string_view text) {
-  std::string out;
-  kew::protocol::append_json_string(out, text);
-  return out;
-}
-
-template <class T>
-std::string number_or_na(const std::optional<T>& value, int decimals, bool json) {
-  if (!value) return json ? "\"n/a\"" : "n/a";
-  return fixed(*value, decimals);
 }
 
 // --- the table ----------------------------------------------------------------------
@@ -337,6 +285,7 @@ void print_list(const Truth& truth, const std::vector<Column>& columns) {
       if (s.alert) out += fmt::format(" warning {} s alert {}", fixed(*s.warning_s, 3), c.alerts[*s.alert].id);
       out += '\n';
     }
+    out += area_list(truth, c.name, c.area);
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
 }
@@ -387,43 +336,6 @@ void print_explanations(const Truth& truth, const std::vector<Column>& columns, 
 }
 
 // --- JSON ---------------------------------------------------------------------------
-
-/// Appends one JSON object member by member, in call order (so the bytes are fixed).
-class JsonObject {
- public:
-  explicit JsonObject(std::string& out) : out_(out) { out_ += '{'; }
-  /// `json` must already be a JSON value.
-  JsonObject& raw(std::string_view key, std::string_view json) {
-    if (!first_) out_ += ',';
-    first_ = false;
-    out_ += '"';
-    out_ += key;
-    out_ += "\":";
-    out_ += json;
-    return *this;
-  }
-  JsonObject& text(std::string_view key, std::string_view value) { return raw(key, json_string(value)); }
-  JsonObject& count(std::string_view key, std::uint64_t value) { return raw(key, std::to_string(value)); }
-  JsonObject& number(std::string_view key, double value, int decimals) { return raw(key, fixed(value, decimals)); }
-  /// A number, or the string "n/a" when empty.
-  JsonObject& number_or_na(std::string_view key, const std::optional<double>& value, int decimals) {
-    return raw(key, ::number_or_na(value, decimals, true));
-  }
-  JsonObject& count_or_null(std::string_view key, const std::optional<std::uint64_t>& value) {
-    return raw(key, value ? std::to_string(*value) : "null");
-  }
-  void close() { out_ += '}'; }
-
- private:
-  std::string& out_;
-  bool first_ = true;
-};
-
-std::string json_party(const std::string& source, const std::string& id, const std::string& callsign) {
-  std::string out;
-  JsonObject(out).text("src", source).text("id", id).text("cs", callsign).close();
-  return out;
-}
 
 std::string json_alert(const AlertSpan& a, const kew::replay::ScoredAlert& s) {
   std::string out;
@@ -557,6 +469,7 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
       losses += (k ? "," : "") + json_loss(truth, c, events[k], c.evaluation.losses[k]);
     o.raw("loss_list", losses + "]");
   }
+  if (c.area.truth) o.raw("apw", area_json(truth, c.area, list));
   o.close();
   return out;
 }
@@ -747,6 +660,19 @@ int main(int argc, char** argv) {
     }
     c.evaluation = kew::replay::evaluate(truth, c.alerts, c.parameters);
   }
+  // Area proximity warnings, scored against the truth of the volumes of the column's
+  // configuration (a log's and the raw baseline's: the first), on the first's records.
+  std::vector<std::shared_ptr<const kew::replay::AreaTruth>> area_truths(configs.size());
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    Column& c = columns[i];
+    if (c.baseline == "statebased") continue;
+    const std::size_t k = !c.from_log && c.baseline.empty() ? i : 0;
+    const std::vector<kew::volume::WatchedVolume>& volumes = configs[k].pipeline.volumes;
+    if (volumes.empty() && c.area.alerts.empty()) continue;
+    if (!area_truths[k]) area_truths[k] = std::make_shared<const kew::replay::AreaTruth>(truth, records, volumes);
+    c.area.truth = area_truths[k];
+    c.area.evaluation = kew::replay::evaluate_areas(truth, *c.area.truth, c.area.alerts, c.parameters.confirm);
+  }
   std::fprintf(stderr,
                "kew-eval: %zu records decoded (%llu rejected by the decoders), %zu tracks, %.2f flight hours, "
                "%zu loss events; truth in %.2f s\n",
@@ -759,6 +685,10 @@ int main(int argc, char** argv) {
     if (options.list) print_list(truth, columns);
     if (options.explain) print_explanations(truth, columns, options.late_s);
     print_table(options, truth, columns);
+    std::vector<std::pair<std::string, const AreaRun*>> area_columns;
+    for (const Column& c : columns) area_columns.emplace_back(c.name, &c.area);
+    const std::string areas = area_table(area_columns);
+    std::fwrite(areas.data(), 1, areas.size(), stdout);
   }
   std::fflush(stdout);
   return 0;

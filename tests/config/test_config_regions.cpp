@@ -93,7 +93,7 @@ const ErrorCase kTomlErrors[] = {
      "t.toml:5: [region 1] polygon: entry 3 must be [lat, lon]: latitude in [-90, 90] then longitude in [-180, 180]"},
     {"[[region]]\nname = \"A\"\npolygon = [[41, 2], [41, 3, 5], [42, 3]]\n", "polygon: entry 2 must be [lat, lon]"},
     {"[[region]]\nname = \"A\"\npolygon = [41, 2]\n", "polygon: entry 1 must be [lat, lon]"},
-    {"[[region]]\nname = \"A\"\npolygon = \"41 2\"\n", "polygon must be an array of positions [[lat, lon], ...]"},
+    {"[[region]]\nname = \"A\"\npolygon = \"41 2\"\n", "polygon: position 1: latitude \"41\" does not end in N or S"},
     {"[[region]]\nname = \"A\"\npolygon = []\n", "t.toml:3: [region 1] polygon has no vertices"},
     {"[[region]]\nname = \"A\"\npolygon = [[41, 2], [42, 2]]\n", "t.toml:1: [region 1] polygon has 2 vertices, fewer than 3"},
     {"[[region]]\nname = \"A\"\ncenter = [2.1]\nradius_nm = 3\n", "t.toml:3: [region 1] center must be [lat, lon]"},

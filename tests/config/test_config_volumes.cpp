@@ -86,12 +86,45 @@ squawks = ["7000"]
   EXPECT_EQ(bubble.traffic.squawks, std::vector<std::uint16_t>{07000});
 }
 
+TEST(VolumeConfig, APolygonPastedFromAnAipReadsAsItsDegrees) {
+  const Read aip = read(R"([[volume]]
+name = "ED-R 138"
+kind = "restricted"
+polygon = "490300N 0113000E - 490300N 0115400E - 485100N 0115400E - 485100N 0113000E - 490300N 0113000E"
+floor_ft = 0
+ceiling_ft = 10000
+)");
+  const Read degrees = read(R"([[volume]]
+name = "ED-R 138"
+kind = "restricted"
+polygon = [[49.05, 11.50], [49.05, 11.90], [48.85, 11.90], [48.85, 11.50]]
+floor_ft = 0
+ceiling_ft = 10000
+)");
+  ASSERT_EQ(aip.volumes.size(), 1u);
+  const auto& a = aip.volumes[0].area->rings()[0];
+  const auto& d = degrees.volumes[0].area->rings()[0];
+  ASSERT_EQ(a.size(), d.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i].lat_deg, d[i].lat_deg, 1e-12);
+    EXPECT_NEAR(a[i].lon_deg, d[i].lon_deg, 1e-12);
+  }
+  expect_error(R"([[volume]]
+name = "x"
+polygon = "490300N 0113000E - 490300N 0115400E - along the border"
+floor_ft = 0
+ceiling_ft = 1000
+)",
+               "t.toml:3: [volume 1] polygon: position 3: latitude \"along\" does not end in N or S");
+}
+
 TEST(VolumeConfig, RefusesMistakesAtTheirLine) {
   const std::string box = "polygon = [[1, 1], [1, 2], [2, 2], [2, 1]]\nfloor_ft = 0\nceiling_ft = 1000\n";
   expect_error("[[volume]]\n" + box, "a volume needs a name");
   expect_error("[[volume]]\nname = \"a\"\nfloor_ft = 0\nceiling_ft = 1\n", "a volume is one of polygon");
   expect_error("[[volume]]\nname = \"a\"\n" + box + "circle = { lat = 1, lon = 1, radius_nm = 1 }\n", "one of polygon");
-  expect_error("[[volume]]\nname = \"a\"\n" + box + "[[volume]]\nname = \"a\"\n" + box, "another volume's");
+  expect_error("[[volume]]\nname = \"a\"\n" + box + "[[volume]]\nname = \"a\"\n" + box,
+               "t.toml:7: [volume 2] name \"a\" is already the name of [volume 1]");
   expect_error("[[volume]]\nname = \"a\"\nkind = \"military\"\n" + box, "expected one of restricted");
   expect_error("[[volume]]\nname = \"a\"\npolygon = [[1, 1], [2, 2], [1, 2], [2, 1]]\nfloor_ft = 0\nceiling_ft = 1\n",
                "self_intersecting");
@@ -109,6 +142,16 @@ TEST(VolumeConfig, RefusesMistakesAtTheirLine) {
   expect_error("[[volume]]\nname = \"a\"\n" + box + "active = [\"weekdays 0600-1800\"]\n", "is not DAYS HHMM-HHMM");
   expect_error("[[volume]]\nname = \"a\"\n" + box + "warning_s = 200\n", "beyond lookahead_s");
   expect_error("[[volume]]\nname = \"a\"\n" + box + "squawks = [\"7778\"]\n", "squawks");
+  // A misspelt key is named before what its absence implies.
+  expect_error("[[volume]]\nname = \"a\"\nfollow = \"abc\"\nradius = 1\nfloor_ft = 0\nceiling_ft = 1\n",
+               "t.toml:4: [volume 1] unknown key \"radius\"");
+  expect_error("[[volume]]\nname = \"a\"\npolygon = [[1, 1], [1, 2], [2, 2], [2, 1]]\nfloor = 0\nceiling_ft = 1\n",
+               "t.toml:4: [volume 1] unknown key \"floor\"");
+  expect_error("[[volume]]\nname = \"a\"\npolygon = [[1, 1], [1, 2], [1, 1]]\nfloor_ft = 0\nceiling_ft = 1\n",
+               "t.toml:3: [volume 1] the volume is refused: too_few_vertices");
+  expect_error("[volumes]\ngeojson = 3\n", "t.toml:2: [volumes] geojson must be a string");
+  expect_error("[volumes]\nfile = \"v.geojson\"\n", "t.toml:2: [volumes] unknown key \"file\"");
+  expect_error("[volumes]\ngeojson = \"kew-absent-volumes.geojson\"\n", "kew-absent-volumes.geojson: cannot open");
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ Usage:
     write-register ADDRESS VALUE          (kew refuses every register write)
     read-map [--entries N]                the whole map decoded: {"ok": true, "map": {...}};
                                           reads up to N table rows (fewer when the
-                                          server's table is shorter)
+                                          server's table is shorter), each with its
+                                          "kind" (0 STCA, 1 APW) from registers 9-12
 Addresses are PDU addresses (0-based), as in the documentation's tables.
 """
 
@@ -38,6 +39,7 @@ STATUS_REGISTERS = ["map_version", "active_alerts", "highest_severity", "live_tr
 TABLE_COLUMNS = ["alert_number", "severity", "track_a", "track_b", "t_los_s",
                  "cpa_h_10m", "cpa_v_10ft", "state"]
 TABLE_START = 16
+ROW_KINDS = 9  # registers 9-12: bit r % 16 of register 9 + r // 16 is row r's kind (1 APW)
 ILLEGAL_DATA_ADDRESS = 2
 
 
@@ -116,7 +118,9 @@ def read_map(client, entries):
             raise
         if values[-1] == 0:  # state 0: an empty row, and every later row is empty too
             break
-        decoded["table"].append(dict(zip(TABLE_COLUMNS, values)))
+        entry = dict(zip(TABLE_COLUMNS, values))
+        entry["kind"] = (status[ROW_KINDS + row // 16] >> (row % 16)) & 1
+        decoded["table"].append(entry)
     return decoded
 
 

@@ -23,9 +23,11 @@ ca_file = "/etc/kew/ca.pem"
 title = "kew EDDM"
 min_severity = "warning"
 states = ["new", "ended"]
+kinds = ["apw"]
 regions = ["EDDM-TMA"]
 callsigns = ["DLH*", "N9?7LP"]
 addresses = ["3c6444"]
+volumes = ["EDR-1*", "watch-*"]
 timeout_s = 4
 backoff_min_s = 0.5
 backoff_max_s = 120
@@ -48,6 +50,8 @@ failing_after_s = 30
   EXPECT_EQ(n.regions, std::vector<std::string>{"EDDM-TMA"});
   EXPECT_EQ(n.callsigns, (std::vector<std::string>{"DLH*", "N9?7LP"}));
   EXPECT_EQ(n.addresses, std::vector<std::string>{"3c6444"});
+  EXPECT_EQ(n.kinds, std::vector<AlertKind>{AlertKind::Apw});
+  EXPECT_EQ(n.volumes, (std::vector<std::string>{"EDR-1*", "watch-*"}));
   EXPECT_EQ(n.timeout_s, 4.0);
   EXPECT_EQ(n.backoff_min_s, 0.5);
   EXPECT_EQ(n.backoff_max_s, 120.0);
@@ -74,6 +78,8 @@ template = "slack"
   EXPECT_EQ(hook.states.size(), 4u);
   EXPECT_EQ(hook.max_per_minute, 0.0);
   EXPECT_EQ(hook.coalesce_s, 0.0);
+  EXPECT_EQ(hook.kinds, (std::vector{AlertKind::Stca, AlertKind::Apw}));
+  EXPECT_TRUE(hook.volumes.empty());
   const NotifyConfig& chat = c.notify[1];
   EXPECT_EQ(chat.url_file, "/etc/kew/slack.url");
   EXPECT_EQ(chat.states, (std::vector{NotifyState::New, NotifyState::Escalated, NotifyState::Ended}));
@@ -95,6 +101,9 @@ TEST(NotifyConfig, RefusesMistakesAtTheirLine) {
   expect_error(head + "url = \"http://h/x\"\nstates = [\"opened\"]\n", "one of new, escalated");
   expect_error(head + "url = \"http://h/x\"\nstates = []\n", "would never send");
   expect_error(head + "url = \"http://h/x\"\ncallsigns = [\"DLH 1\"]\n", "a word without blanks");
+  expect_error(head + "url = \"http://h/x\"\nkinds = [\"tcas\"]\n", "one of stca, apw");
+  expect_error(head + "url = \"http://h/x\"\nkinds = []\n", "no kind of alert");
+  expect_error(head + "url = \"http://h/x\"\nvolumes = [\"\"]\n", "volumes: each entry");
   expect_error(head + "url = \"http://h/x\"\ncoalesce_s = 10\n", "json delivers every event");
   expect_error(head + "url = \"http://h/x\"\nbackoff_min_s = 10\nbackoff_max_s = 5\n", "below backoff_min_s");
   expect_error(head + "url = \"http://h/x\"\nretries = 3\n", "retries");

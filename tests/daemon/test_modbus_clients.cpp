@@ -134,8 +134,8 @@ TEST_F(WithPymodbus, ReadMapDecodesTheTable) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find(R"("uptime_s": 123456)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(R"("active_alerts": 3)"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(R"({"alert_number": 12, "cpa_h_10m": 120, "cpa_v_10ft": 30, "severity": 3, )"
-                          R"("state": 1, "t_los_s": 0, "track_a": 103, "track_b": 104})"),
+  EXPECT_NE(r.output.find(R"({"alert_number": 12, "cpa_h_10m": 120, "cpa_v_10ft": 30, "kind": 0, )"
+                          R"("severity": 3, "state": 1, "t_los_s": 0, "track_a": 103, "track_b": 104})"),
             std::string::npos)
       << r.output;
   std::size_t rows = 0;
@@ -143,6 +143,40 @@ TEST_F(WithPymodbus, ReadMapDecodesTheTable) {
     ++rows;
   }
   EXPECT_EQ(rows, 3u);  // the empty fourth row is not listed
+}
+
+// An area proximity warning in the fourth row: its kind bit (register 9, bit 3) reaches a
+// real client, and its track B and CPA columns read 0.
+TEST_F(WithPymodbus, ReadMapSaysEachRowsKind) {
+  RunningServer s;
+  protocol::AlarmSnapshot snapshot = known_snapshot();
+  AlertEvent area;
+  area.id = "alert-14";
+  area.number = 14;
+  area.kind = AlertKind::Apw;
+  area.severity = Severity::Caution;
+  area.state = AlertState::Update;
+  area.t_los_s = 120.0;  // after the caution of 95.4 s: the fourth row
+  area.a.track_number = 106;
+  area.b.track_number = 107;  // not an APW alert's: the map reads 0
+  area.cpa_h_m = 500.0;
+  area.volume = "EDR205";
+  area.volume_kind = "restricted";
+  snapshot.active.push_back(area);
+  s.server->publish(snapshot);
+
+  const CommandResult kinds = client(s, "read-input-registers 9 4");
+  ASSERT_EQ(kinds.exit_code, 0) << kinds.output;
+  EXPECT_EQ(json_values(kinds.output), (std::vector<long>{1 << 3, 0, 0, 0}));
+  const CommandResult r = client(s, "read-map --entries 4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(R"({"alert_number": 14, "cpa_h_10m": 0, "cpa_v_10ft": 0, "kind": 1, )"
+                          R"("severity": 1, "state": 2, "t_los_s": 120, "track_a": 106, "track_b": 0})"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(R"("alert_number": 13, "cpa_h_10m": 505, "cpa_v_10ft": 0, "kind": 0,)"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST_F(WithPymodbus, HeartbeatIncrements) {

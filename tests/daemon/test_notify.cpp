@@ -43,6 +43,20 @@ AlertEvent event(std::uint64_t seq, std::string id, AlertState state, Severity s
   return e;
 }
 
+/// An area proximity warning (design §4.11): DLH4AB and volume EDR-114, b empty, no
+/// pair figures, no region.
+AlertEvent area_event(std::uint64_t seq, std::string id, AlertState state, Severity severity) {
+  AlertEvent e = event(seq, std::move(id), state, severity);
+  e.kind = AlertKind::Apw;
+  e.b = {};
+  e.t_los_s = severity == Severity::Loss ? 0.0 : 40.0;
+  e.t_cpa_s = e.cpa_h_m = e.cpa_v_ft = e.sep_h_m = e.sep_v_ft = 0.0;
+  e.region.clear();
+  e.volume = "EDR-114";
+  e.volume_kind = "restricted";
+  return e;
+}
+
 std::string line_of(const AlertEvent& e) {
   std::string out;
   protocol::append_alert_json(out, e, e.seq);
@@ -122,6 +136,45 @@ TEST(NotifyFilter, StatesRegionsCallsignsAndAddresses) {
   parties.callsigns.clear();
   parties.addresses = {"A1B2C3"};  // party b, which has no callsign
   EXPECT_EQ(NotifyFilter(parties).classify(event(1, "x", AlertState::New, Severity::Loss)), NotifyState::New);
+}
+
+TEST(NotifyFilter, KindsAndVolumes) {
+  const AlertEvent conflict = event(1, "x", AlertState::New, Severity::Warning);
+  const AlertEvent area = area_event(1, "v", AlertState::New, Severity::Warning);
+  NotifyConfig c = config(NotifyTemplate::Json);
+  EXPECT_EQ(NotifyFilter(c).classify(area), NotifyState::New) << "both kinds by default";
+  c.kinds = {AlertKind::Stca};
+  EXPECT_EQ(NotifyFilter(c).classify(area), std::nullopt);
+  EXPECT_EQ(NotifyFilter(c).classify(conflict), NotifyState::New);
+  c.kinds = {AlertKind::Apw};
+  EXPECT_EQ(NotifyFilter(c).classify(conflict), std::nullopt);
+  EXPECT_EQ(NotifyFilter(c).classify(area), NotifyState::New);
+
+  // A person's own watch circle: its alerts and nothing else.
+  NotifyConfig mine = config(NotifyTemplate::Ntfy);
+  mine.volumes = {"edr-1*"};
+  EXPECT_EQ(NotifyFilter(mine).classify(area), NotifyState::New);
+  EXPECT_EQ(NotifyFilter(mine).classify(conflict), std::nullopt);
+  AlertEvent elsewhere = area;
+  elsewhere.volume = "EDP-7";
+  EXPECT_EQ(NotifyFilter(mine).classify(elsewhere), std::nullopt);
+  // Volumes, callsigns and addresses admit alike: any one match passes.
+  mine.callsigns = {"DLH*"};
+  EXPECT_EQ(NotifyFilter(mine).classify(elsewhere), NotifyState::New);
+  EXPECT_EQ(NotifyFilter(mine).classify(conflict), NotifyState::New);
+
+  // Regions judge pairs; an area warning has none and is not held back by them.
+  NotifyConfig regional = config(NotifyTemplate::Json);
+  regional.regions = {"EDDF"};
+  EXPECT_EQ(NotifyFilter(regional).classify(conflict), std::nullopt);
+  EXPECT_EQ(NotifyFilter(regional).classify(area), NotifyState::New);
+
+  // The empty b of an area warning is nobody: a pattern matching any address matches a.
+  NotifyConfig anyone = config(NotifyTemplate::Json);
+  anyone.addresses = {"*"};
+  AlertEvent unnamed = area;
+  unnamed.a.id = "";
+  EXPECT_EQ(NotifyFilter(anyone).classify(unnamed), std::nullopt);
 }
 
 TEST(DeliveryProgress, RoundTripsAndMerges) {
@@ -337,6 +390,76 @@ TEST(MessageTemplate, ChatBodiesAreJsonWithTheText) {
       EXPECT_EQ(priority, 2);
       EXPECT_NE(std::find(m.headers.begin(), m.headers.end(), "X-Gotify-Key: gk"), m.headers.end());
     }
+  }
+}
+
+OutboxEntry entry_of(std::initializer_list<std::pair<AlertEvent, NotifyState>> events) {
+  OutboxEntry entry;
+  for (const auto& [e, state] : events) {
+    entry.seqs.push_back(e.seq);
+    entry.states.push_back(state);
+    entry.lines.push_back(line_of(e));
+    entry.latest = e;
+    entry.highest = std::max(entry.highest, e.severity);
+  }
+  return entry;
+}
+
+TEST(MessageTemplate, AreaWarningsInWords) {
+  const OutboxEntry ahead = entry_of({{area_event(3, "v", AlertState::New, Severity::Warning), NotifyState::New}});
+  EXPECT_EQ(message_title("kew", ahead), "kew: WARNING DLH4AB → EDR-114 (restricted)");
+  const std::string text = message_text(ahead);
+  EXPECT_EQ(text,
+            "Enters restricted area EDR-114 in 40 s.\n"
+            "DLH4AB (3c6444) 5000 ft, 250 kt, track 090.\n"
+            "Alert 7 opened 22:13:20Z.");
+
+  const OutboxEntry inside = entry_of({{area_event(3, "v", AlertState::New, Severity::Warning), NotifyState::New},
+                                       {area_event(4, "v", AlertState::Update, Severity::Loss), NotifyState::Escalated}});
+  EXPECT_EQ(message_title("kew", inside), "kew: LOSS DLH4AB → EDR-114 (restricted)");
+  EXPECT_EQ(message_text(inside).rfind("Inside restricted area EDR-114 now.\n", 0), 0u) << message_text(inside);
+
+  const OutboxEntry ended = entry_of({{area_event(5, "v", AlertState::End, Severity::Loss), NotifyState::Ended}});
+  EXPECT_EQ(message_title("kew", ended), "kew: ended DLH4AB → EDR-114 (restricted)");
+  EXPECT_EQ(message_text(ended).rfind("Area warning ended (cleared) after 1 min 40 s; highest severity loss.\n", 0), 0u)
+      << message_text(ended);
+
+  for (const OutboxEntry* entry : {&ahead, &inside, &ended}) {
+    const std::string all = message_title("kew", *entry) + "\n" + message_text(*entry);
+    for (const char* absent : {" / ", "Closest", "apart", "region", "\n (", "\n 0 ft"})
+      EXPECT_EQ(all.find(absent), std::string::npos) << absent << " in\n" << all;
+  }
+}
+
+TEST(MessageTemplate, EveryTemplateCarriesAnAreaWarning) {
+  const AlertEvent e = area_event(3, "v", AlertState::New, Severity::Warning);
+  const OutboxEntry entry = entry_of({{e, NotifyState::New}});
+  const NotifyMessage json = render_message(config(NotifyTemplate::Json), entry, "");
+  EXPECT_EQ(json.body, line_of(e));
+  EXPECT_NE(json.body.find("\"kind\":\"apw\""), std::string::npos) << json.body;
+
+  const NotifyMessage ntfy = render_message(config(NotifyTemplate::Ntfy), entry, "");
+  EXPECT_EQ(ntfy.body, message_text(entry));
+  EXPECT_NE(std::find(ntfy.headers.begin(), ntfy.headers.end(), "Title: kew: WARNING DLH4AB → EDR-114 (restricted)"),
+            ntfy.headers.end());
+  struct Case {
+    NotifyTemplate format;
+    const char* member;
+  };
+  for (const Case c : {Case{NotifyTemplate::Gotify, "message"}, Case{NotifyTemplate::Slack, "text"},
+                       Case{NotifyTemplate::Mattermost, "text"}, Case{NotifyTemplate::Discord, "content"}}) {
+    const NotifyMessage m = render_message(config(c.format), entry, "");
+    simdjson::dom::parser parser;
+    simdjson::dom::element doc;
+    ASSERT_EQ(parser.parse(m.body).get(doc), simdjson::SUCCESS) << m.body;
+    std::string_view text;
+    ASSERT_EQ(doc[c.member].get(text), simdjson::SUCCESS) << m.body;
+    EXPECT_NE(text.find("Enters restricted area EDR-114 in 40 s."), std::string_view::npos) << text;
+    std::string_view title = text;
+    if (c.format == NotifyTemplate::Gotify) {
+      ASSERT_EQ(doc["title"].get(title), simdjson::SUCCESS) << m.body;
+    }
+    EXPECT_NE(title.find("WARNING DLH4AB → EDR-114 (restricted)"), std::string_view::npos) << m.body;
   }
 }
 

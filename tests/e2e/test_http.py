@@ -287,7 +287,8 @@ class Routes(HttpCase):
         self.assertEqual(m['kew_records_total{input="feed"}'], stats["records"])
         self.assertGreater(m["kew_record_to_alert_latency_seconds_count"], 0)
         self.assertEqual(m['kew_alert_events_total{state="new"}'], stats["alerts_new"])
-        active = sum(m[f'kew_alerts_active{{severity="{s}"}}'] for s in ("caution", "warning", "loss"))
+        active = sum(m[f'kew_alerts_active{{severity="{s}",kind="{k}"}}']
+                     for s in ("caution", "warning", "loss") for k in ("stca", "apw"))
         self.assertEqual(active, len(alerts["alerts"]))
         self.assertGreater(m['kew_input_last_record_timestamp_seconds{input="feed"}'], time.time() - 120)
         self.assertTrue(any(k.startswith("kew_build_info{") for k in m))

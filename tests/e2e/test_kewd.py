@@ -580,6 +580,7 @@ class ModbusMap(E2eCase):
             self.assertLessEqual(abs(row["cpa_h_10m"] - alert["cpa_h_m"] / 10), 0.5)
             self.assertLessEqual(abs(row["cpa_v_10ft"] - alert["cpa_v_ft"] / 10), 0.5)
             self.assertEqual(row["state"], 1 if alert["state"] == "new" else 2)
+            self.assertEqual(row["kind"], 1 if alert.get("kind") == "apw" else 0)
 
         # A second, different client reads the same discrete inputs.
         polled = subprocess.run(["mbpoll", "-m", "tcp", "-a", "1", "-t", "1", "-r", "1", "-c", "6", "-1",

@@ -1,6 +1,6 @@
 """Command-line behaviour of the tools: `--version` of every tool with the
 source revision, the VERSION and ALIVE objects carrying it, and kew-decode's input,
-output and refusal reporting. That kew-decode's NDJSON replays to the same alerts as
+output and refusal reporting, kew-watch's lines for a conflict and an area warning. That kew-decode's NDJSON replays to the same alerts as
 every bundled and shared recording is checked by the golden test (run_golden.py).
 
 Run by ctest with the e2e tests; by hand as test_kewd.py says (KEW_DECODE, KEW_EVAL too).
@@ -13,6 +13,7 @@ import re
 import socket
 import subprocess
 import tempfile
+import threading
 import unittest
 
 from kewd_harness import KEW_GEN, KEW_REPLAY, KEW_WATCH, KEWD, Kewd
@@ -122,6 +123,54 @@ class KewDecodeTest(unittest.TestCase):
             result = subprocess.run([KEW_DECODE, JADE], stdout=full, stderr=subprocess.PIPE)
         self.assertEqual(result.returncode, 1)
         self.assertIn(b"cannot write standard output", result.stderr)
+
+
+def serve_stream(lines):
+    """A one-connection alert stream on loopback: after the client's first line (its
+    ?WATCH), `lines`, then closed. Returns its port."""
+    listener = socket.create_server(("127.0.0.1", 0))
+    listener.settimeout(10)
+
+    def serve():
+        with listener:
+            conn, _ = listener.accept()
+            with conn, conn.makefile("rb") as reader:
+                reader.readline()
+                conn.sendall("".join(json.dumps(line) + "\n" for line in lines).encode())
+
+    threading.Thread(target=serve, daemon=True).start()
+    return listener.getsockname()[1]
+
+
+class KewWatchTest(unittest.TestCase):
+    def test_an_area_warning_names_the_volume_and_when_the_aircraft_enters_it(self):
+        def party(track_id, callsign, alt_ft):
+            return {"id": track_id, "src": "adsb", "cs": callsign, "tn": 1, "lat": 48.1, "lon": 11.5,
+                    "alt_ft": alt_ft, "gs_kt": 250.0, "trk_deg": 90.0, "vr_fpm": 0.0}
+
+        t = 1_700_000_001.0  # 22:13:21Z
+        conflict = {"class": "ALERT", "kind": "stca", "id": "c1", "number": 1, "seq": 1, "state": "new",
+                    "severity": "warning", "t": t, "t_open": t, "a": party("3c6444", "DLH4AB", 5000.0),
+                    "b": party("a1b2c3", "", 5300.0), "t_los_s": 45.0, "t_cpa_s": 60.0, "cpa_h_m": 740.8,
+                    "cpa_v_ft": 100.0, "sep_h_m": 5556.0, "sep_v_ft": 300.0, "hypothesis": "linear", "ack": False}
+        area = {"class": "ALERT", "kind": "apw", "id": "v1", "number": 2, "seq": 2, "state": "new",
+                "severity": "warning", "t": t, "t_open": t, "a": party("3c6444", "DLH4AB", 5000.0),
+                "volume": "EDR-114", "volume_kind": "restricted", "t_los_s": 40.0, "hypothesis": "linear",
+                "ack": False}
+        inside = dict(area, seq=3, state="update", severity="loss", t=t + 40, t_los_s=0.0)
+        ended = dict(area, seq=4, state="end", reason="cleared", severity="loss", t=t + 100, t_los_s=0.0)
+        port = serve_stream([conflict, area, inside, ended])
+        out = subprocess.run([KEW_WATCH, f"127.0.0.1:{port}"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             encoding="utf-8", timeout=20, check=False)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        lines = out.stdout.splitlines()
+        self.assertEqual(len(lines), 4, out.stdout)
+        self.assertRegex(lines[0], r" x a1b2c3 -        FL053  t_los  45 s  cpa 0\.4 NM 100 ft in 60 s  by linear  \[c1\]$")
+        self.assertEqual(lines[1:], [
+            "22:13:21Z NEW    warning 3c6444 DLH4AB   FL050 → EDR-114 (restricted)  entry in 40 s  [v1]",
+            "22:14:01Z UPDATE loss    3c6444 DLH4AB   FL050 → EDR-114 (restricted)  inside now  [v1]",
+            "22:15:01Z END    loss    3c6444 DLH4AB   FL050 → EDR-114 (restricted)  [v1]",
+        ])
 
 
 if __name__ == "__main__":

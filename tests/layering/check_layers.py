@@ -41,7 +41,7 @@ CORE = {
     "zone": {"geo", "geometry", "kinetic", "probe", "region", "util"},
     "volume": {"geometry", "util"},
     "pipeline": {"alert", "eligibility", "geo", "geometry", "kinetic", "probe", "region", "track", "util",
-                 "zone"},
+                 "volume", "zone"},
 }
 
 # Library folder -> (level, the kew/<x> header folders it owns, its CMake targets).

@@ -8,6 +8,7 @@ set(KEW_PROTOCOL_TESTS
   test_asterix_intent.cpp
   test_asterix_roundtrip.cpp
   test_asterix_stream.cpp
+  test_cat004_apw.cpp
   test_cat004_encoder.cpp
   test_cat004_tshark.cpp
   test_formats.cpp

@@ -37,7 +37,7 @@ AlertEvent update_event() {
 }
 
 constexpr const char* kUpdateLine =
-    R"({"class":"ALERT","id":"9f3c2a51d0e4b7c8","number":42,"seq":17,"state":"update",)"
+    R"({"class":"ALERT","kind":"stca","id":"9f3c2a51d0e4b7c8","number":42,"seq":17,"state":"update",)"
     R"("severity":"warning","t":1714400000.250,"t_open":1714399990.000,)"
     R"("a":{"id":"4CA123","src":"sbs","cs":"BAW123","lat":51.470000,"lon":-0.450000,)"
     R"("alt_ft":35000,"gs_kt":450.0,"trk_deg":270.0,"vr_fpm":0,"tn":12},)"
@@ -64,7 +64,7 @@ TEST(AlertJson, EndObjectCarriesItsReason) {
   append_alert_json(out, e, 18);
   EXPECT_EQ(out,
             "previous line\n"
-            R"({"class":"ALERT","id":"9f3c2a51d0e4b7c8","number":42,"seq":18,"state":"end",)"
+            R"({"class":"ALERT","kind":"stca","id":"9f3c2a51d0e4b7c8","number":42,"seq":18,"state":"end",)"
             R"("reason":"track_dropped","severity":"warning","t":1714400000.250,)"
             R"("t_open":1714399990.000,)"
             R"("a":{"id":"4CA123","src":"sbs","cs":"BAW123","lat":51.470000,"lon":-0.450000,)"
@@ -117,6 +117,38 @@ TEST(AlertStreamReader, AlertOfAnOlderServerWasFoundByTheLinearPredictionWithThe
   EXPECT_EQ(reader.alert().region, "");
 }
 
+TEST(AlertJson, AnAreaWarningNamesItsVolumeAndHasNoSecondAircraft) {
+  AlertEvent e = update_event();
+  e.kind = AlertKind::Apw;
+  e.b = AlertParty{};
+  e.volume = "ED-R 138";
+  e.volume_kind = "restricted";
+  e.region.clear();
+  std::string out;
+  append_alert_json(out, e, 17);
+  EXPECT_EQ(out,
+            R"({"class":"ALERT","kind":"apw","id":"9f3c2a51d0e4b7c8","number":42,"seq":17,"state":"update",)"
+            R"("severity":"warning","t":1714400000.250,"t_open":1714399990.000,)"
+            R"("a":{"id":"4CA123","src":"sbs","cs":"BAW123","lat":51.470000,"lon":-0.450000,)"
+            R"("alt_ft":35000,"gs_kt":450.0,"trk_deg":270.0,"vr_fpm":0,"tn":12},)"
+            R"("volume":"ED-R 138","volume_kind":"restricted","t_los_s":41.0,"hypothesis":"linear","ack":false})"
+            "\n");
+  AlertStreamReader reader;
+  ASSERT_TRUE(reader.read(out)) << reader.error();
+  EXPECT_EQ(reader.alert().kind, AlertKind::Apw);
+  EXPECT_EQ(reader.alert().volume, "ED-R 138");
+  EXPECT_TRUE(reader.alert().b.id.empty());
+  // An area warning without its volume is refused; a pair alert without a kind is read
+  // as a pair's (servers before "kind").
+  std::string broken = out;
+  broken.replace(broken.find(R"("volume":"ED-R 138",)"), 20, "");
+  EXPECT_FALSE(reader.read(broken));
+  std::string older = kUpdateLine;
+  older.replace(older.find(R"("kind":"stca",)"), 14, "");
+  ASSERT_TRUE(reader.read(older)) << reader.error();
+  EXPECT_EQ(reader.alert().kind, AlertKind::Stca);
+}
+
 TEST(AlertJson, AbsurdMagnitudesArePrintedShortAndReadBack) {
   AlertEvent e = update_event();
   e.a.vr_fpm = 5.555555555555556e41;  // 0 decimals: would be a 42-digit integer
@@ -165,7 +197,7 @@ TEST(AlertJson, VersionAliveErrorAndTrackObjectsAreByteExact) {
   std::string out;
   append_version_json(out, 0);
   EXPECT_EQ(out, R"({"class":"VERSION","seq":0,"release":")" + std::string(release()) + R"(","revision":")" +
-                     std::string(revision()) + R"(","proto":1})" "\n");
+                     std::string(revision()) + R"(","proto":2})" "\n");
 
   const std::string provenance = R"("release":")" + std::string(release()) + R"(","revision":")" +
                                  std::string(revision()) + R"("})" "\n";
@@ -529,6 +561,14 @@ AlertEvent random_event(std::mt19937& random) {
   e.hypothesis = hypotheses[random() % hypotheses.size()].value;
   e.region = random_text(random);
   e.acknowledged = (random() & 1) != 0;
+  if (random() % 4 == 0) {  // an area proximity warning: one aircraft, a volume, no pair figures
+    e.kind = AlertKind::Apw;
+    e.b = AlertParty{};
+    e.t_cpa_s = e.cpa_h_m = e.cpa_v_ft = e.sep_h_m = e.sep_v_ft = 0.0;
+    e.region.clear();
+    e.volume = random_text(random);
+    e.volume_kind = random_text(random);
+  }
   return e;
 }
 
@@ -563,6 +603,9 @@ TEST(AlertJsonRoundTrip, RandomEventsReadBackWithinThePrintedPrecision) {
     ASSERT_EQ(reader.object_class(), StreamObjectClass::Alert);
     const AlertEvent& read = reader.alert();
     SCOPED_TRACE(line);
+    EXPECT_EQ(read.kind, written.kind);
+    EXPECT_EQ(read.volume, written.volume);
+    EXPECT_EQ(read.volume_kind, written.volume_kind);
     EXPECT_EQ(read.id, written.id);
     EXPECT_EQ(read.number, written.number);
     EXPECT_EQ(read.seq, written.seq);

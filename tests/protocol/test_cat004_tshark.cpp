@@ -186,6 +186,91 @@ TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
   std::remove(pcap.c_str());
 }
 
+AlertEvent apw(AlertState state, Severity severity, std::uint16_t number) {
+  AlertEvent e;
+  e.id = "v1";
+  e.number = number;
+  e.kind = AlertKind::Apw;
+  e.state = state;
+  e.severity = severity;
+  e.t = kT + 4.0 * number;
+  e.opened_t = kT;
+  e.a.id = "4CA123";
+  e.a.callsign = "BAW123";
+  e.a.track_number = 3130;
+  e.t_los_s = severity == Severity::Loss ? 0.0 : 41.0;
+  e.volume = "EDR205A";
+  e.volume_kind = "restricted";
+  return e;
+}
+
+// An area proximity warning is message type 5 with the area's name in I004/100 AN (8
+// ICAO 6-bit characters, which Wireshark 4.0 decodes as such), aircraft 1 only; its end is
+// End Of Conflict (17) with track number 1 only.
+TEST(Cat004Tshark, DecodesAnAreaProximityWarningWithItsAreaName) {
+  KEW_REQUIRE_TSHARK("the CAT004 APW check");
+  Cat004Encoder encoder(Cat004Options{});
+  Cat004Alive alive{kT, false, false, false};
+  alive.apw = true;
+  ASSERT_TRUE(encoder.add_alive(alive));
+  std::vector<Datagram> datagrams = encoder.take_datagrams();
+  ASSERT_TRUE(encoder.add_alert(apw(AlertState::New, Severity::Warning, 9)));
+  AlertEvent inside = apw(AlertState::Update, Severity::Loss, 9);
+  inside.volume = "lkr1";  // sent in capitals: the ICAO set has no lower case
+  ASSERT_TRUE(encoder.add_alert(inside));
+  for (auto& d : encoder.take_datagrams()) datagrams.push_back(std::move(d));
+  ASSERT_TRUE(encoder.add_alert(apw(AlertState::End, Severity::Loss, 9)));
+  for (auto& d : encoder.take_datagrams()) datagrams.push_back(std::move(d));
+  ASSERT_EQ(datagrams.size(), 3u);
+
+  const std::string pcap = write_pcap(datagrams, "cat004_apw");
+  const auto frames = tshark::fields(
+      pcap, {"asterix.004_000_VALUE", "asterix.004_060_APW", "asterix.004_060_STCA",
+             "asterix.004_040_VALUE", "asterix.004_045_STAT", "asterix.004_030_VALUE",
+             "asterix.004_035_VALUE", "asterix.004_170_AI1_VALUE", "asterix.004_171_AI2_VALUE",
+             "asterix.004_100_AN_VALUE", "asterix.004_120_CC_TID", "asterix.004_120_CC_CP",
+             "asterix.004_120_CC_CS", "asterix.004_070_TC_VALUE", "asterix.004_070_TCA_VALUE",
+             "asterix.004_070_MHS_VALUE"});
+  ASSERT_EQ(frames.size(), 3u) << "tshark decoded no frames from " << pcap;
+
+  EXPECT_EQ(frames[0].at("asterix.004_060_APW"), std::vector<std::string>{"1"});
+  EXPECT_EQ(frames[0].at("asterix.004_060_STCA"), std::vector<std::string>{"1"});
+
+  const FieldValues& alerts = frames[1];
+  EXPECT_EQ(alerts.at("asterix.004_000_VALUE"), (std::vector<std::string>{"5", "5"}));
+  EXPECT_EQ(alerts.at("asterix.004_100_AN_VALUE"), (std::vector<std::string>{"EDR205A ", "LKR1    "}));
+  EXPECT_EQ(alerts.at("asterix.004_045_STAT"), (std::vector<std::string>{"2", "3"}));
+  EXPECT_EQ(integer(alerts.at("asterix.004_030_VALUE").at(1)), 3130);
+  EXPECT_EQ(alerts.at("asterix.004_170_AI1_VALUE"), (std::vector<std::string>{"BAW123 ", "BAW123 "}));
+  EXPECT_TRUE(alerts.at("asterix.004_035_VALUE").empty());
+  EXPECT_TRUE(alerts.at("asterix.004_171_AI2_VALUE").empty());
+  // CC case (5, 1): CPC 1 medium (warning), 2 high (loss); CS HIGH for both.
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_TID"), (std::vector<std::string>{"1", "1"}));
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_CP"), (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(alerts.at("asterix.004_120_CC_CS"), (std::vector<std::string>{"1", "1"}));
+  ASSERT_EQ(alerts.at("asterix.004_070_TC_VALUE").size(), 2u);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_TC_VALUE")[0]), 41.0);
+  EXPECT_DOUBLE_EQ(number(alerts.at("asterix.004_070_TC_VALUE")[1]), 0.0);
+  EXPECT_TRUE(alerts.at("asterix.004_070_TCA_VALUE").empty());
+  EXPECT_TRUE(alerts.at("asterix.004_070_MHS_VALUE").empty());
+
+  const FieldValues& ended = frames[2];
+  EXPECT_EQ(ended.at("asterix.004_000_VALUE"), std::vector<std::string>{"17"});
+  EXPECT_EQ(integer(ended.at("asterix.004_040_VALUE").at(0)), 9);
+  EXPECT_EQ(integer(ended.at("asterix.004_030_VALUE").at(0)), 3130);
+  EXPECT_TRUE(ended.at("asterix.004_035_VALUE").empty());
+  EXPECT_TRUE(ended.at("asterix.004_100_AN_VALUE").empty());
+
+  // The names a reader of Wireshark's tree sees.
+  const std::string tree = tshark::run("tshark -n -r '" + pcap + "' -V 2>/dev/null");
+  EXPECT_NE(tree.find("Message Type: Area Proximity Warning (APW) (5)"), std::string::npos) << tree;
+  EXPECT_NE(tree.find("Area Name: EDR205A"), std::string::npos) << tree;
+  EXPECT_NE(tree.find("Message Type: End Of Conflict (EOC) (17)"), std::string::npos) << tree;
+
+  EXPECT_EQ(tshark::problems(pcap), "") << "tshark reports malformed frames or expert info";
+  std::remove(pcap.c_str());
+}
+
 // ---------------------------------------------------------------------------------------
 // jASTERIX CAT004 vectors → kew's reader, and tshark
 

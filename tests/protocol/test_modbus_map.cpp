@@ -121,6 +121,66 @@ TEST(ModbusMap, EndedAlertsAreNotActive) {
   EXPECT_EQ(row(map, 0), std::vector<std::uint16_t>(8, 0));
 }
 
+AlertEvent apw(std::uint16_t number, Severity severity, double t_los_s) {
+  AlertEvent e = alert(number, severity, t_los_s);
+  e.kind = AlertKind::Apw;
+  e.volume = "EDR205";
+  e.volume_kind = "restricted";
+  return e;
+}
+
+// An APW row sits among the STCA rows by urgency, has its kind bit set (register 9, bit
+// r for row r) and reads 0 in track B and the CPA columns, even when the event holds
+// something there.
+TEST(ModbusMap, ApwRowsSayTheirKindAndHaveNoSecondAircraft) {
+  AlarmSnapshot s;
+  s.active = {alert(7, Severity::Warning, 42.4), apw(3, Severity::Loss, 0.0),
+              apw(5, Severity::Caution, 90.0)};
+  const RegisterMap map = build_register_map(s, 4, 0);
+  ASSERT_EQ(map.input_registers.size(), 16u + 4 * 8);  // the row is not widened
+  EXPECT_EQ(map.discrete_inputs, (std::vector<std::uint8_t>{1, 1, 1, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(map.input_registers[kRegActiveAlerts], 3);
+  EXPECT_EQ(map.input_registers[kRegHighestSeverity], 3);
+  EXPECT_EQ(row(map, 0), (std::vector<std::uint16_t>{3, 3, 31, 0, 0, 0, 0, 1}));     // APW, inside
+  EXPECT_EQ(row(map, 1), (std::vector<std::uint16_t>{7, 2, 71, 72, 42, 123, 45, 1}));  // STCA
+  EXPECT_EQ(row(map, 2), (std::vector<std::uint16_t>{5, 1, 51, 0, 90, 0, 0, 1}));    // APW
+  EXPECT_EQ(row(map, 3), std::vector<std::uint16_t>(8, 0));
+  EXPECT_EQ(map.input_registers[kRegRowKinds], (kKindApw << 0) | (kKindApw << 2));
+  for (std::size_t r = kRegRowKinds + 1; r < kRegTableStart; ++r) {
+    EXPECT_EQ(map.input_registers[r], 0) << "register " << r;
+  }
+}
+
+// 64 rows: four registers of 16 bits; a row the table cannot hold has no bit.
+TEST(ModbusMap, RowKindsCoverEveryRow) {
+  AlarmSnapshot s;
+  for (std::uint16_t i = 0; i < 70; ++i) {
+    // Distinct times to loss put alert i in row i.
+    s.active.push_back(i % 3 == 0 ? apw(i, Severity::Caution, i) : alert(i, Severity::Caution, i));
+  }
+  std::vector<std::uint16_t> expected(kModbusRowKindRegisters, 0);
+  for (std::size_t r = 0; r < 64; ++r) {
+    if (r % 3 == 0) expected[r / 16] = static_cast<std::uint16_t>(expected[r / 16] | (1u << (r % 16)));
+  }
+  RegisterMap map = build_register_map(s, 64, 0);
+  const auto kinds = [&map] {
+    const auto first = map.input_registers.begin() + kRegRowKinds;
+    return std::vector<std::uint16_t>(first, first + static_cast<std::ptrdiff_t>(kModbusRowKindRegisters));
+  };
+  EXPECT_EQ(kinds(), expected);
+  EXPECT_EQ(expected[0], 0x9249);  // rows 0, 3, 6, 9, 12, 15
+  for (std::size_t r = 0; r < 64; ++r) {
+    const bool is_apw = (map.input_registers[kRegRowKinds + r / 16] >> (r % 16)) & 1u;
+    EXPECT_EQ(row(map, r)[kColAlertNumber], r);
+    EXPECT_EQ(is_apw, r % 3 == 0) << "row " << r;
+    if (is_apw) {
+      EXPECT_EQ(row(map, r)[kColTrackB], 0) << "row " << r;
+    }
+  }
+  map = build_register_map(s, 8, 0);
+  EXPECT_EQ(kinds(), (std::vector<std::uint16_t>{0x0049, 0, 0, 0}));  // rows 0, 3, 6
+}
+
 TEST(ModbusMap, FiguresRoundAndSaturate) {
   AlertEvent e = alert(1, Severity::Caution, 12.5);
   e.cpa_h_m = 14.99;  // 1.499 × 10 m → 1

@@ -1,5 +1,5 @@
 // kew live map: the alert list — most severe first; a click on a row centres the map on
-// the pair, its button acknowledges the alert. Rows are kept per alert id and only
+// the pair (or an area alert's aircraft and volume), its button acknowledges the alert. Rows are kept per alert id and only
 // reordered and refreshed, never rebuilt.
 "use strict";
 window.Kew = window.Kew || {};
@@ -73,18 +73,30 @@ window.Kew = window.Kew || {};
     }
 
     fill(row, a) {
-      const key = [a.severity, a.ack, a.t_los_s, a.t_cpa_s, a.cpa_h_m, a.cpa_v_ft, a.a.cs, a.b.cs, a.number].join("|");
+      const area = Kew.isAreaAlert(a);
+      const key = [a.severity, a.ack, a.t_los_s, a.t_cpa_s, a.cpa_h_m, a.cpa_v_ft, a.a.cs, a.a.alt_ft,
+                   a.b ? a.b.cs : a.volume, a.volume_kind, a.hypothesis, a.region, a.number].join("|");
       if (key === row.key) return;
       row.key = key;
       row.li.dataset.severity = a.severity;
       row.li.dataset.ack = a.ack ? "true" : "false";
+      row.li.dataset.kind = area ? "apw" : "stca";
+      if (area) row.li.dataset.volume = a.volume;
       row.li.classList.toggle("acked", !!a.ack);
       row.badge.textContent = Kew.SEVERITY_SHORT[a.severity] || a.severity;
       row.badge.className = "sev-badge sev-" + a.severity;
-      row.pair.textContent = Kew.trackName(a.a) + " – " + Kew.trackName(a.b) +
-        (typeof a.number === "number" ? "  #" + a.number : "");
-      row.figures.textContent = Kew.alertSummary(a) + (a.region ? " · " + a.region : "") +
-        (a.hypothesis && a.hypothesis !== "linear" ? " · " + a.hypothesis.replace("_", " ") : "");
+      const number = typeof a.number === "number" ? "  #" + a.number : "";
+      const hypothesis = a.hypothesis && a.hypothesis !== "linear" && a.hypothesis !== "proximity"
+        ? " · " + a.hypothesis.replace("_", " ") : "";
+      if (area) {
+        // One aircraft and the volume it approaches: "DLH4AB → EDR-1 (restricted) in 40 s".
+        row.pair.textContent = Kew.trackName(a.a) + " → " + Kew.areaTarget(a) + number;
+        row.figures.textContent = "area proximity · " + Kew.flightLevel(a.a.alt_ft) + hypothesis;
+      } else {
+        row.pair.textContent = Kew.trackName(a.a) + " – " + Kew.trackName(a.b) + number;
+        row.figures.textContent = Kew.alertSummary(a) + (a.region ? " · " + a.region : "") +
+          (a.hypothesis && a.hypothesis !== "linear" ? " · " + a.hypothesis.replace("_", " ") : "");
+      }
       row.button.disabled = !!a.ack;
       row.button.textContent = a.ack ? "Acked" : "Ack";
     }

@@ -100,6 +100,28 @@ window.Kew = window.Kew || {};
     return Math.floor(s / 3600) + " h " + Math.round((s % 3600) / 60) + " min";
   };
 
+  // An area proximity warning (design §4.11): one aircraft (a) and a volume, no b. An
+  // ALERT without "kind" is a pair's (kewd before area alerts).
+  Kew.isAreaAlert = function (a) {
+    return a.kind === "apw" || (!a.b && typeof a.volume === "string");
+  };
+
+  // The aircraft an alert is about: the pair, or an area alert's one.
+  Kew.alertParties = function (a) {
+    return a.b ? [a.a, a.b] : [a.a];
+  };
+
+  // "EDR-1 (restricted) in 40 s", or "… inside" when the aircraft is in the volume.
+  Kew.areaTarget = function (a) {
+    const inside = a.severity === "loss" || a.t_los_s === 0;
+    return a.volume + (a.volume_kind ? " (" + a.volume_kind + ")" : "") + (inside ? " inside" : " in " + Kew.seconds(a.t_los_s));
+  };
+
+  // The alert line's figures of an area alert: "EDR-1 in 40 s", "in EDR-1".
+  Kew.areaSummary = function (a) {
+    return a.severity === "loss" || a.t_los_s === 0 ? "in " + a.volume : a.volume + " in " + Kew.seconds(a.t_los_s);
+  };
+
   Kew.alertSummary = function (a) {
     const los = a.severity === "loss" || a.t_los_s === 0 ? "LoS now" : "LoS in " + Kew.seconds(a.t_los_s);
     return los + " · CPA " + Kew.nm(a.cpa_h_m) + " / " + Kew.feet(a.cpa_v_ft) + " in " + Kew.seconds(a.t_cpa_s);

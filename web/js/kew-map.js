@@ -3,8 +3,10 @@
 // then draws only that.
 //
 // Stable hooks for tests and tools: each aircraft marker has data-track-id (and
-// data-track-src), each alert line and each alert list row data-alert-id, each
-// acknowledge button data-ack-id; #aircraft-count and #alert-count hold what is drawn
+// data-track-src), each alert line and each alert list row data-alert-id (an area
+// alert's line data-alert-volume, its row data-volume), each acknowledge button
+// data-ack-id; each volume's path and label data-volume (map-volumes.js);
+// #aircraft-count and #alert-count hold what is drawn
 // (also as data-count); #connection-state has data-state (connecting, live, polling,
 // offline); #feed-health has data-health; #replay-clock is shown in replays.
 "use strict";
@@ -12,7 +14,7 @@ window.Kew = window.Kew || {};
 
 (function (Kew) {
   const REPLAY_THRESHOLD_S = 30; // |data time − wall time| beyond which the replay clock shows
-  const PAIR_MAX_ZOOM = 12; // selecting an alert zooms in to its pair, at most this far
+  const PAIR_MAX_ZOOM = 12; // selecting an alert zooms in to its pair (or aircraft and volume), at most this far
 
   const state = {
     tracks: new Map(), // key -> track record
@@ -23,6 +25,7 @@ window.Kew = window.Kew || {};
   const dirty = new Set();
   const removed = new Set();
   let alertsDirty = false;
+  let volumesDirty = false;
   let frameRequested = false;
   let fitted = false;
   let userMoved = false;
@@ -40,9 +43,15 @@ window.Kew = window.Kew || {};
   const alertLines = new Kew.AlertLines(map);
   const zones = new Kew.ZoneLayer(map);
   const reference = new Kew.ReferenceLayer(map);
+  const volumes = new Kew.VolumeLayer(map, state.tracks);
   reference.load();
-  L.control.layers(null, Object.assign({ zones: zones.group }, reference.overlays()), { position: "bottomleft" }).addTo(map);
-  const labels = new Kew.LabelLayout(map, { aircraft, alertLines, reference }, () => $("show-labels").checked);
+  volumes.start(() => {
+    volumesDirty = true;
+    requestFrame();
+  });
+  L.control.layers(null, Object.assign({ zones: zones.group }, volumes.overlays(), reference.overlays()),
+                   { position: "bottomleft" }).addTo(map);
+  const labels = new Kew.LabelLayout(map, { aircraft, alertLines, reference, volumes }, () => $("show-labels").checked);
   const audible = new Kew.AudibleCue($("audible"));
   const ZONES_INTERVAL_MS = 10000;
   const refreshZones = () =>
@@ -90,6 +99,7 @@ window.Kew = window.Kew || {};
   ground.innerHTML = '<span class="swatch"></span>on the ground / unknown';
   ground.firstChild.style.background = Kew.GROUND_COLOR;
   legend.append(ground);
+  volumes.legend($("volume-legend"));
 
   // --- applying stream objects ---------------------------------------------------------
   function applyObject(o) {
@@ -173,8 +183,13 @@ window.Kew = window.Kew || {};
     }
   }
 
+  // A pair's alert has a and b; an area alert (kind "apw") has a and its volume, no b.
+  function drawable(o) {
+    return !!(o.id && o.a && (o.b || (Kew.isAreaAlert(o) && o.volume)));
+  }
+
   function applyAlert(o) {
-    if (!o.id || !o.a || !o.b) return;
+    if (!drawable(o)) return;
     audible.consider(o, state.alerts.get(o.id));
     if (o.state === "end") state.alerts.delete(o.id);
     else state.alerts.set(o.id, o);
@@ -184,7 +199,7 @@ window.Kew = window.Kew || {};
 
   function replaceAlerts(list) {
     state.alerts.clear();
-    for (const o of list) if (o.state !== "end" && o.id && o.a && o.b) state.alerts.set(o.id, o);
+    for (const o of list) if (o.state !== "end" && drawable(o)) state.alerts.set(o.id, o);
     alertsDirty = true;
     requestFrame();
   }
@@ -248,10 +263,15 @@ window.Kew = window.Kew || {};
     }
     dirty.clear();
     removed.clear();
-    if (moved) aircraft.redrawTrails(state.tracks);
-    if (moved || alertsDirty) {
-      alertLines.update(state.alerts, state.tracks);
+    if (moved) {
+      aircraft.redrawTrails(state.tracks);
+      volumes.follow(state.tracks);
+    }
+    if (moved || alertsDirty || volumesDirty) {
+      alertLines.update(state.alerts, state.tracks, volumes);
       highlightAlerted();
+      if (alertsDirty || volumesDirty) volumes.highlight(state.alerts);
+      volumesDirty = false;
       if (selectedAlert && !state.alerts.has(selectedAlert)) selectedAlert = null;
       labels.update(state.alerts, selectedAlert);
     }
@@ -272,11 +292,12 @@ window.Kew = window.Kew || {};
     }
   }
 
-  // A ring of the alert's colour around each aircraft of an alert pair.
+  // A ring of the alert's colour around each aircraft of an alert (both of a pair, the
+  // one of an area alert).
   function highlightAlerted() {
     const now = new Map();
     for (const a of state.alerts.values()) {
-      for (const p of [a.a, a.b]) {
+      for (const p of Kew.alertParties(a)) {
         const key = Kew.trackKey(p.src, p.id);
         const prev = now.get(key);
         if (!prev || Kew.SEVERITY_RANK[a.severity] > Kew.SEVERITY_RANK[prev]) now.set(key, a.severity);
@@ -296,12 +317,16 @@ window.Kew = window.Kew || {};
 
   // Zooms to the pair: both aircraft in view (where their tracks are and where the alert
   // saw them) with a margin that leaves room for their labels, as close as PAIR_MAX_ZOOM;
-  // the pair's labels are then laid out first.
+  // the pair's labels are then laid out first. An area alert: its aircraft and the whole
+  // volume (a followed one's circle) in view.
   function centreOnAlert(id) {
     const a = state.alerts.get(id);
     if (!a) return;
-    const seen = [a.a, a.b].filter((p) => typeof p.lat === "number" && typeof p.lon === "number").map((p) => [p.lat, p.lon]);
-    const bounds = L.latLngBounds(Kew.alertEnds(a, state.tracks).concat(seen));
+    const seen = Kew.alertParties(a).filter((p) => typeof p.lat === "number" && typeof p.lon === "number")
+      .map((p) => [p.lat, p.lon]);
+    const ends = Kew.alertEnds(a, state.tracks);
+    const volume = Kew.isAreaAlert(a) ? volumes.extent(a.volume) : [];
+    const bounds = L.latLngBounds(ends.concat(seen, volume));
     userMoved = true;
     selectedAlert = id;
     map.fitBounds(bounds, { padding: [120, 120], maxZoom: PAIR_MAX_ZOOM });
@@ -348,5 +373,6 @@ window.Kew = window.Kew || {};
 
   Kew.state = state; // for the browser's console and tests
   Kew.map = map;
+  Kew.volumes = volumes;
   connection.start();
 })(window.Kew);

@@ -25,6 +25,7 @@ window.Kew = window.Kew || {};
     aircraft: [2, 16, 30, 46, 64, 86, 112, 144],
     alert: [0, 8, 20, 34, 52, 74],
     aerodrome: [3, 14, 28, 44],
+    volume: [0, 10, 24, 40],
     fixed: [0],
   };
   // Farther rings, for a label that must show when the nearer ones are taken.
@@ -69,8 +70,9 @@ window.Kew = window.Kew || {};
     const out = [];
     const rings = (RINGS[item.kind] || RINGS.fixed).concat(item.must ? MUST_RINGS : []);
     rings.forEach((d, ring) => {
-      // An alert label (and a fixed one) sits on its anchor first.
-      const dirs = (item.kind === "alert" || item.kind === "fixed") && ring === 0 ? [[0, 0]] : DIRECTIONS;
+      // An alert label (and a volume's or a fixed one) sits on its anchor first.
+      const centred = item.kind === "alert" || item.kind === "volume" || item.kind === "fixed";
+      const dirs = centred && ring === 0 ? [[0, 0]] : DIRECTIONS;
       for (const [ux, uy] of dirs) {
         // The point of the box nearest the anchor is d beyond the anchor's edge.
         const px = item.x + ux * (r + d);
@@ -80,7 +82,7 @@ window.Kew = window.Kew || {};
         const box = { x0: Math.round(x0), y0: Math.round(y0) };
         box.x1 = box.x0 + item.w;
         box.y1 = box.y0 + item.h;
-        box.leader = ring > 0 && item.kind !== "alert";
+        box.leader = ring > 0 && item.kind !== "alert" && item.kind !== "volume";
         out.push(box);
       }
     });
@@ -91,7 +93,7 @@ window.Kew = window.Kew || {};
     return b.x0 >= view.x0 && b.y0 >= view.y0 && b.x1 <= view.x1 && b.y1 <= view.y1;
   }
 
-  // items: [{key, kind ("aircraft", "alert", "aerodrome", "fixed"), x, y, r (anchor's
+  // items: [{key, kind ("aircraft", "alert", "volume", "aerodrome", "fixed"), x, y, r (anchor's
   // half-size), w, h, priority, must}]; symbols: [{x0, y0, x1, y1}] boxes labels should
   // not cover; view: {x0, y0, x1, y1}. Returns Map key -> {x0, y0, x1, y1, leader} for the
   // labels shown (container pixels); an item missing from it is dropped.

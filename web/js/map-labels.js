@@ -1,10 +1,11 @@
 // kew live map: the labels on the map laid out so that none overprints another
 // (label-placement.js decides, this writes). Runs after each redraw and each move or zoom
 // of the map, over the labels in view: aircraft (an alerting pair's always, the others
-// from LABEL_MIN_ZOOM with "labels" ticked), alert lines' figures, aerodromes and range
-// rings. Order: the aircraft of the alerts, most severe first (the selected alert before
-// all), then the alerts' figures, the other aircraft (airborne before on the ground),
-// aerodromes, range rings. A dropped label is hidden (visibility, so that it keeps its size).
+// from LABEL_MIN_ZOOM with "labels" ticked), alert lines' figures, the volumes' names
+// (map-volumes.js), aerodromes and range rings. Order: the aircraft of the alerts (a
+// pair's two, an area alert's one), most severe first (the selected alert before all),
+// then the alerts' figures, the other aircraft (airborne before on the ground), the
+// volumes (those of an alert first), aerodromes, range rings. A dropped label is hidden (visibility, so that it keeps its size).
 "use strict";
 window.Kew = window.Kew || {};
 
@@ -14,7 +15,8 @@ window.Kew = window.Kew || {};
   const SYMBOL_BOX = 8; // px, half the box a label should not cover
 
   Kew.LabelLayout = class {
-    // layers: {aircraft: AircraftLayer, alertLines: AlertLines, reference: ReferenceLayer}
+    // layers: {aircraft: AircraftLayer, alertLines: AlertLines, reference: ReferenceLayer,
+    // volumes: VolumeLayer (optional)}
     constructor(map, layers, showLabels) {
       this.map = map;
       this.layers = layers;
@@ -56,7 +58,7 @@ window.Kew = window.Kew || {};
       const rank = new Map();
       sorted.forEach((a, i) => {
         const r = a.id === this.selected ? -1 : i;
-        for (const p of [a.a, a.b]) {
+        for (const p of Kew.alertParties(a)) {
           const key = Kew.trackKey(p.src, p.id);
           if (!rank.has(key) || rank.get(key) > r) rank.set(key, r);
         }
@@ -88,8 +90,9 @@ window.Kew = window.Kew || {};
                      priority: 2e6 + (a.id === this.selected ? n : n - 1 - i) });
         hosts.set("al|" + a.id, { kind: "alert", el, p, w, h });
       });
-      // Aerodromes and range rings: the reference layer says what it wants labelled.
-      for (const label of this.layers.reference.labels()) {
+      // Volumes, aerodromes and range rings: each layer says what it wants labelled.
+      const fixed = this.layers.volumes ? this.layers.volumes.labels() : [];
+      for (const label of fixed.concat(this.layers.reference.labels())) {
         const p = point(label.latlng);
         const key = "rf|" + label.key;
         hosts.set(key, { kind: label.kind, el: label.el, p });

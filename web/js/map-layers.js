@@ -1,4 +1,5 @@
-// kew live map: the map's layers — the offline base map, aircraft, trails and alert pairs.
+// kew live map: the map's layers — the offline base map, aircraft, trails and alert lines
+// (pairs, and area alerts' aircraft to their volumes; the volumes are map-volumes.js's).
 //
 // Cost per tick is proportional to what changed: an aircraft's marker is created once and
 // then only moved, rotated, recoloured or relabelled when its figures change; all trails
@@ -159,7 +160,10 @@ window.Kew = window.Kew || {};
 
   // One SVG line per active alert between its two aircraft, coloured by severity, with
   // t_los and CPA in a permanent label at its middle. Ends follow the aircraft's latest
-  // positions (tracks update more often than alerts).
+  // positions (tracks update more often than alerts). An area alert's line runs from its
+  // aircraft to the nearest point of the volume's boundary (map-volumes.js), with the
+  // time to entry; while the page does not know the volume's shape, it is a point at the
+  // aircraft, which still carries the figures.
   Kew.AlertLines = class {
     constructor(map) {
       this.map = map;
@@ -171,7 +175,8 @@ window.Kew = window.Kew || {};
       return this.lines.size;
     }
 
-    update(alerts, tracks) {
+    // `volumes`: the VolumeLayer, for area alerts.
+    update(alerts, tracks, volumes) {
       for (const [id, entry] of this.lines) {
         if (!alerts.has(id)) {
           this.map.removeLayer(entry.line);
@@ -179,15 +184,17 @@ window.Kew = window.Kew || {};
         }
       }
       for (const a of alerts.values()) {
-        const ends = alertEnds(a, tracks);
+        const area = Kew.isAreaAlert(a);
+        const ends = lineEnds(a, tracks, volumes);
         let entry = this.lines.get(a.id);
         if (!entry) {
           const line = L.polyline(ends, {
             renderer: this.renderer, weight: 3, opacity: 0.95, interactive: true,
-            className: "alert-line",
+            className: area ? "alert-line area" : "alert-line",
           }).addTo(this.map);
           line.bindTooltip("", { permanent: true, direction: "center", className: "alert-label", opacity: 0.95 });
           line.getElement().setAttribute("data-alert-id", a.id);
+          if (area) line.getElement().setAttribute("data-alert-volume", a.volume);
           entry = { line, severity: null, ack: null, text: null };
           this.lines.set(a.id, entry);
         } else {
@@ -205,7 +212,8 @@ window.Kew = window.Kew || {};
           entry.ack = a.ack;
         }
         // A loss says so itself ("LoS now"); the others name their severity first.
-        const text = (a.severity === "loss" ? "" : Kew.SEVERITY_SHORT[a.severity] + " ") + Kew.alertSummary(a);
+        const text = (a.severity === "loss" && !area ? "" : Kew.SEVERITY_SHORT[a.severity] + " ") +
+          (area ? Kew.areaSummary(a) : Kew.alertSummary(a));
         if (text !== entry.text) {
           entry.line.setTooltipContent(text);
           const tip = entry.line.getTooltip().getElement();
@@ -259,12 +267,22 @@ window.Kew = window.Kew || {};
     }
   };
 
-  // The pair's positions: the tracks' latest when known, else those the alert carries.
+  // The positions of the alert's aircraft (both of a pair, one of an area alert): the
+  // tracks' latest when known, else those the alert carries.
   function alertEnds(a, tracks) {
-    return [a.a, a.b].map((p) => {
+    return Kew.alertParties(a).map((p) => {
       const t = tracks.get(Kew.trackKey(p.src, p.id));
       return t ? [t.lat, t.lon] : [p.lat, p.lon];
     });
   }
   Kew.alertEnds = alertEnds;
+
+  // The ends of the alert's line: the pair, or the aircraft and the volume's nearest
+  // boundary point (the aircraft itself while the volume is unknown).
+  function lineEnds(a, tracks, volumes) {
+    const ends = alertEnds(a, tracks);
+    if (ends.length === 2) return ends;
+    const boundary = volumes ? volumes.nearestBoundary(a.volume, ends[0]) : null;
+    return [ends[0], boundary || ends[0]];
+  }
 })(window.Kew);

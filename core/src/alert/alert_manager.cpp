@@ -55,6 +55,16 @@ std::uint64_t alert_id_hash(const AlertParty& a, const AlertParty& b, double ope
   return fnv1a(h, &ms, sizeof ms);
 }
 
+std::uint64_t area_alert_id_hash(const AlertParty& a, const std::string& volume, double opened_t) {
+  std::uint64_t h = kFnvOffset;
+  h = fnv1a(h, std::string("apw"));  // never a pair's: a source is never followed by "apw", ""
+  h = fnv1a(h, a.source);
+  h = fnv1a(h, a.id);
+  h = fnv1a(h, volume);
+  const auto ms = static_cast<std::int64_t>(std::llround(opened_t * 1000.0));
+  return fnv1a(h, &ms, sizeof ms);
+}
+
 AlertManager::AlertManager(const AlertConfig& config, PartyNames names) : config_(config), names_(std::move(names)) {}
 
 Severity AlertManager::classify(bool lost_now, double t_los_s, double warning_s) const {
@@ -63,17 +73,36 @@ Severity AlertManager::classify(bool lost_now, double t_los_s, double warning_s)
   return Severity::Caution;
 }
 
-AlertManager::Pairs::iterator AlertManager::create(std::uint64_t key) {
+AlertManager::PairState AlertManager::state_of_key(std::uint64_t key) {
   PairState s;
-  s.lo = static_cast<Slot>(key >> 32);
-  s.hi = static_cast<Slot>(key & 0xffffffffu);
-  partners_[s.lo].push_back(s.hi);
-  partners_[s.hi].push_back(s.lo);
+  s.area = (key & kAreaBit) != 0;
+  s.lo = static_cast<Slot>(s.area ? (key >> 31) & 0xffffffffu : key >> 32);
+  s.hi = static_cast<Slot>(s.area ? key & 0x7fffffffu : key & 0xffffffffu);
+  return s;
+}
+
+AlertManager::Pairs::iterator AlertManager::create(std::uint64_t key) {
+  PairState s = state_of_key(key);
+  if (s.area) {
+    volumes_[s.lo].push_back(s.hi);
+  } else {
+    partners_[s.lo].push_back(s.hi);
+    partners_[s.hi].push_back(s.lo);
+  }
   return pairs_.emplace(key, std::move(s)).first;
 }
 
 void AlertManager::forget(Pairs::iterator it) {
   const Slot lo = it->second.lo, hi = it->second.hi;
+  if (it->second.area) {
+    const auto v = volumes_.find(lo);
+    if (v != volumes_.end()) {
+      erase_value(v->second, hi);
+      if (v->second.empty()) volumes_.erase(v);
+    }
+    pairs_.erase(it);
+    return;
+  }
   for (const auto& [slot, other] : {std::pair{lo, hi}, std::pair{hi, lo}}) {
     const auto p = partners_.find(slot);
     if (p == partners_.end()) continue;
@@ -102,7 +131,8 @@ void AlertManager::open(PairState& s, AlertEvent&& event, std::vector<AlertEvent
   ++counters_.opened;
   event.state = AlertState::New;
   event.opened_t = event.t;
-  s.last.id_hash = alert_id_hash(event.a, event.b, event.t);
+  event.kind = s.area ? AlertKind::Apw : AlertKind::Stca;
+  s.last.id_hash = s.area ? area_alert_id_hash(event.a, event.volume, event.t) : alert_id_hash(event.a, event.b, event.t);
   event.id = format_alert_id(s.last.id_hash);
   event.number = next_number_;
   next_number_ = static_cast<std::uint16_t>(next_number_ == 0xffff ? 1 : next_number_ + 1);
@@ -123,6 +153,7 @@ void AlertManager::update(PairState& s, AlertEvent&& event, std::vector<AlertEve
   const LastEvent& last = s.last;
   ++counters_.updated;
   event.state = AlertState::Update;
+  event.kind = s.area ? AlertKind::Apw : AlertKind::Stca;
   event.id = format_alert_id(last.id_hash);
   event.number = last.number;
   event.opened_t = last.opened_t;
@@ -188,6 +219,8 @@ void AlertManager::remember(PairState& s, const AlertEvent& event) {
   last.severity = event.severity;
   last.hypothesis = event.hypothesis;
   if (last.region != event.region) last.region = event.region;
+  if (last.volume != event.volume) last.volume = event.volume;
+  if (last.volume_kind != event.volume_kind) last.volume_kind = event.volume_kind;
   last.acknowledged = event.acknowledged;
 }
 
@@ -200,18 +233,24 @@ AlertEvent AlertManager::recall(const PairState& s) const {
   event.state = last.state;
   event.severity = last.severity;
   event.hypothesis = last.hypothesis;
+  event.kind = s.area ? AlertKind::Apw : AlertKind::Stca;
   event.region = last.region;
+  event.volume = last.volume;
+  event.volume_kind = last.volume_kind;
   event.t = last.t;
   event.opened_t = last.opened_t;
   AlertParty& lo = last.lo_is_a ? event.a : event.b;
   AlertParty& hi = last.lo_is_a ? event.b : event.a;
   copy_party_figures(last.lo, lo);
-  copy_party_figures(last.hi, hi);
-  const PartyName lo_name = names_(s.lo), hi_name = names_(s.hi);
+  const PartyName lo_name = names_(s.lo);
   lo.source = lo_name.source;
   lo.id = lo_name.id;
-  hi.source = hi_name.source;
-  hi.id = hi_name.id;
+  if (!s.area) {  // an area's b is empty
+    copy_party_figures(last.hi, hi);
+    const PartyName hi_name = names_(s.hi);
+    hi.source = hi_name.source;
+    hi.id = hi_name.id;
+  }
   event.t_los_s = last.t_los_s;
   event.t_cpa_s = last.t_cpa_s;
   event.cpa_h_m = last.cpa_h_m;
@@ -222,22 +261,42 @@ AlertEvent AlertManager::recall(const PairState& s) const {
   return event;
 }
 
-void AlertManager::drop_track(Slot slot, double t, std::vector<AlertEvent>& out) {
-  const auto p = partners_.find(slot);
-  if (p == partners_.end()) return;
-  std::vector<Slot> others = p->second;
-  std::sort(others.begin(), others.end());  // deterministic order of the End events
-  for (const Slot other : others) {
-    const auto it = pairs_.find(pair_key(slot, other));
+void AlertManager::end_and_forget(std::vector<std::uint64_t>& keys, double t, std::vector<AlertEvent>& out) {
+  std::sort(keys.begin(), keys.end());  // deterministic order of the End events
+  for (const std::uint64_t key : keys) {
+    const auto it = pairs_.find(key);
     if (it == pairs_.end()) continue;
     if (it->second.active) end(it->second, t, AlertEndReason::TrackDropped, out);
     forget(it);
   }
 }
 
+void AlertManager::drop_track(Slot slot, double t, std::vector<AlertEvent>& out) {
+  std::vector<std::uint64_t> keys;
+  if (const auto p = partners_.find(slot); p != partners_.end())
+    for (const Slot other : p->second) keys.push_back(pair_key(slot, other));
+  end_and_forget(keys, t, out);
+  keys.clear();
+  if (const auto v = volumes_.find(slot); v != volumes_.end())
+    for (const std::uint32_t volume : v->second) keys.push_back(area_key(slot, volume));
+  end_and_forget(keys, t, out);
+}
+
+void AlertManager::drop_volume(std::uint32_t volume, double t, std::vector<AlertEvent>& out) {
+  std::vector<std::uint64_t> keys;
+  for (const auto& [slot, volumes] : volumes_)
+    if (std::find(volumes.begin(), volumes.end(), volume) != volumes.end()) keys.push_back(area_key(slot, volume));
+  end_and_forget(keys, t, out);
+}
+
 void AlertManager::partners_of(Slot slot, std::vector<Slot>& out) const {
   const auto p = partners_.find(slot);
   if (p != partners_.end()) out.insert(out.end(), p->second.begin(), p->second.end());
+}
+
+void AlertManager::volumes_of(Slot slot, std::vector<std::uint32_t>& out) const {
+  const auto v = volumes_.find(slot);
+  if (v != volumes_.end()) out.insert(out.end(), v->second.begin(), v->second.end());
 }
 
 std::vector<AlertEvent> AlertManager::snapshot() const {

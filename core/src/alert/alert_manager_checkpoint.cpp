@@ -11,7 +11,7 @@ namespace kew::alert {
 
 namespace {
 
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: areas (Apw alerts)
 
 template <class Io, class Party>
 void party_fields(Io& io, Party& p) {
@@ -51,6 +51,8 @@ void pair_fields(Io& io, State& s) {
   io.field(e.severity, Severity::Loss);
   io.field(e.hypothesis, Hypothesis::Proximity);
   io.field(e.region);
+  io.field(e.volume);
+  io.field(e.volume_kind);
   io.field(e.acknowledged);
   io.field(e.lo_is_a);
   io.field(s.decided.t_los_s);
@@ -97,12 +99,24 @@ void AlertManager::save(util::CheckpointWriter& out) const {
     out.u64(others.size());
     for (const Slot other : others) out.u32(other);
   }
+
+  slots.clear();
+  for (const auto& [slot, volumes] : volumes_) slots.push_back(slot);
+  std::sort(slots.begin(), slots.end());
+  out.u64(slots.size());
+  for (const Slot slot : slots) {
+    const std::vector<std::uint32_t>& volumes = volumes_.at(slot);
+    out.u32(slot);
+    out.u64(volumes.size());
+    for (const std::uint32_t volume : volumes) out.u32(volume);
+  }
 }
 
 void AlertManager::restore(util::CheckpointReader& in) {
   const auto empty = [this] {
     pairs_.clear();
     partners_.clear();
+    volumes_.clear();
     seq_ = 0;
     next_number_ = 1;
     active_ = 0;
@@ -116,10 +130,8 @@ void AlertManager::restore(util::CheckpointReader& in) {
     for (std::uint64_t i = 0; i < pairs; ++i) {
       const std::size_t pair_at = in.offset();
       const std::uint64_t key = in.u64();
-      PairState s;
-      s.lo = static_cast<Slot>(key >> 32);
-      s.hi = static_cast<Slot>(key & 0xffffffffu);
-      if (s.lo >= s.hi) in.fail(pair_at, "a pair whose slots are not in order");
+      PairState s = state_of_key(key);
+      if (!s.area && s.lo >= s.hi) in.fail(pair_at, "a pair whose slots are not in order");
       pair_fields(in, s);
       if (s.active) ++active_;
       if (!pairs_.emplace(key, std::move(s)).second) in.fail(pair_at, "a pair written twice");
@@ -130,6 +142,13 @@ void AlertManager::restore(util::CheckpointReader& in) {
       const std::uint64_t count = in.u64();
       std::vector<Slot>& others = partners_[slot];
       for (std::uint64_t j = 0; j < count; ++j) others.push_back(in.u32());
+    }
+    const std::uint64_t tracks = in.u64();
+    for (std::uint64_t i = 0; i < tracks; ++i) {
+      const Slot slot = in.u32();
+      const std::uint64_t count = in.u64();
+      std::vector<std::uint32_t>& volumes = volumes_[slot];
+      for (std::uint64_t j = 0; j < count; ++j) volumes.push_back(in.u32());
     }
   } catch (const util::CheckpointError&) {
     empty();

@@ -56,6 +56,10 @@ double Rules::lower_limit_at(double lat_deg, double lon_deg, const Aerodrome** a
 Exclusion Rules::exclusion(const track::Track& t, double now) const {
   if (t.alt_ft < config_.min_altitude_ft || t.alt_ft > config_.max_altitude_ft) return Exclusion::AltitudeBand;
   if (t.alt_ft < lower_limit_at(t.lat_deg, t.lon_deg)) return Exclusion::BelowLowerLimit;
+  return area_exclusion(t, now);
+}
+
+Exclusion Rules::area_exclusion(const track::Track& t, double now) const {
   if (t.gs_kt < config_.min_ground_speed_kt) return Exclusion::Slow;
   if (t.mode3a && std::find(config_.excluded_mode3a.begin(), config_.excluded_mode3a.end(), *t.mode3a) !=
                       config_.excluded_mode3a.end())

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "alert_party.hpp"
 #include "kew/util/gentle_growth.hpp"
 #include "zone_probe.hpp"
 #include "kew/util/units.hpp"
@@ -14,21 +15,6 @@ namespace {
 // twice the distance at which two aircraft can still come into conflict, plus this (m).
 constexpr double kBruteSlack_m = 50e3;
 constexpr double kEarthRadius_m = 6371008.8;  // mean radius, for the brute force's cut only
-
-AlertParty party_of(const track::Track& t) {
-  AlertParty p;
-  p.id = t.id;
-  p.source = t.source;
-  p.callsign = t.callsign;
-  p.track_number = t.number;
-  p.lat_deg = t.lat_deg;
-  p.lon_deg = t.lon_deg;
-  p.alt_ft = t.alt_ft;
-  p.gs_kt = t.gs_kt;
-  p.trk_deg = t.trk_deg;
-  p.vr_fpm = t.vr_fpm;
-  return p;
-}
 
 bool ordered_before(const track::Track& x, const track::Track& y) {
   return x.source != y.source ? x.source < y.source : x.id < y.id;
@@ -48,7 +34,8 @@ AlertStage::AlertStage(const PipelineConfig& config, const PairJudge& judge, Zon
                 const track::Track& track = view_[slot].track;
                 return alert::PartyName{track.source, track.id};
               }),
-      rules_(config.eligibility, config.minima) {
+      rules_(config.eligibility, config.minima),
+      areas_(config.volumes, rules_, zones) {
   if (zones_.tiling()) {
     const double fastest_mps = config.tracks.max_ground_speed_kt * units::kMpsPerKnot;
     brute_reach_m_ = 2.0 * (judge.largest_horizontal_m() +
@@ -66,6 +53,7 @@ void AlertStage::run_step(Batch& batch, const AlertStep& step) {
   if (step.kind == AlertStep::Kind::DropAlerts) {
     view_[step.slot].track.in_engine = false;
     alerts_.drop_track(step.slot, step.t, pending_events_);
+    areas_.track_left(step.slot, step.t, alerts_, pending_events_);
     deliver();
     return;
   }
@@ -99,6 +87,8 @@ void AlertStage::run_step(Batch& batch, const AlertStep& step) {
     evaluated_.push_back({other, held ? owner : zone::kNoZone, std::nullopt});
   }
   evaluate_pairs(slot);
+  areas_.judge(slot, view_, judged_at_, alerts_, suppressed_, pending_events_);
+  deliver();
   if (observer_) observe_watched_pairs(slot);
 }
 
@@ -256,7 +246,11 @@ void AlertStage::deliver() {
 
 bool AlertStage::serves(const AlertEvent& event) const {
   if (!config_.served_longitudes || !zones_.tiling()) return true;
-  double lon = zone::ZoneTiling::midpoint({event.a.lat_deg, event.a.lon_deg}, {event.b.lat_deg, event.b.lon_deg}).lon_deg;
+  // A pair is its midpoint's; an area proximity warning its aircraft's.
+  double lon = event.kind == AlertKind::Apw
+                   ? event.a.lon_deg
+                   : zone::ZoneTiling::midpoint({event.a.lat_deg, event.a.lon_deg}, {event.b.lat_deg, event.b.lon_deg})
+                         .lon_deg;
   if (lon >= 180.0) lon -= 360.0;  // 180 is −180, as in ZoneTiling::home
   return lon >= config_.served_longitudes->west_deg && lon < config_.served_longitudes->east_deg;
 }

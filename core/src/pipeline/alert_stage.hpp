@@ -2,7 +2,8 @@
 // The alert stage (design §3, §4.5–4.7): the batch's steps in record order. It keeps its
 // own view of each track as of the step it judges, adds the partners of open and pending
 // alerts to the pairs the zones found, applies the eligibility rules, and runs the alert
-// manager, whose events go to the sink.
+// manager, whose events go to the sink; then the area proximity warning (AreaStage, design
+// §4.11) judges the same track against the volumes, through the same manager.
 
 #include <cstdint>
 #include <functional>
@@ -17,6 +18,7 @@
 #include "kew/pipeline/pipeline_config.hpp"
 #include "kew/util/checkpoint_io.hpp"
 #include "kew/util/rejections.hpp"
+#include "area_stage.hpp"
 #include "pair_judge.hpp"
 #include "zone_set.hpp"
 
@@ -93,6 +95,7 @@ class AlertStage {
   double judged_at_ = 0.0;      // the clock of that step
   alert::AlertManager alerts_;
   eligibility::Rules rules_;
+  AreaStage areas_;
   Rejections suppressed_;
   std::vector<Evaluated> evaluated_;  // in slot order once sorted
   std::vector<track::TrackSlot> partners_scratch_;

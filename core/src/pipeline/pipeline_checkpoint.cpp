@@ -19,7 +19,7 @@ namespace {
 
 constexpr std::uint32_t kPipelineVersion = 1;
 constexpr std::uint32_t kTrackStageVersion = 1;
-constexpr std::uint32_t kAlertStageVersion = 1;
+constexpr std::uint32_t kAlertStageVersion = 2;  // 2: the area stage
 
 template <class Io, class S>
 void statistics_fields(Io& io, S& s) {
@@ -100,6 +100,7 @@ void AlertStage::save(util::CheckpointWriter& out) const {
   out.u64(probes_);
   out.u64(candidates_);
   out.f64(judged_at_);
+  areas_.save(out);
   out.u64(view_.size());
   for (const Snapshot& s : view_) {
     out.boolean(s.track.in_use);
@@ -116,6 +117,7 @@ void AlertStage::restore(util::CheckpointReader& in) {
   probes_ = in.u64();
   candidates_ = in.u64();
   judged_at_ = in.f64();
+  areas_.restore(in);
   const std::uint64_t slots = in.u64();
   view_.clear();
   for (std::uint64_t i = 0; i < slots; ++i) {

@@ -313,18 +313,19 @@ std::vector<Interval> horizontal_intervals(const Volume& volume, const Motion& m
   return intervals_from(times, at, between);
 }
 
-Entry entry(const Volume& volume, const Motion& motion, double horizon_s) {
+Entry entry(const Volume& volume, const Motion& motion, double horizon_s, double from_s) {
   Entry out;
   out.error = validate(motion, horizon_s);
+  if (out.error == MotionError::None && !(from_s >= 0.0 && from_s <= horizon_s)) out.error = MotionError::HorizonRange;
   if (out.error != MotionError::None) return out;
   const std::optional<Interval> vertical = vertical_interval(motion, volume.band(), horizon_s);
   if (!vertical) return out;
   for (const Interval& h : horizontal_intervals(volume, motion, horizon_s)) {
-    const double begin = std::max(h.begin_s, vertical->begin_s);
+    const double begin = std::max({h.begin_s, vertical->begin_s, from_s});
     const double end = std::min(h.end_s, vertical->end_s);
     if (begin > end) continue;
     out.entry_s = begin;
-    out.inside_now = begin == 0.0;
+    out.inside_now = begin == from_s;
     if (end < horizon_s) out.exit_s = end;
     break;
   }

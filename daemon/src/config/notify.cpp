@@ -52,9 +52,13 @@ void read_notify(config::TableReader& r, NotifyConfig& n) {
   } else if (n.states.empty()) {
     r.fail(r.node("states"), "states = []: a notifier that passes no state would never send; give at least one");
   }
+  r.choice_list("kinds", n.kinds, kAlertKindNames);
+  if (r.node("kinds") && n.kinds.empty())
+    r.fail(r.node("kinds"), "kinds = []: a notifier that passes no kind of alert would never send; give at least one");
   r.word_list("regions", n.regions);
   r.word_list("callsigns", n.callsigns);
   r.word_list("addresses", n.addresses);
+  r.word_list("volumes", n.volumes);
   r.number("timeout_s", n.timeout_s, 0.1, 600.0);
   r.number("backoff_min_s", n.backoff_min_s, 0.01, 3600.0);
   r.number("backoff_max_s", n.backoff_max_s, 0.01, 86400.0);

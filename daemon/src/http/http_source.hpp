@@ -10,6 +10,7 @@
 
 #include "kew/eligibility/aerodromes.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
+#include "kew/volume/watched_volume.hpp"
 
 namespace kew::daemon::http {
 
@@ -28,6 +29,9 @@ struct HttpSource {
   /// GET /api/aerodromes: the table the eligibility lower limit uses ([eligibility]
   /// aerodromes_file); null: an empty list.
   std::shared_ptr<const eligibility::AerodromeTable> aerodromes;
+  /// GET /api/volumes: the volumes of the area proximity warning (the pipeline's
+  /// PipelineConfig::volumes, design §4.11); null: none.
+  std::shared_ptr<const std::vector<volume::WatchedVolume>> volumes;
 };
 
 }  // namespace kew::daemon::http

@@ -117,6 +117,19 @@ void write_inputs(Exposition& e, const std::vector<InputMetrics>& inputs) {
   }
 }
 
+/// Every kind and severity has its sample, 0 included: a sum over either label, and a
+/// rule on one series, finds it before the first alert of its kind.
+void write_alerts_active(Exposition& e, const std::vector<AlertEvent>& active) {
+  constexpr std::array kKinds{AlertKind::Stca, AlertKind::Apw};
+  std::array<std::array<std::uint64_t, 4>, kKinds.size()> count{};
+  for (const AlertEvent& a : active) ++count[static_cast<std::size_t>(a.kind)][static_cast<std::size_t>(a.severity)];
+  e.family("kew_alerts_active", "gauge", "Active alerts by severity and kind (stca: a pair; apw: an aircraft and a volume).");
+  for (const AlertKind kind : kKinds)
+    for (const Severity s : {Severity::Caution, Severity::Warning, Severity::Loss})
+      e.sample("kew_alerts_active", {{"severity", to_string(s)}, {"kind", to_string(kind)}},
+               num(count[static_cast<std::size_t>(kind)][static_cast<std::size_t>(s)]));
+}
+
 void write_pipeline(Exposition& e, const Pipeline& pipeline) {
   const PipelineStatistics& p = pipeline.statistics();
   e.single("kew_records_accepted_total", "counter", "Records the track table accepted (all inputs).", num(p.accepted));
@@ -127,11 +140,7 @@ void write_pipeline(Exposition& e, const Pipeline& pipeline) {
   e.single("kew_data_time_seconds", "gauge", "The pipeline clock: data time of the latest record (Unix seconds).",
            p.last_data_time);
 
-  std::array<std::uint64_t, 4> active{};
-  for (const AlertEvent& a : pipeline.alerts().snapshot()) ++active[static_cast<std::size_t>(a.severity)];
-  e.family("kew_alerts_active", "gauge", "Active alerts by severity.");
-  for (const Severity s : {Severity::Caution, Severity::Warning, Severity::Loss})
-    e.sample("kew_alerts_active", {{"severity", to_string(s)}}, num(active[static_cast<std::size_t>(s)]));
+  write_alerts_active(e, pipeline.alerts().snapshot());
   e.single("kew_alerts_unacknowledged", "gauge", "Active alerts not acknowledged.",
            num(pipeline.alerts().unacknowledged_count()));
   const auto& c = pipeline.alerts().counters();
@@ -277,6 +286,12 @@ void LatencyHistogram::observe(double seconds) {
       return;
     }
   }
+}
+
+std::string alerts_active_text(const std::vector<AlertEvent>& active) {
+  Exposition e;
+  write_alerts_active(e, active);
+  return e.take();
 }
 
 std::string metrics_text(const MetricsSources& s) {

@@ -70,6 +70,9 @@ struct MetricsSources {
 };
 
 std::string metrics_text(const MetricsSources& sources);
+/// The family kew_alerts_active of `active` (the pipeline's snapshot), as metrics_text
+/// writes it.
+std::string alerts_active_text(const std::vector<AlertEvent>& active);
 
 /// Resident set size of this process (bytes) from /proc/self/statm; nullopt if unknown.
 std::optional<std::uint64_t> resident_bytes();

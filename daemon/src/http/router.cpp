@@ -1,6 +1,7 @@
 #include "router.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <iterator>
 
@@ -99,6 +100,11 @@ Reply Router::handle(const Request& request, std::string_view client, std::uint1
   if (path == "/api/aerodromes") {
     if (aerodromes_.empty()) aerodromes_ = aerodromes_json(source_.aerodromes.get());
     return {200, "application/json", aerodromes_};
+  }
+  if (path == "/api/volumes") {
+    if (!volumes_) volumes_.emplace(source_.volumes ? *source_.volumes : std::vector<volume::WatchedVolume>{});
+    const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    return {200, "application/geo+json", volumes_->text(now)};
   }
   if (path == "/metrics") return {200, "text/plain; version=0.0.4; charset=utf-8", source_.metrics()};
   if (path == "/ws") return refuse(426, "not_websocket", "/ws is a WebSocket: send an upgrade request");

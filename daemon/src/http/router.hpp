@@ -3,6 +3,7 @@
 // session gives it the request, the client's address and the listener's port.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "kew/daemon/config.hpp"
 #include "kew/util/rejections.hpp"
 #include "static_files.hpp"
+#include "volumes_json.hpp"
 
 namespace kew::daemon::http {
 
@@ -54,6 +56,7 @@ class Router {
   std::vector<std::string> host_names_;
   std::string map_config_;  ///< GET /api/map-config, made once
   std::string aerodromes_;  ///< GET /api/aerodromes, made at the first request
+  std::optional<VolumesGeoJson> volumes_;  ///< GET /api/volumes' shapes, made at the first request
   const HttpSource& source_;
   Rejections& refusals_;
 };

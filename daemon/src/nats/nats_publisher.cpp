@@ -60,10 +60,10 @@ NatsPublisher::~NatsPublisher() {
   thread_.join();
 }
 
-void NatsPublisher::publish_alert(std::string_view zone, std::string_view json, std::uint64_t seq) {
+void NatsPublisher::publish_alert(std::string_view tail, std::string_view json, std::uint64_t seq) {
   // Hot standby: every instance numbers an event alike, so an event published by two of
   // them (one stepping down with a publication in flight, one taking over) is kept once.
-  enqueue(fmt::format("{}.{}", config_.alerts_subject, zone), json, seq,
+  enqueue(fmt::format("{}.{}", config_.alerts_subject, tail), json, seq,
           config_.hot_standby ? fmt::format("{}-{}", config_.lease_key, seq) : std::string());
 }
 

@@ -40,9 +40,9 @@ class NatsPublisher {
   NatsPublisher(const NatsPublisher&) = delete;
   NatsPublisher& operator=(const NatsPublisher&) = delete;
 
-  /// An ALERT object (its seq) judged in `zone` (a subject token): to
-  /// <alerts_subject>.<zone>, kept.
-  void publish_alert(std::string_view zone, std::string_view json, std::uint64_t seq);
+  /// An ALERT object (its seq) to <alerts_subject>.<tail>, kept: `tail` is a zone's
+  /// subject token, or apw.<zone> for an area warning (alert_subject_tail).
+  void publish_alert(std::string_view tail, std::string_view json, std::uint64_t seq);
   /// An ACK object: to acks_subject, kept.
   void publish_ack(std::string_view json, std::uint64_t seq);
   /// An ALIVE object to status_subject, or a TRACKS snapshot to tracks_subject: now, or

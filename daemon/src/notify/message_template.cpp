@@ -46,6 +46,28 @@ int gotify_priority(const OutboxEntry& e) {
   return e.highest == Severity::Loss ? 10 : e.highest == Severity::Warning ? 8 : 5;
 }
 
+/// What a volume is to a reader: "restricted area EDR-114". A kind kewd does not know
+/// (a newer server's) still reads as an area.
+std::string area_name(const AlertEvent& e) {
+  return e.volume_kind.empty() ? fmt::format("area {}", e.volume) : fmt::format("{} area {}", e.volume_kind, e.volume);
+}
+
+/// What the alert says about its subject, first line of the text.
+std::string situation(const OutboxEntry& entry) {
+  const AlertEvent& e = entry.latest;
+  const bool area = e.kind == AlertKind::Apw;
+  if (e.state == AlertState::End)
+    return fmt::format("{} ended ({}) after {}; highest severity {}.\n", area ? "Area warning" : "Alert",
+                       to_string(e.end_reason), duration(e.t - e.opened_t), to_string(entry.highest));
+  const bool now = e.severity == Severity::Loss || e.t_los_s <= 0;
+  if (area)
+    return now ? fmt::format("Inside {} now.\n", area_name(e))
+               : fmt::format("Enters {} in {}.\n", area_name(e), duration(e.t_los_s));
+  if (now) return fmt::format("Separation lost: {} apart now.\n", apart(e.sep_h_m, e.sep_v_ft));
+  return fmt::format("Loss of separation predicted in {}; {} apart now.\n", duration(e.t_los_s),
+                     apart(e.sep_h_m, e.sep_v_ft));
+}
+
 std::string json_text(std::string_view text) {
   std::string out;
   protocol::append_json_string(out, text);
@@ -57,24 +79,20 @@ std::string json_text(std::string_view text) {
 std::string message_title(const std::string& title, const OutboxEntry& entry) {
   const AlertEvent& e = entry.latest;
   const std::string what = e.state == AlertState::End ? "ended" : upper(to_string(e.severity));
+  if (e.kind == AlertKind::Apw) {
+    const std::string kind = e.volume_kind.empty() ? "" : fmt::format(" ({})", e.volume_kind);
+    return fmt::format("{}: {} {} → {}{}", title, what, party_name(e.a), e.volume, kind);
+  }
   return fmt::format("{}: {} {} / {}", title, what, party_name(e.a), party_name(e.b));
 }
 
 std::string message_text(const OutboxEntry& entry) {
   const AlertEvent& e = entry.latest;
-  std::string text;
-  if (e.state == AlertState::End) {
-    text = fmt::format("Alert ended ({}) after {}; highest severity {}.\n", to_string(e.end_reason),
-                       duration(e.t - e.opened_t), to_string(entry.highest));
-  } else if (e.severity == Severity::Loss || e.t_los_s <= 0) {
-    text = fmt::format("Separation lost: {} apart now.\n", apart(e.sep_h_m, e.sep_v_ft));
-  } else {
-    text = fmt::format("Loss of separation predicted in {}; {} apart now.\n", duration(e.t_los_s),
-                       apart(e.sep_h_m, e.sep_v_ft));
-  }
-  if (e.state != AlertState::End)
+  std::string text = situation(entry);
+  if (e.state != AlertState::End && e.kind == AlertKind::Stca)
     text += fmt::format("Closest in {}: {}.\n", duration(e.t_cpa_s), apart(e.cpa_h_m, e.cpa_v_ft));
   for (const AlertParty* p : {&e.a, &e.b}) {
+    if (p->id.empty()) continue;  // an area warning's b
     const std::string who = p->callsign.empty() ? p->id : fmt::format("{} ({})", p->callsign, p->id);
     text += fmt::format("{} {:.0f} ft, {:.0f} kt, track {:03.0f}.\n", who, p->alt_ft, p->gs_kt, p->trk_deg);
   }

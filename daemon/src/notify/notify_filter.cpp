@@ -8,11 +8,18 @@ namespace kew::daemon {
 NotifyFilter::NotifyFilter(const NotifyConfig& config) : config_(config) {}
 
 bool NotifyFilter::concerns(const AlertEvent& event) const {
-  if (!config_.regions.empty() &&
+  if (std::find(config_.kinds.begin(), config_.kinds.end(), event.kind) == config_.kinds.end()) return false;
+  const bool area = event.kind == AlertKind::Apw;
+  if (!area && !config_.regions.empty() &&
       std::find(config_.regions.begin(), config_.regions.end(), event.region) == config_.regions.end())
     return false;
-  if (config_.callsigns.empty() && config_.addresses.empty()) return true;
+  if (config_.callsigns.empty() && config_.addresses.empty() && config_.volumes.empty()) return true;
+  if (area)
+    for (const std::string& pattern : config_.volumes)
+      if (util::matches_wildcard(pattern, event.volume)) return true;
+  // An area warning's b is empty: an address pattern such as "*" would match it.
   for (const AlertParty* party : {&event.a, &event.b}) {
+    if (party->id.empty()) continue;
     for (const std::string& pattern : config_.callsigns)
       if (!party->callsign.empty() && util::matches_wildcard(pattern, party->callsign)) return true;
     for (const std::string& pattern : config_.addresses)

@@ -1,7 +1,8 @@
 #pragma once
 // Which alert events a notifier sends, and what each is to it (design §5.10): new,
 // escalated (its severity rose above any it had, or first reached min_severity), updated
-// or ended; filtered by severity, state, region and the parties' callsigns or addresses.
+// or ended; filtered by severity, state, kind, region and the parties' callsigns or
+// addresses or the volume's name.
 
 #include <optional>
 #include <string>
@@ -21,7 +22,7 @@ class NotifyFilter {
   std::optional<NotifyState> classify(const AlertEvent& event);
 
  private:
-  /// The region and party filters.
+  /// The kind, region, party and volume filters.
   bool concerns(const AlertEvent& event) const;
   bool passes(NotifyState state) const;
 

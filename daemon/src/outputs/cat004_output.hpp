@@ -1,6 +1,7 @@
 #pragma once
-// ASTERIX CAT004 (design §5.4) as an output: STCA messages for alert events and Alive
-// messages, to the destination the pair shares.
+// ASTERIX CAT004 (design §5.4) as an output: STCA or APW messages, by the alert's kind,
+// and End Of Conflict for alert events, and Alive messages, to the destination the pair
+// shares.
 
 #include <boost/asio/io_context.hpp>
 

@@ -1,6 +1,7 @@
 #pragma once
-// NATS (design §5.9) as an output: alerts to <alerts_subject>.<zone> and acknowledgements
-// kept in JetStream, the status now or never, a TRACKS snapshot at its own interval.
+// NATS (design §5.9) as an output: alerts to <alerts_subject>.<zone> (conflicts) and
+// <alerts_subject>.apw.<zone> (area proximity warnings) and acknowledgements kept in
+// JetStream, the status now or never, a TRACKS snapshot at its own interval.
 
 #include <memory>
 #include <string>
@@ -10,6 +11,11 @@
 #include "output.hpp"
 
 namespace kew::daemon {
+
+/// What follows <alerts_subject>. in an alert's subject: the subject token of the zone
+/// that owns a conflict's pair, or "apw." and that of the zone holding an area warning's
+/// aircraft ("single" for either without `tiling`, in single-zone mode).
+std::string alert_subject_tail(const AlertEvent& event, const std::optional<zone::ZoneTiling>& tiling);
 
 class NatsOutput final : public Output {
  public:
@@ -39,9 +45,6 @@ class NatsOutput final : public Output {
   void close() { publisher_.reset(); }
 
  private:
-  /// The subject token of the zone that judges the event's pair ("single" in single mode).
-  std::string zone(const AlertEvent& event) const;
-
   std::unique_ptr<NatsPublisher> publisher_;
   const Pipeline& pipeline_;
   std::string description_;

@@ -473,6 +473,7 @@ http::HttpSource Service::http_source() {
   source.status = [this] { return views_.status(); };
   source.zones = [this] { return views_.zones(); };
   source.aerodromes = config_.pipeline.eligibility.aerodromes;
+  source.volumes = std::make_shared<const std::vector<volume::WatchedVolume>>(pipeline_.config().volumes);
   source.snapshot = [this] { return views_.snapshot(); };
   source.metrics = [this] { return metrics_text(); };
   source.acknowledge = [this](const protocol::AckRequest& request, std::string_view client) {

@@ -105,6 +105,7 @@ void append_party(std::string& out, const AlertParty& party) {
 void append_alert_object(std::string& out, const AlertEvent& e, std::uint64_t seq) {
   ObjectWriter o(out);
   o.text("class", "ALERT");
+  o.text("kind", to_string(e.kind));
   o.text("id", e.id);
   o.integer("number", e.number);
   o.integer("seq", seq);
@@ -115,6 +116,16 @@ void append_alert_object(std::string& out, const AlertEvent& e, std::uint64_t se
   o.fixed("t_open", e.opened_t, kTimeDecimals);
   o.key("a");
   append_party(out, e.a);
+  if (e.kind == AlertKind::Apw) {
+    // An area proximity warning: one aircraft and a volume, no pair figures.
+    o.text("volume", e.volume);
+    o.text("volume_kind", e.volume_kind);
+    o.fixed("t_los_s", e.t_los_s, kMetreSecondDecimals);
+    o.text("hypothesis", to_string(e.hypothesis));
+    o.boolean("ack", e.acknowledged);
+    o.close();
+    return;
+  }
   o.key("b");
   append_party(out, e.b);
   o.fixed("t_los_s", e.t_los_s, kMetreSecondDecimals);

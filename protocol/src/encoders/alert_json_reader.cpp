@@ -166,18 +166,16 @@ bool read_alert(dom::object object, AlertEvent& event, std::string& error) {
   event = AlertEvent{};
   Members m(object, error);
   std::string_view state, severity, reason;
-  // Servers before "hypothesis" found every conflict by the linear prediction.
+  // Servers before "hypothesis" found every conflict by the linear prediction, and
+  // servers before "kind" knew only pairs.
   std::string_view hypothesis = to_string(Hypothesis::Linear);
+  std::string_view kind = to_string(AlertKind::Stca);
   dom::object a, b;
-  if (!(m.required("id", event.id) && m.optional("number", event.number) &&
-        m.required("seq", event.seq) && m.required("state", state) &&
-        m.optional("reason", reason) && m.required("severity", severity) &&
-        m.required("t", event.t) && m.optional("t_open", event.opened_t) &&
-        m.required("a", a) && m.required("b", b) && m.required("t_los_s", event.t_los_s) &&
-        m.required("t_cpa_s", event.t_cpa_s) && m.required("cpa_h_m", event.cpa_h_m) &&
-        m.required("cpa_v_ft", event.cpa_v_ft) && m.required("sep_h_m", event.sep_h_m) &&
-        m.required("sep_v_ft", event.sep_v_ft) && m.optional("hypothesis", hypothesis) &&
-        m.optional("region", event.region) && m.optional("ack", event.acknowledged))) {
+  if (!(m.optional("kind", kind) && m.required("id", event.id) && m.optional("number", event.number) &&
+        m.required("seq", event.seq) && m.required("state", state) && m.optional("reason", reason) &&
+        m.required("severity", severity) && m.required("t", event.t) && m.optional("t_open", event.opened_t) &&
+        m.required("a", a) && m.required("t_los_s", event.t_los_s) && m.optional("hypothesis", hypothesis) &&
+        m.optional("ack", event.acknowledged))) {
     return false;
   }
   const auto named = [&m](const auto& names, std::string_view member, std::string_view text,
@@ -185,11 +183,18 @@ bool read_alert(dom::object object, AlertEvent& event, std::string& error) {
     return parse_name(names, text, out) ||
            m.fail("unknown " + std::string(member) + " " + quoted(text));
   };
-  return named(kAlertStateNames, "state", state, event.state) &&
-         named(kSeverityNames, "severity", severity, event.severity) &&
-         named(kAlertEndReasonNames, "reason", reason, event.end_reason) &&
-         named(kHypothesisNames, "hypothesis", hypothesis, event.hypothesis) &&
-         read_party(a, "a", event.a, error) && read_party(b, "b", event.b, error);
+  if (!(named(kAlertKindNames, "kind", kind, event.kind) && named(kAlertStateNames, "state", state, event.state) &&
+        named(kSeverityNames, "severity", severity, event.severity) &&
+        named(kAlertEndReasonNames, "reason", reason, event.end_reason) &&
+        named(kHypothesisNames, "hypothesis", hypothesis, event.hypothesis) && read_party(a, "a", event.a, error))) {
+    return false;
+  }
+  if (event.kind == AlertKind::Apw)
+    return m.required("volume", event.volume) && m.required("volume_kind", event.volume_kind);
+  return m.required("b", b) && m.required("t_cpa_s", event.t_cpa_s) && m.required("cpa_h_m", event.cpa_h_m) &&
+         m.required("cpa_v_ft", event.cpa_v_ft) && m.required("sep_h_m", event.sep_h_m) &&
+         m.required("sep_v_ft", event.sep_v_ft) && m.optional("region", event.region) &&
+         read_party(b, "b", event.b, error);
 }
 
 bool read_alive(dom::object object, AliveStatus& alive, std::string& error) {

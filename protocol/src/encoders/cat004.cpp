@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <string_view>
 #include <utility>
 
 namespace kew::protocol {
@@ -16,8 +17,8 @@ constexpr double kSecondsPerDay = 86400.0;
 // Field reference numbers of the CAT004 1.12 UAP (FRN 19 is spare).
 enum Frn : unsigned {
   kFrn010 = 1, kFrn000 = 2, kFrn015 = 3, kFrn020 = 4, kFrn040 = 5, kFrn045 = 6,
-  kFrn060 = 7, kFrn030 = 8, kFrn170 = 9, kFrn120 = 10, kFrn070 = 11, kFrn035 = 16,
-  kFrn171 = 17,
+  kFrn060 = 7, kFrn030 = 8, kFrn170 = 9, kFrn120 = 10, kFrn070 = 11, kFrn100 = 15,
+  kFrn035 = 16, kFrn171 = 17,
 };
 
 /// The octets of an FSPEC (of a record or of a compound item) announcing the items whose
@@ -118,13 +119,41 @@ void write_aircraft(FieldList& record, unsigned frn, const AlertParty& party) {
   subfields.write_to(record.field(frn));
 }
 
-/// The CC octet of I004/120 in an STCA message: TID (bits 8–5) = 1, the table whose
-/// Conflict Properties Class (bits 4–2) holds the filters that raised the alert: LPF
-/// (linear prediction, bit 4), CPF (current proximity, bit 3), MHF (manoeuvre hazard,
-/// bit 2); then CS (bit 1), HIGH from warning up.
-unsigned conflict_classification(const AlertEvent& event) {
-  constexpr unsigned kTableFilters = 1u << 4;
-  constexpr unsigned kLpf = 1u << 3, kCpf = 1u << 2, kMhf = 1u << 1, kHigh = 1u;
+constexpr unsigned kTableOne = 1u << 4;  // TID (bits 8–5) = 1
+constexpr unsigned kSeverityHigh = 1u;   // CS (bit 1)
+
+/// CS is HIGH from warning up, whatever the safety net, so a receiver that reads CS only
+/// ranks STCA and APW alerts alike.
+unsigned conflict_severity(const AlertEvent& event) {
+  return event.severity >= Severity::Warning ? kSeverityHigh : 0u;
+}
+
+/// The CC octet of I004/120 in an APW message: TID 1, the table whose Conflict Properties
+/// Class (bits 4–2) is the APW severity: 0 low, 1 medium, 2 high (the CC case (5, 1) of
+/// edition 1.12); kew's three severities map onto them in order.
+unsigned apw_classification(const AlertEvent& event) {
+  unsigned level = 0;
+  switch (event.severity) {
+    case Severity::None:
+    case Severity::Caution:
+      level = 0;
+      break;
+    case Severity::Warning:
+      level = 1;
+      break;
+    case Severity::Loss:  // inside the volume
+      level = 2;
+      break;
+  }
+  return kTableOne | (level << 1) | conflict_severity(event);
+}
+
+/// The CC octet of I004/120 in an STCA message: TID 1, the table whose Conflict
+/// Properties Class (bits 4–2) holds the filters that raised the alert: LPF (linear
+/// prediction, bit 4), CPF (current proximity, bit 3), MHF (manoeuvre hazard, bit 2);
+/// then CS.
+unsigned stca_classification(const AlertEvent& event) {
+  constexpr unsigned kLpf = 1u << 3, kCpf = 1u << 2, kMhf = 1u << 1;
   unsigned filter = kLpf;
   switch (event.hypothesis) {
     case Hypothesis::Linear:
@@ -138,22 +167,25 @@ unsigned conflict_classification(const AlertEvent& event) {
       filter = kMhf;
       break;
   }
-  return kTableFilters | filter | (event.severity >= Severity::Warning ? kHigh : 0u);
+  return kTableOne | filter | conflict_severity(event);
 }
 
-/// I004/120: CC (the filter that found the conflict, and its severity) and CD (time since
-/// the alert opened, 1/128 s).
+/// I004/120: CC (the filter that found the conflict or the APW severity, and CS) and CD
+/// (time since the alert opened, 1/128 s).
 void write_conflict_characteristics(FieldList& record, const AlertEvent& event) {
   constexpr unsigned kCc = 2, kCd = 4;
   FieldList subfields;
-  subfields.field(kCc).u8(conflict_classification(event));
+  subfields.field(kCc).u8(event.kind == AlertKind::Apw ? apw_classification(event)
+                                                       : stca_classification(event));
   const double duration = event.t - event.opened_t;
   if (std::isfinite(duration)) subfields.field(kCd).u24(saturated(duration, 1.0 / 128.0, 24));
   subfields.write_to(record.field(kFrn120));
 }
 
 /// I004/070: TC, TCA (1/128 s), CHS (0.5 m, 24 bits), MHS (0.5 m, 16 bits), CVS and MVS
-/// (25 ft); figures that are not finite are left out, the item too when none is.
+/// (25 ft); figures that are not finite are left out, the item too when none is. An APW
+/// alert sends TC only (the time to entry into the volume): the other five describe a
+/// pair, and their zeros in an APW event would read as aircraft closing to nothing.
 void write_timing_and_separation(FieldList& record, const AlertEvent& event) {
   struct Figure {
     double value;
@@ -168,8 +200,9 @@ void write_timing_and_separation(FieldList& record, const AlertEvent& event) {
       {event.sep_v_ft, 25.0, 16},
       {event.cpa_v_ft, 25.0, 16},
   }};
+  const std::size_t sent = event.kind == AlertKind::Apw ? 1 : figures.size();
   FieldList subfields;
-  for (unsigned i = 0; i < figures.size(); ++i) {
+  for (unsigned i = 0; i < sent; ++i) {
     const Figure& f = figures[i];
     if (!std::isfinite(f.value)) continue;
     Octets& out = subfields.field(i + 1);
@@ -181,6 +214,39 @@ void write_timing_and_separation(FieldList& record, const AlertEvent& event) {
     }
   }
   if (!subfields.empty()) subfields.write_to(record.field(kFrn070));
+}
+
+/// The 6-bit code of `c` in the ICAO character set (Annex 10 Vol IV 3.1.2.9: A–Z are 1–26,
+/// space 32, 0–9 are 48–57); lower-case letters take their capital's code, and every other
+/// character the space's, since the set has nothing else.
+unsigned icao_code(char c) {
+  if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  if (c >= 'A' && c <= 'Z') return static_cast<unsigned>(c - 'A' + 1);
+  if (c >= '0' && c <= '9') return static_cast<unsigned>(c);
+  return 32;
+}
+
+/// I004/100 with subfield AN only: the volume's name in 8 ICAO 6-bit characters (48 bits),
+/// left adjusted and space filled; longer names are cut. A UTF-8 character outside the set
+/// is one space: its continuation bytes (0x80–0xBF) are skipped.
+void write_area_name(FieldList& record, std::string_view name) {
+  constexpr unsigned kAn = 1;
+  constexpr std::size_t kAnChars = 8;
+  std::uint64_t bits = 0;
+  std::size_t chars = 0;
+  for (const char c : name) {
+    if (chars == kAnChars) break;
+    const auto octet = static_cast<unsigned char>(c);
+    if (octet >= 0x80 && octet <= 0xBF) continue;
+    bits = (bits << 6) | icao_code(c);
+    ++chars;
+  }
+  for (; chars < kAnChars; ++chars) bits = (bits << 6) | icao_code(' ');
+  FieldList subfields;
+  Octets& an = subfields.field(kAn);
+  an.u24(static_cast<std::uint32_t>(bits >> 24));
+  an.u24(static_cast<std::uint32_t>(bits & 0xFFFFFF));
+  subfields.write_to(record.field(kFrn100));
 }
 
 void write_header_items(FieldList& record, const Cat004Options& options,
@@ -224,12 +290,13 @@ bool Cat004Encoder::add_alive(const Cat004Alive& alive) {
   }
   FieldList record;
   write_header_items(record, options_, Cat004MessageType::Alive, alive.t);
-  // I004/060: kew runs STCA only; the second octet carries DG, OF and OL when set.
-  constexpr unsigned kStca = 0x02, kDg = 0x08, kOf = 0x04, kOl = 0x02, kFx = 0x01;
+  // I004/060: STCA always runs, APW when the sender says so; the second octet carries
+  // DG, OF and OL when set.
+  constexpr unsigned kApw = 0x08, kStca = 0x02, kDg = 0x08, kOf = 0x04, kOl = 0x02, kFx = 0x01;
   const unsigned flags =
       (alive.degraded ? kDg : 0u) | (alive.overflow ? kOf : 0u) | (alive.overload ? kOl : 0u);
   Octets& status = record.field(kFrn060);
-  status.u8(kStca | (flags != 0 ? kFx : 0u));
+  status.u8(kStca | (alive.apw ? kApw : 0u) | (flags != 0 ? kFx : 0u));
   if (flags != 0) status.u8(flags);
   append_record(encoded(record).bytes());
   return true;
@@ -241,9 +308,14 @@ bool Cat004Encoder::add_alert(const AlertEvent& event) {
     return false;
   }
   const bool end = event.state == AlertState::End;
+  const bool apw = event.kind == AlertKind::Apw;
+  // End Of Conflict is the one end message of every safety net (edition 1.12 has no
+  // APW-specific one); I004/040 tells the receiver which alert ended.
+  const Cat004MessageType type = end ? Cat004MessageType::EndOfConflict
+                                 : apw ? Cat004MessageType::Apw
+                                       : Cat004MessageType::Stca;
   FieldList record;
-  write_header_items(record, options_,
-                     end ? Cat004MessageType::EndOfConflict : Cat004MessageType::Stca, event.t);
+  write_header_items(record, options_, type, event.t);
   record.field(kFrn040).u16(event.number);
   // STAT (bits 3–1 of I004/045) carries kew's severity, 0 once the conflict has ended.
   const unsigned status = end ? 0u : static_cast<unsigned>(event.severity);
@@ -253,9 +325,14 @@ bool Cat004Encoder::add_alert(const AlertEvent& event) {
     write_aircraft(record, kFrn170, event.a);
     write_conflict_characteristics(record, event);
     write_timing_and_separation(record, event);
+    if (apw) write_area_name(record, event.volume);  // mandatory in APW (type 5)
   }
-  record.field(kFrn035).u16(event.b.track_number);
-  if (!end) write_aircraft(record, kFrn171, event.b);
+  // An APW alert has one aircraft: 035 and 171 are "X" (never present) in type 5, and
+  // 035 is for the second track of a pair in End Of Conflict.
+  if (!apw) {
+    record.field(kFrn035).u16(event.b.track_number);
+    if (!end) write_aircraft(record, kFrn171, event.b);
+  }
   append_record(encoded(record).bytes());
   return true;
 }

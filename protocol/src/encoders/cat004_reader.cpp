@@ -41,7 +41,7 @@ enum Frn : unsigned {
   kSource = 1, kMessageType = 2, kSdps = 3, kTimeOfMessage = 4, kAlertId = 5,
   kAlertStatus = 6, kFunctionStatus = 7, kTrackNumber1 = 8, kAircraft1 = 9,
   kConflict = 10, kTiming = 11, kVerticalDeviation = 12, kLongitudinalDeviation = 13,
-  kTransversalDeviation = 14, kTrackNumber2 = 16, kAircraft2 = 17,
+  kTransversalDeviation = 14, kArea = 15, kTrackNumber2 = 16, kAircraft2 = 17,
 };
 
 constexpr std::array<ItemFormat, 21> kUap{
@@ -141,11 +141,15 @@ void read_items(const asterix::RecordItems& items, Cat004Record& r) {
     r.conflict_nature = octets(subfield(0));
     if (const auto cc = subfield(1); !cc.empty()) {
       r.conflict_classification = cc[0];
-      constexpr std::uint8_t kStca = 7;
-      constexpr unsigned kTableFilters = 1;
-      if (r.message_type == kStca && (cc[0] >> 4) == kTableFilters) {
+      constexpr std::uint8_t kApw = 5, kStca = 7;
+      constexpr unsigned kTableOne = 1;
+      // The CPC bits mean something only under a (message type, TID) case of the edition.
+      if (r.message_type == kStca && (cc[0] >> 4) == kTableOne) {
         r.stca_filters = Cat004StcaFilters{(cc[0] & 0x08) != 0, (cc[0] & 0x04) != 0,
                                            (cc[0] & 0x02) != 0};
+      }
+      if (r.message_type == kApw && (cc[0] >> 4) == kTableOne) {
+        r.apw_severity = static_cast<std::uint8_t>((cc[0] >> 1) & 0x7);
       }
     }
     r.conflict_probability_pct = unsigned_quantity(subfield(2), 0.5);
@@ -165,6 +169,11 @@ void read_items(const asterix::RecordItems& items, Cat004Record& r) {
   r.vertical_deviation_ft = signed_quantity(items.item(kVerticalDeviation), 25.0);
   r.longitudinal_deviation_m = signed_quantity(items.item(kLongitudinalDeviation), 32.0);
   r.transversal_deviation_m = signed_quantity(items.item(kTransversalDeviation), 0.5);
+  if (items.has(kArea)) {
+    const auto an = asterix::compound_subfield(kUap[kArea - 1], items.item(kArea), 0);
+    std::string text;
+    if (!an.empty() && asterix::decode_icao_characters(an.data(), text)) r.area_name = text;
+  }
 }
 
 }  // namespace

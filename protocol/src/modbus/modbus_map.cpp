@@ -68,11 +68,14 @@ void write_row(const AlertEvent& e, std::span<std::uint16_t> row) {
   row[kColAlertNumber] = e.number;
   row[kColSeverity] = static_cast<std::uint16_t>(e.severity);
   row[kColTrackA] = e.a.track_number;
-  row[kColTrackB] = e.b.track_number;
   row[kColTimeToLoss] = saturate_figure(e.t_los_s, 1.0);
+  row[kColState] = state_code(e.state);
+  // An APW row leaves the pair's columns 0 whatever the event holds, so a panel never
+  // shows a track or a closest approach the alert does not have.
+  if (e.kind == AlertKind::Apw) return;
+  row[kColTrackB] = e.b.track_number;
   row[kColCpaHorizontal] = saturate_figure(e.cpa_h_m, 10.0);
   row[kColCpaVertical] = saturate_figure(e.cpa_v_ft, 10.0);
-  row[kColState] = state_code(e.state);
 }
 
 int clamp_table_entries(int table_entries) {
@@ -125,6 +128,9 @@ RegisterMap build_register_map(const AlarmSnapshot& s, int table_entries, std::u
   for (std::size_t i = 0; i < rows; ++i) {
     write_row(*active[i], std::span<std::uint16_t>(r).subspan(
                               kRegTableStart + i * kModbusTableRowWidth, kModbusTableRowWidth));
+    if (active[i]->kind == AlertKind::Apw) {
+      r[kRegRowKinds + i / 16] |= static_cast<std::uint16_t>(kKindApw << (i % 16));
+    }
   }
   return map;
 }

@@ -30,6 +30,9 @@ void AlertCollector::add(const AlertEvent& event) {
   if (open == open_.end()) {
     AlertSpan span;
     span.id = event.id;
+    span.kind = event.kind;
+    span.volume = event.volume;
+    span.volume_kind = event.volume_kind;
     span.a_source = event.a.source;
     span.a_id = event.a.id;
     span.a_callsign = event.a.callsign;

@@ -482,6 +482,12 @@ std::optional<std::pair<std::int64_t, TruthSample>> Truth::nearest_sample(TruthT
   return std::nullopt;
 }
 
+std::vector<SecondRange> Truth::sampled(TruthTrackId track) const {
+  std::vector<SecondRange> out;
+  for (const Run& run : tracks_[track].runs) out.push_back({run.first_s, run.last_s});
+  return out;
+}
+
 std::optional<std::int64_t> Truth::airborne_since(TruthTrackId track, std::int64_t second) const {
   const SecondRange* r = first_meeting(tracks_[track].airborne, second, second);
   if (!r) return std::nullopt;

@@ -107,7 +107,9 @@ class TableReader {
   /// A position [lat, lon] in WGS84 degrees, latitude first as everywhere in kew's TOML
   /// (latitude in [-90, 90], longitude in [-180, 180]).
   void position(std::string_view key, std::optional<geo::GeodeticPosition>& out);
-  /// An array of positions [[lat, lon], ...]; an error names the entry (from 1) and its line.
+  /// An array of positions [[lat, lon], ...], or a text of positions as an AIP writes
+  /// them ("471234N 0083456E - 471500N 0084000E - ...", aip_coordinates.hpp); an error
+  /// names the entry (from 1) and its line.
   void position_list(std::string_view key, std::vector<geo::GeodeticPosition>& out);
 
   /// An inline or nested table `key` ({ lat = 1.0, lon = 2.0 }): calls read(TableReader&)

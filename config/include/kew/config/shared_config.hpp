@@ -31,8 +31,9 @@ struct SharedConfig {
   /// The service's defaults: PipelineConfig's, with every core, kDefaultBatchRecords and
   /// kDefaultPromptRecords; no aerodrome table yet (default_shared_config() loads it).
   SharedConfig();
-  /// regions: the [[region]] tables, then [regions] geojson's; eligibility.aerodromes:
-  /// the table of aerodromes_file
+  /// regions: the [[region]] tables, then [regions] geojson's; volumes: the [[volume]]
+  /// tables, then [volumes] geojson's; eligibility.aerodromes: the table of
+  /// aerodromes_file
   PipelineConfig pipeline;
   protocol::DecoderOptions decoding;  ///< radars of [[radar]], [decoding] limits
   /// The GeoJSON file of [regions] geojson, absolute; empty when none.
@@ -43,8 +44,9 @@ struct SharedConfig {
 };
 
 /// Top-level tables read into SharedConfig.
-inline constexpr std::array<std::string_view, 11> kSharedSections = {
-    "pipeline", "projection", "tracks", "kinetic", "probe", "alerts", "eligibility", "decoding", "radar", "region", "regions"};
+inline constexpr std::array<std::string_view, 13> kSharedSections = {
+    "pipeline", "projection", "tracks", "kinetic", "probe",  "alerts", "eligibility",
+    "decoding", "radar",      "region", "regions", "volume", "volumes"};
 /// Top-level tables that only kewd reads (parsed in daemon/). Every other tool accepts a
 /// kewd file and leaves them unread.
 inline constexpr std::array<std::string_view, 7> kDaemonSections = {"service", "cat004", "modbus", "http", "nats",

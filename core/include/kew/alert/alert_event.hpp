@@ -20,6 +20,18 @@ enum class Severity : std::uint8_t {
 
 enum class AlertState : std::uint8_t { New, Update, End };
 
+/// Which safety net raised an alert (design §4.7, §4.11).
+enum class AlertKind : std::uint8_t {
+  Stca,  ///< short-term conflict alert: aircraft a and aircraft b
+  Apw,   ///< area proximity warning: aircraft a and a volume (b is empty)
+};
+/// The names of an ALERT's `kind`.
+inline constexpr util::NameTable<AlertKind, 2> kAlertKindNames({{
+    {AlertKind::Stca, "stca"},
+    {AlertKind::Apw, "apw"},
+}});
+constexpr std::string_view to_string(AlertKind k) { return kAlertKindNames.name(k); }
+
 /// Why an alert ended (End events only).
 enum class AlertEndReason : std::uint8_t {
   None,         ///< not an End event
@@ -98,6 +110,7 @@ struct AlertEvent {
   /// Per-stream sequence number, assigned by the alert manager in emission order (from 1,
   /// or on from AlertManager::resume()).
   std::uint64_t seq = 0;
+  AlertKind kind = AlertKind::Stca;
   AlertState state = AlertState::New;
   AlertEndReason end_reason = AlertEndReason::None;
   Severity severity = Severity::None;
@@ -105,9 +118,12 @@ struct AlertEvent {
   double t = 0.0;
   /// Data time the alert opened, UTC seconds.
   double opened_t = 0.0;
-  AlertParty a;  ///< the pair ordered by (source, id), a < b
+  /// Stca: the pair ordered by (source, id), a < b. Apw: the aircraft in a, b empty.
+  AlertParty a;
   AlertParty b;
-  double t_los_s = 0.0;   ///< time to loss of separation from t (0 when lost now)
+  /// Time from t to the loss of separation, or (Apw) to the entry into the volume; 0
+  /// when lost now (inside the volume).
+  double t_los_s = 0.0;
   double t_cpa_s = 0.0;   ///< time to closest horizontal approach within [0, T]
   double cpa_h_m = 0.0;   ///< horizontal distance at CPA, geodesic-corrected, metres
   double cpa_v_ft = 0.0;  ///< vertical distance at CPA, feet (>= 0)
@@ -115,8 +131,13 @@ struct AlertEvent {
   double sep_v_ft = 0.0;  ///< current vertical separation, feet (>= 0)
   /// The prediction that found the conflict at this evaluation.
   Hypothesis hypothesis = Hypothesis::Linear;
-  /// Name of the [[region]] whose parameters judged the pair; empty: the defaults.
+  /// Name of the [[region]] whose parameters judged the pair; empty: the defaults and
+  /// every Apw alert.
   std::string region;
+  /// Apw: the volume's name and kind (volume::kVolumeKindNames); empty for Stca. The
+  /// pair figures (t_cpa_s, cpa_*, sep_*) are 0 for Apw.
+  std::string volume;
+  std::string volume_kind;
   /// Acknowledged by an operator (Modbus coil 0) before this event was emitted.
   bool acknowledged = false;
 };

@@ -4,6 +4,9 @@
 // and ends after `clear` consecutive clear evaluations or when one of its tracks is
 // dropped. Ids are derived from the pair and the opening data time; every emitted event
 // gets the next sequence number. Pairs are identified by the track table's slots.
+// An area proximity warning (design §4.11) is the alert of a track and a volume,
+// identified by the track's slot and the volume's index, under the same rules, numbers
+// and sequence.
 
 #include <cstdint>
 #include <functional>
@@ -80,7 +83,40 @@ class AlertManager {
   /// numbers, state and sequence are the manager's), and the event is appended to `out`.
   template <class Build>
   void evaluate(Slot p, Slot q, const Evaluation& e, double t, Build&& build, std::vector<AlertEvent>& out) {
-    const std::uint64_t key = pair_key(p, q);
+    judge(pair_key(p, q), e, t, build, out);
+  }
+  /// Records one evaluation of the track in `slot` against volume `volume` (< 2^31): as
+  /// evaluate(), for the alert of kind Apw, whose `build` fills a, the figures and the
+  /// volume's name and kind.
+  template <class Build>
+  void evaluate_area(Slot slot, std::uint32_t volume, const Evaluation& e, double t, Build&& build,
+                     std::vector<AlertEvent>& out) {
+    judge(area_key(slot, volume), e, t, build, out);
+  }
+
+  /// Ends every alert of the track in `slot`, its pairs' then its volumes' (reason
+  /// TrackDropped), and forgets them.
+  void drop_track(Slot slot, double t, std::vector<AlertEvent>& out);
+  /// Ends every alert about volume `volume` (reason TrackDropped: a volume that follows
+  /// an aircraft goes with its track) and forgets them.
+  void drop_volume(std::uint32_t volume, double t, std::vector<AlertEvent>& out);
+
+  /// Slots paired with `slot` in some state (pending confirmation or active), appended
+  /// to `out`. The probe evaluates them even when the candidate search does not return
+  /// them, so pending and active pairs always see their clear evaluations.
+  void partners_of(Slot slot, std::vector<Slot>& out) const;
+  /// The same for the volumes of the track in `slot`.
+  void volumes_of(Slot slot, std::vector<std::uint32_t>& out) const;
+
+  /// Whether pair {p, q} has an open alert (rules that only stop alerts from opening
+  /// leave an open one to its own end).
+  bool is_active(Slot p, Slot q) const { return is_active_key(pair_key(p, q)); }
+  /// Whether the track in `slot` has an open alert about volume `volume`.
+  bool is_area_active(Slot slot, std::uint32_t volume) const { return is_active_key(area_key(slot, volume)); }
+
+ private:
+  template <class Build>
+  void judge(std::uint64_t key, const Evaluation& e, double t, Build&& build, std::vector<AlertEvent>& out) {
     auto it = pairs_.find(key);
     if (!e.in_conflict) {
       if (it != pairs_.end()) record_clear(it, t, look_time(e, t), e.clear > 0 ? e.clear : config_.clear, out);
@@ -100,21 +136,12 @@ class AlertManager {
     if (!s.active) open(s, std::move(event), out);
     else update(s, std::move(event), out);
   }
-
-  /// Ends every alert of the track in `slot` (reason TrackDropped) and forgets its pairs.
-  void drop_track(Slot slot, double t, std::vector<AlertEvent>& out);
-
-  /// Slots paired with `slot` in some state (pending confirmation or active), appended
-  /// to `out`. The probe evaluates them even when the candidate search does not return
-  /// them, so pending and active pairs always see their clear evaluations.
-  void partners_of(Slot slot, std::vector<Slot>& out) const;
-
-  /// Whether pair {p, q} has an open alert (rules that only stop alerts from opening
-  /// leave an open one to its own end).
-  bool is_active(Slot p, Slot q) const {
-    const auto it = pairs_.find(pair_key(p, q));
+  bool is_active_key(std::uint64_t key) const {
+    const auto it = pairs_.find(key);
     return it != pairs_.end() && it->second.active;
   }
+
+ public:
 
   /// Forgets the active alert `id` without an event: nobody outside knows it (a
   /// hot-standby instance out of step computed it, and it takes over unsynced). The pair
@@ -183,6 +210,7 @@ class AlertManager {
     Severity severity = Severity::None;
     Hypothesis hypothesis = Hypothesis::Linear;
     std::string region;
+    std::string volume, volume_kind;  // Apw
     bool acknowledged = false;
     bool lo_is_a = true;  // the lower slot's track is AlertEvent::a
   };
@@ -191,8 +219,11 @@ class AlertManager {
   struct DecidedFigures {
     double t_los_s = 0.0, cpa_h_m = 0.0, cpa_v_ft = 0.0;
   };
+  /// A pair of tracks (lo < hi, slots), or a track and a volume (area: lo the track's
+  /// slot, hi the volume's index).
   struct PairState {
     Slot lo = 0, hi = 0;
+    bool area = false;
     int conflicts_in_row = 0;
     int clears_in_row = 0;
     /// Observed time of the pair's last counted evaluation: evaluations of one observed
@@ -209,6 +240,13 @@ class AlertManager {
     const Slot lo = p < q ? p : q, hi = p < q ? q : p;
     return (std::uint64_t{lo} << 32) | hi;
   }
+  /// An area's key has the top bit set (a pair's lower slot is below 2^31), then the
+  /// track's slot and the volume's index in the low 31 bits.
+  static constexpr std::uint64_t kAreaBit = std::uint64_t{1} << 63;
+  static std::uint64_t area_key(Slot slot, std::uint32_t volume) {
+    return kAreaBit | (std::uint64_t{slot} << 31) | (volume & 0x7fffffffu);
+  }
+  static PairState state_of_key(std::uint64_t key);
   /// The observed time an evaluation counts under (Evaluation::observed_t, else t).
   static double look_time(const Evaluation& e, double t) { return e.observed_t == e.observed_t ? e.observed_t : t; }
   /// Whether an evaluation of observed time t counts towards confirm or clear: the first
@@ -220,6 +258,8 @@ class AlertManager {
   }
   Pairs::iterator create(std::uint64_t key);
   void forget(Pairs::iterator it);
+  /// Ends (TrackDropped) and forgets the alerts of `keys`, in key order.
+  void end_and_forget(std::vector<std::uint64_t>& keys, double t, std::vector<AlertEvent>& out);
   void record_clear(Pairs::iterator it, double t, double look_t, int clear, std::vector<AlertEvent>& out);
   bool changed(const PairState& s, const Evaluation& e, double t) const;
   void open(PairState& s, AlertEvent&& event, std::vector<AlertEvent>& out);
@@ -234,6 +274,7 @@ class AlertManager {
   PartyNames names_;
   Pairs pairs_;
   std::unordered_map<Slot, std::vector<Slot>> partners_;
+  std::unordered_map<Slot, std::vector<std::uint32_t>> volumes_;  // a track's areas
   std::uint64_t seq_ = 0;
   std::uint16_t next_number_ = 1;
   std::size_t active_ = 0;
@@ -245,6 +286,8 @@ class AlertManager {
 std::string make_alert_id(const AlertParty& a, const AlertParty& b, double opened_t);
 /// The hash behind make_alert_id, and its text.
 std::uint64_t alert_id_hash(const AlertParty& a, const AlertParty& b, double opened_t);
+/// An Apw alert's: the aircraft's source and id, the volume's name and the opening time.
+std::uint64_t area_alert_id_hash(const AlertParty& a, const std::string& volume, double opened_t);
 std::string format_alert_id(std::uint64_t hash);
 
 }  // namespace kew::alert

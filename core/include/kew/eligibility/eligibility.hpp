@@ -157,6 +157,9 @@ class Rules {
 
   /// Why track `t` may not open an alert at data time `now` (UTC s), or None.
   Exclusion exclusion(const track::Track& t, double now) const;
+  /// Why track `t` may not open an area proximity warning (design §4.11): exclusion()'s
+  /// rules but the altitude ones, which a volume's own band replaces.
+  Exclusion area_exclusion(const track::Track& t, double now) const;
 
   /// Whether two tracks carry the same 24-bit address: one aircraft, whatever else.
   bool same_address(const track::Track& a, const track::Track& b) const;

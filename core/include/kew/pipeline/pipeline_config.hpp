@@ -16,6 +16,7 @@
 #include "kew/region/region_map.hpp"
 #include "kew/track/track_table.hpp"
 #include "kew/util/name_table.hpp"
+#include "kew/volume/watched_volume.hpp"
 
 namespace kew {
 
@@ -84,6 +85,9 @@ struct PipelineConfig {
   /// Parameter regions and inhibition volumes (design §4.8), in precedence order; each
   /// valid (region::RegionMap::problem), names distinct.
   std::vector<region::Region> regions;
+  /// The volumes of the area proximity warning (design §4.11), names distinct; none:
+  /// the pairs alone are judged.
+  std::vector<volume::WatchedVolume> volumes;
 
   /// kew's kinetic defaults: absolute τ = 300 m (above the one-step prediction residual
   /// of 90–96 % of recorded reports, docs/performance.md, measured position noise), models kept

@@ -81,8 +81,8 @@ struct Interval {
 
 struct Entry {
   MotionError error = MotionError::None;  ///< the rest is empty unless None
-  bool inside_now = false;                ///< inside at t = 0: a violation
-  std::optional<double> entry_s;          ///< earliest t in [0, T] inside (s)
+  bool inside_now = false;                ///< inside at t = from_s (0): a violation
+  std::optional<double> entry_s;          ///< earliest t in [from_s, T] inside (s)
   /// End of the inside interval that starts at entry_s (s), when it ends before T.
   std::optional<double> exit_s;
 };
@@ -110,8 +110,10 @@ std::optional<Interval> vertical_interval(const Motion& motion, VerticalBand ban
 /// intervals. `motion` and `horizon_s` valid (validate()).
 std::vector<Interval> horizontal_intervals(const Volume& volume, const Motion& motion, double horizon_s);
 
-/// The earliest time in [0, horizon_s] (s) at which `motion` is inside `volume`, whether
-/// that is now, and when it leaves again. An invalid motion is returned as its error.
-Entry entry(const Volume& volume, const Motion& motion, double horizon_s);
+/// The earliest time in [from_s, horizon_s] (s) at which `motion` is inside `volume`,
+/// whether that is at from_s ("now": a record judged from_s after its own time), and when
+/// it leaves again. An invalid motion, or from_s outside [0, horizon_s]
+/// (HorizonRange), is returned as its error.
+Entry entry(const Volume& volume, const Motion& motion, double horizon_s, double from_s = 0.0);
 
 }  // namespace kew::volume

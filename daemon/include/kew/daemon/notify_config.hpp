@@ -69,13 +69,19 @@ struct NotifyConfig {
   Severity min_severity = Severity::Caution;
   /// Default: every state for json; new, escalated and ended for the other templates.
   std::vector<NotifyState> states;
-  /// [[region]] names; an alert judged by the defaults (no region) passes only when empty.
+  /// Which safety nets: conflicts between aircraft (stca), aircraft and volumes (apw).
+  std::vector<AlertKind> kinds{AlertKind::Stca, AlertKind::Apw};
+  /// [[region]] names of the pairs (stca); a pair judged by the defaults (no region)
+  /// passes only when empty. Apw alerts are judged by their volume, never a region: this
+  /// filter leaves them to `kinds` and `volumes`.
   std::vector<std::string> regions;
-  /// Either party's callsign matches one of these patterns ('*' any run, '?' one
-  /// character, case-insensitive) or its track id (ICAO address) one of `addresses`;
-  /// both empty: every alert.
+  /// An alert passes when one of these matches (patterns: '*' any run, '?' one character,
+  /// case-insensitive): an aircraft's callsign one of `callsigns`, its track id (ICAO
+  /// address) one of `addresses`, or an apw alert's volume name one of `volumes`; all
+  /// three empty: every alert.
   std::vector<std::string> callsigns;
   std::vector<std::string> addresses;
+  std::vector<std::string> volumes;
 
   // Delivery.
   double timeout_s = 10.0;        ///< one request, connection and transfer together

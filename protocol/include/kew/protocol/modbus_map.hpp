@@ -1,7 +1,7 @@
 #pragma once
 // The Modbus TCP alarm register map (design §5.5) and the Modbus rules kew's server applies
 // to requests, as pure functions: no sockets here (the server is kew::daemon::ModbusServer).
-// README.md, "Modbus TCP alarm map" documents every address with its reference number, unit and
+// docs/modbus.md documents every address with its reference number, unit and
 // encoding; the constants below are the single source of those addresses.
 //
 // Modbus facts relied on (MODBUS Application Protocol Specification V1.1b3, MODBUS
@@ -43,7 +43,9 @@ struct RegisterMap {
   std::vector<std::uint16_t> input_registers;
 };
 
-/// Input register 0. Bumped whenever an address changes meaning.
+/// Input register 0. Bumped whenever an address changes meaning. The row kinds
+/// (registers 9–12) kept it at 1: they were reserved registers reading 0, and 0 (every row
+/// STCA) is what a server without APW means by them.
 inline constexpr std::uint16_t kModbusMapVersion = 1;
 
 /// Discrete inputs (function 2), PDU addresses. 6 and 7 are reserved and read 0, so that
@@ -69,8 +71,19 @@ enum ModbusRegister : std::uint16_t {
   kRegUptimeHigh = 6,
   kRegUptimeLow = 7,
   kRegUnacknowledged = 8,
-  // 9–15 reserved, read 0.
+  /// First of kModbusRowKindRegisters registers holding the kind of each alert-table row,
+  /// one bit per row (ModbusAlertKind): row r is bit r % 16 (bit 0 the least significant)
+  /// of register kRegRowKinds + r / 16. A row is not widened for it: a ninth column would
+  /// move every row after the first (docs/modbus.md).
+  kRegRowKinds = 9,
+  // 13–15 reserved, read 0.
   kRegTableStart = 16,
+};
+
+/// The value of a row's kind bit.
+enum ModbusAlertKind : std::uint16_t {
+  kKindStca = 0,  ///< STCA, or an empty row
+  kKindApw = 1,   ///< area proximity warning: columns track B and CPA read 0
 };
 
 /// Offsets within one alert-table row.
@@ -87,6 +100,11 @@ enum ModbusTableColumn : std::uint16_t {
 inline constexpr std::size_t kModbusTableRowWidth = 8;
 /// Largest table honoured (the configuration allows 0–64); larger requests are clamped.
 inline constexpr int kModbusMaxTableEntries = 64;
+/// Registers of row kinds, 16 rows each (9–12).
+inline constexpr std::size_t kModbusRowKindRegisters = 4;
+static_assert(kModbusRowKindRegisters * 16 >= kModbusMaxTableEntries &&
+                  kRegRowKinds + kModbusRowKindRegisters <= kRegTableStart,
+              "the row kinds cover every row and stay within the reserved registers");
 
 /// The coil table: coil 0 acknowledges every current alert when written 1.
 inline constexpr std::uint16_t kCoilAcknowledge = 0;
@@ -103,8 +121,10 @@ std::size_t modbus_register_count(int table_entries);
 /// rounded to the nearest unit (halves away from zero) then clamped to 0..65535; a figure
 /// that is not a number reads 65535 ("unknown" reads as far away, never as a near miss).
 /// Seconds since the last record are truncated (a 0.9 s old record is 0 s old). Rows are
-/// filled most severe first, then smallest time to loss, then smallest alert number, then
-/// id; rows without an alert are all zero.
+/// filled most severe first, then smallest time to loss (or to entry, APW), then smallest
+/// alert number, then id, whatever their kind; rows without an alert are all zero. An APW
+/// row has its kind bit set (registers 9–12) and reads 0 in track B and both CPA columns:
+/// there is no second aircraft, and the event's pair figures describe no pair.
 RegisterMap build_register_map(const AlarmSnapshot& s, int table_entries, std::uint16_t heartbeat);
 
 /// Modbus exception codes kew answers with.

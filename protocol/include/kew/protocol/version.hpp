@@ -16,6 +16,7 @@ std::string_view revision();
 std::string version_line(std::string_view tool);
 
 /// Version of the subscriber protocol of design §5.3 (the VERSION object's "proto").
-inline constexpr int kAlertStreamProtocol = 1;
+/// 2: ALERT objects say their `kind` ("stca", or "apw" with a `volume` and no `b`).
+inline constexpr int kAlertStreamProtocol = 2;
 
 }  // namespace kew::protocol

@@ -40,6 +40,8 @@ inline constexpr double kEndedBefore_s = 30.0;
 /// One alert from its New event to its End, or to the end of the run.
 struct AlertSpan {
   std::string id;            ///< the stream's alert id
+  AlertKind kind = AlertKind::Stca;        ///< a pair's alert, or an area proximity warning
+  std::string volume, volume_kind;         ///< Apw: the volume's name and kind, as in AlertEvent
   std::string a_source, a_id, a_callsign;  ///< party a as in AlertEvent::a
   std::string b_source, b_id, b_callsign;
   double opened_t = 0.0;     ///< UTC s
@@ -142,8 +144,9 @@ struct Evaluation {
   EvaluationFigures figures;
 };
 
-/// Scores `alerts` (AlertCollector::alerts() of one run over the truth's recording)
-/// against `truth`. An alert whose parties are not tracks of the truth is ineligible
+/// Scores `alerts` (the pair alerts of AlertCollector::alerts() of one run over the
+/// truth's recording: area proximity warnings are scored by evaluate_areas,
+/// area_evaluation.hpp) against `truth`. An alert whose parties are not tracks of the truth is ineligible
 /// (no_truth). Deterministic: the result depends only on the arguments' content.
 Evaluation evaluate(const Truth& truth, std::span<const AlertSpan> alerts, const ScoringParameters& parameters);
 

@@ -182,6 +182,8 @@ class Truth {
   std::optional<std::int64_t> airborne_since(TruthTrackId track, std::int64_t second) const;
   /// The track's runs of consecutive airborne seconds, in time order.
   const std::vector<SecondRange>& airborne(TruthTrackId track) const { return tracks_[track].airborne; }
+  /// The track's runs of sampled seconds (records at most kMaxGap_s apart), in time order.
+  std::vector<SecondRange> sampled(TruthTrackId track) const;
 
   /// Loss events of every pair of aircraft, ordered by start, then (a, b).
   const std::vector<LossEvent>& loss_events() const { return losses_; }

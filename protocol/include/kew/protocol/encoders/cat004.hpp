@@ -1,7 +1,8 @@
 #pragma once
 // ASTERIX Category 004, Safety Net Messages (EUROCONTROL ASTERIX Part 17, edition 1.12,
 // the edition Wireshark 4.0 decodes), as kew sends it over UDP (design §5.4):
-//   Alive (I004/000 = 1), STCA (= 7) for new and updated alerts, End Of Conflict (= 17).
+//   Alive (I004/000 = 1); STCA (= 7) or Area Proximity Warning (APW, = 5), by the
+//   alert's kind, for new and updated alerts; End Of Conflict (= 17) for the end of either.
 // docs/protocol.md lists every item and subfield written, with its scaling and
 // the kew value it carries.
 
@@ -39,6 +40,7 @@ inline constexpr std::size_t kCat004MinDatagramBytes = 256;
 
 enum class Cat004MessageType : std::uint8_t {
   Alive = 1,
+  Apw = 5,
   Stca = 7,
   EndOfConflict = 17,
 };
@@ -53,6 +55,8 @@ struct Cat004Alive {
   bool overflow = false;
   /// OL: the service cannot keep up; correct calculation is not guaranteed.
   bool overload = false;
+  /// APW: the area proximity warning runs (volumes are watched). STCA always runs.
+  bool apw = false;
 };
 
 /// Builds CAT004 datagrams: records are packed into one data block per datagram, in the
@@ -65,10 +69,12 @@ class Cat004Encoder {
   /// is not finite.
   bool add_alive(const Cat004Alive& alive);
 
-  /// Adds an STCA message (New, Update) or an End Of Conflict message (End). Returns
-  /// false (counted as "cat004_bad_time") when `event.t` is not finite; figures that are
-  /// not finite are left out of the message, figures out of an item's range are
-  /// saturated (see docs/protocol.md).
+  /// Adds an STCA message (kind Stca, state New or Update), an APW message (kind Apw,
+  /// New or Update: aircraft `a` and the volume's name, no second aircraft) or an End
+  /// Of Conflict message (End, either kind). Returns false (counted as
+  /// "cat004_bad_time") when `event.t` is not finite; figures that are not finite are
+  /// left out of the message, figures out of an item's range are saturated (see
+  /// docs/protocol.md).
   bool add_alert(const AlertEvent& event);
 
   /// True when no record was added since the last take_datagrams().

@@ -69,12 +69,18 @@ struct Cat004Record {
   std::optional<std::uint8_t> conflict_classification;  ///< CC octet: TID(4) CPC(3) CS(1)
   /// CC of an STCA message (type 7) with TID 1: its filter bits.
   std::optional<Cat004StcaFilters> stca_filters;
+  /// CC of an APW message (type 5) with TID 1: the Conflict Properties Class, the APW
+  /// severity: 0 low, 1 medium, 2 high (3–7 undefined by edition 1.12, kept as sent).
+  std::optional<std::uint8_t> apw_severity;
   std::optional<double> conflict_probability_pct;
   std::optional<double> conflict_duration_s;
   // I004/074, 075, 076
   std::optional<double> longitudinal_deviation_m;
   std::optional<double> transversal_deviation_m;
   std::optional<double> vertical_deviation_ft;
+  /// I004/100 AN: area name, 8 ICAO 6-bit characters, spaces trimmed; absent when blank
+  /// or holding a code outside the ICAO set.
+  std::optional<std::string> area_name;
 };
 
 class Cat004Reader {
