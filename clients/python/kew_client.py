@@ -1,4 +1,4 @@
-"""A client of kewd's alert stream (TCP, JSON lines, gpsd-style, protocol version 1).
+"""A client of kewd's alert stream (TCP, JSON lines, gpsd-style, protocol version 2).
 
 Standard library only, Python >= 3.9: copy this one file next to your program.
 
@@ -7,7 +7,7 @@ Standard library only, Python >= 3.9: copy this one file next to your program.
     with KewClient("127.0.0.1", 4747, min_severity="warning") as client:
         for obj in client:
             if isinstance(obj, Alert):
-                print(obj.state, obj.severity, obj.a.cs, obj.b.cs, obj.t_los_s)
+                print(obj.state, obj.severity, obj.a.cs, obj.b.cs if obj.b else obj.volume, obj.t_los_s)
 
 The protocol (every object and member) is documented in kew's docs/protocol.md ("Stream
 objects, member by member") and design §5.3. Units are those of the JSON: times in UTC
@@ -33,7 +33,7 @@ __all__ = [
     "parse", "KewClient",
 ]
 
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2
 SEVERITIES = ("caution", "warning", "loss")
 
 
@@ -199,39 +199,53 @@ class Alert:
     t_open: Optional[float]
     """Data time the alert opened, UTC seconds."""
     a: Party
-    """The first aircraft of the pair, ordered by (source, id)."""
-    b: Party
-    """The second aircraft."""
+    """The first aircraft of the pair, ordered by (source, id); an area warning's aircraft."""
     t_los_s: float
-    """Seconds from t to loss of separation, 0 when lost now."""
-    t_cpa_s: float
+    """Seconds from t to loss of separation (an area warning: to entering the volume), 0
+    when lost now."""
+    kind: str = "stca"
+    """"stca" (two aircraft) or "apw" (an aircraft and a volume: b and the pair figures
+    are None, volume names it)."""
+    b: Optional[Party] = None
+    """The second aircraft (None for an area warning)."""
+    t_cpa_s: Optional[float] = None
     """Seconds from t to the closest horizontal approach."""
-    cpa_h_m: float
+    cpa_h_m: Optional[float] = None
     """Horizontal distance at the closest approach, metres."""
-    cpa_v_ft: float
+    cpa_v_ft: Optional[float] = None
     """Vertical distance at the closest approach, feet."""
-    sep_h_m: float
+    sep_h_m: Optional[float] = None
     """Current horizontal separation, metres."""
-    sep_v_ft: float
+    sep_v_ft: Optional[float] = None
     """Current vertical separation, feet."""
+    volume: Optional[str] = None
+    """An area warning's volume ([[volume]] name)."""
+    volume_kind: Optional[str] = None
+    """An area warning's volume kind: "restricted", "danger", "prohibited" or "watch"."""
     hypothesis: str = "linear"
     """The prediction that found the conflict: "linear", "level_off", "turn", "proximity"
     ("linear" from servers before the member existed)."""
-    region: str = ""
-    """The [[region]] whose parameters judged the pair; "" for the defaults."""
+    region: Optional[str] = ""
+    """The [[region]] whose parameters judged the pair; "" for the defaults, None for an
+    area warning."""
     ack: bool = False
     """Acknowledged by an operator before this event."""
 
     @classmethod
     def from_dict(cls, obj: Any, where: str = "ALERT") -> "Alert":
         m = _Members(obj, where)
+        kind = m.text("kind", False) or "stca"  # servers before "kind" knew only pairs
         alert = cls(
             id=m.text("id"), number=m.integer("number", False), seq=m.integer("seq"), state=m.text("state"),
             reason=m.text("reason", False), severity=m.text("severity"), t=m.number("t"),
-            t_open=m.number("t_open", False),
-            a=Party.from_members(m.members("a")), b=Party.from_members(m.members("b")),
-            t_los_s=m.number("t_los_s"), t_cpa_s=m.number("t_cpa_s"), cpa_h_m=m.number("cpa_h_m"),
-            cpa_v_ft=m.number("cpa_v_ft"), sep_h_m=m.number("sep_h_m"), sep_v_ft=m.number("sep_v_ft"))
+            t_open=m.number("t_open", False), a=Party.from_members(m.members("a")), t_los_s=m.number("t_los_s"),
+            kind=kind)
+        if kind == "apw":
+            alert.volume, alert.volume_kind, alert.region = m.text("volume"), m.text("volume_kind"), None
+        else:
+            alert.b = Party.from_members(m.members("b"))
+            alert.t_cpa_s, alert.cpa_h_m, alert.cpa_v_ft = m.number("t_cpa_s"), m.number("cpa_h_m"), m.number("cpa_v_ft")
+            alert.sep_h_m, alert.sep_v_ft = m.number("sep_h_m"), m.number("sep_v_ft")
         # Optional for servers that predate them: the protocol's defaults stand.
         hypothesis, region, ack = m.text("hypothesis", False), m.text("region", False), m.flag("ack", False)
         if hypothesis is not None:
@@ -244,8 +258,10 @@ class Alert:
 
     def to_dict(self) -> Dict[str, Any]:
         """The JSON object as kewd writes it ("class" first; absent members left out)."""
-        out: Dict[str, Any] = {"class": "ALERT"}
+        out: Dict[str, Any] = {"class": "ALERT", "kind": self.kind}
         for f in dataclasses.fields(self):
+            if f.name == "kind":
+                continue
             value = getattr(self, f.name)
             if isinstance(value, Party):
                 out[f.name] = value.to_dict()

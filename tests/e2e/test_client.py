@@ -188,8 +188,18 @@ class Stream(ClientCase):
         alive = kew_client.parse('{"class":"ALIVE","seq":0,"t":null,"tracks":0,"alerts":0,'
                                  '"rates":{"records_per_s":0.0,"updates_per_s":0.0},"degraded":true}')
         self.assertEqual((alive.t, alive.health), (None, "feed_stale"), "an older server's ALIVE")
+        area = ('{"class":"ALERT","kind":"apw","id":"9f3c2a51d0e4b7c8","number":42,"seq":17,"state":"update",'
+                '"severity":"warning","t":1714400000.250,"t_open":1714399990.000,"a":{"id":"4CA123","src":"sbs",'
+                '"cs":"BAW123","lat":51.470000,"lon":-0.450000,"alt_ft":35000,"gs_kt":450.0,"trk_deg":270.0,'
+                '"vr_fpm":0,"tn":12},"volume":"ED-R 138","volume_kind":"restricted","t_los_s":41.0,'
+                '"hypothesis":"linear","ack":false}')
+        warning = kew_client.parse(area)
+        self.assertEqual((warning.kind, warning.volume, warning.volume_kind, warning.b, warning.region),
+                         ("apw", "ED-R 138", "restricted", None, None))
+        self.assertEqual(warning.to_dict(), json.loads(area))
         for bad in ('{"class":"ALERT","seq":1}', '{"seq":1}', '[1]', '{"class":"ACK","seq":1,"t":0,"by":"web",'
-                    '"ids":[1]}', 'not json', '{"class":"VERSION","seq":"1","release":"x","proto":1}'):
+                    '"ids":[1]}', 'not json', '{"class":"VERSION","seq":"1","release":"x","proto":1}',
+                    area.replace('"volume":"ED-R 138",', '')):
             with self.assertRaises(kew_client.ProtocolError, msg=bad):
                 kew_client.parse(bad)
 

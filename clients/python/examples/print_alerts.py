@@ -50,10 +50,14 @@ def aircraft(party):
 
 def describe(alert):
     state = f"end ({alert.reason})" if alert.state == "end" else alert.state
-    text = (f"{clock(alert.t)}  {state:<19} {alert.severity:<8} {aircraft(alert.a)} - {aircraft(alert.b)}"
-            f"  LoS in {alert.t_los_s:.0f} s"
-            f"  CPA {alert.cpa_h_m / METRES_PER_NM:.2f} NM / {alert.cpa_v_ft:.0f} ft in {alert.t_cpa_s:.0f} s"
-            f"  now {alert.sep_h_m / METRES_PER_NM:.2f} NM / {alert.sep_v_ft:.0f} ft")
+    if alert.kind == "apw":  # an aircraft and a volume
+        text = (f"{clock(alert.t)}  {state:<19} {alert.severity:<8} {aircraft(alert.a)} -> {alert.volume}"
+                f" ({alert.volume_kind})  entry in {alert.t_los_s:.0f} s")
+    else:
+        text = (f"{clock(alert.t)}  {state:<19} {alert.severity:<8} {aircraft(alert.a)} - {aircraft(alert.b)}"
+                f"  LoS in {alert.t_los_s:.0f} s"
+                f"  CPA {alert.cpa_h_m / METRES_PER_NM:.2f} NM / {alert.cpa_v_ft:.0f} ft in {alert.t_cpa_s:.0f} s"
+                f"  now {alert.sep_h_m / METRES_PER_NM:.2f} NM / {alert.sep_v_ft:.0f} ft")
     if alert.state != "end":
         text += f"  by {alert.hypothesis}"
     if alert.region:
