@@ -70,6 +70,29 @@ TEST(Volume, SquareAtTheEquatorEnteredHeadOnAtExactlyDistanceOverSpeed) {
   EXPECT_FALSE(entry(v, flying({0.0, -1.0}, 90.0, 360.0), expected - 0.01).entry_s);
 }
 
+TEST(Volume, APathOutOfReachIsRefusedBeforeAnyGeodesicAndOneThatGrazesIsNot) {
+  // A 10 km circle at the equator; paths of 30 km heading east from points 20 km west,
+  // at a cross-track offset: within reach up to the radius and the slack of 1 % and
+  // 200 m, refused beyond it.
+  const Volume circle = *Volume::circle({0.0, 0.0}, 10e3, kAll).volume;
+  const auto path_at = [](double north_m) {
+    Motion m;
+    m.start = {north_m / 110574.0, -equator_deg(20e3)};
+    m.track_deg = 90.0;
+    m.gs_kt = 360.0;
+    return m;
+  };
+  EXPECT_TRUE(within_reach(circle, path_at(0.0), 30e3));
+  EXPECT_TRUE(within_reach(circle, path_at(10e3), 30e3));    // tangent
+  EXPECT_TRUE(within_reach(circle, path_at(10.5e3), 30e3));  // within the slack (600 m)
+  EXPECT_FALSE(within_reach(circle, path_at(11e3), 30e3));
+  EXPECT_FALSE(within_reach(circle, path_at(-50e3), 30e3));
+  // Short of the circle: the path ends 15 km before its edge.
+  EXPECT_FALSE(within_reach(circle, path_at(0.0), 5e3));
+  // A path that ends 100 m inside the circle.
+  EXPECT_TRUE(within_reach(circle, path_at(0.0), 20e3 - 9.9e3));
+}
+
 TEST(Volume, AHoleIsOutsideAndItsBoundaryInside) {
   const double hole = equator_deg(2.0 * kNm);
   const Volume v = make(kBox, {box(hole, -hole, hole)});

@@ -36,6 +36,8 @@ AreaStage::AreaStage(const std::vector<volume::WatchedVolume>& volumes, const el
       index_(fixed_areas(volumes)) {
   for (std::uint32_t v = 0; v < volumes.size(); ++v) {
     (volumes[v].area ? fixed_ : followers_).push_back(v);
+    if (volumes[v].area) bands_.push_back({volumes[v].area->band().floor_ft, volumes[v].area->band().ceiling_ft, true});
+    else bands_.push_back({});
     longest_lookahead_s_ = std::max(longest_lookahead_s_, volumes[v].lookahead_s);
   }
 }
@@ -52,14 +54,16 @@ void AreaStage::judge(track::TrackSlot slot, const std::vector<Snapshot>& view, 
   const track::Track& t = s.track;
   follow(slot, t);
 
+  const double late = std::max(0.0, now - t.t);
   judged_.clear();
   alerts.volumes_of(slot, judged_);
+  held_.assign(judged_.begin(), judged_.end());
+  std::sort(held_.begin(), held_.end());
   if (!fixed_.empty()) {
     volume::Motion path;
     path.start = {t.lat_deg, t.lon_deg};
     path.track_deg = t.trk_deg;
     path.gs_kt = std::min(t.gs_kt, volume::kMaxGroundSpeed_kt);
-    const double late = std::max(0.0, now - t.t);
     for (const std::uint32_t i : index_.candidates(path, std::min(longest_lookahead_s_ + late, volume::kMaxHorizon_s)))
       judged_.push_back(fixed_[i]);
   }
@@ -68,7 +72,14 @@ void AreaStage::judge(track::TrackSlot slot, const std::vector<Snapshot>& view, 
   std::sort(judged_.begin(), judged_.end());
   judged_.erase(std::unique(judged_.begin(), judged_.end()), judged_.end());
 
+  // The altitudes the track can reach over the longest look-ahead, whatever its intent
+  // (a level-off only narrows them): most candidates' bands lie elsewhere.
+  const double climb_ft = t.vr_fpm * (longest_lookahead_s_ + late) / 60.0;
+  const double lowest_ft = t.alt_ft + std::min(0.0, climb_ft), highest_ft = t.alt_ft + std::max(0.0, climb_ft);
   for (const std::uint32_t v : judged_) {
+    const Band& band = bands_[v];
+    const bool held = std::binary_search(held_.begin(), held_.end(), v);
+    if (band.fixed && (highest_ft < band.floor_ft || lowest_ft > band.ceiling_ft) && !held) continue;  // clear
     const volume::WatchedVolume& w = volumes_[v];
     Approach a;
     if (w.schedule.active_at(now) && w.traffic.concerns(t.id, t.callsign, t.mode3a)) {
@@ -86,6 +97,7 @@ void AreaStage::judge(track::TrackSlot slot, const std::vector<Snapshot>& view, 
         a = Approach{};
       }
     }
+    if (!a.enters && !held) continue;  // clear, and the manager knows nothing of it
     alert::Evaluation e;
     e.in_conflict = a.enters;
     e.observed_t = t.t;

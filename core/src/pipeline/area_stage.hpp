@@ -65,7 +65,15 @@ class AreaStage {
   std::vector<track::TrackSlot> centre_; // by volume number: the followed track, or kNoTrack
   volume::VolumeIndex index_;
   double longest_lookahead_s_ = 0.0;
+  /// A fixed volume's band (ft), kept apart from the volumes for the candidates' first
+  /// test; by volume number.
+  struct Band {
+    double floor_ft = 0.0, ceiling_ft = 0.0;
+    bool fixed = false;  ///< a fixed volume's (a followed one's band moves)
+  };
+  std::vector<Band> bands_;
   std::vector<std::uint32_t> judged_;  // scratch: the volumes of one judgement
+  std::vector<std::uint32_t> held_;    // scratch: those with an alert or a pending one, sorted
 };
 
 }  // namespace kew::pipeline

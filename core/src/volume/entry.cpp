@@ -1,6 +1,7 @@
 #include "kew/volume/entry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 
@@ -160,43 +161,70 @@ double distance_from(LatLon centre, const GeodesicLine& path, double s, double* 
   return distance_m;
 }
 
+// Narrows [neg, pos], f(neg) ≤ 0 < f(pos) (either order), to kBisection_m around a root
+// of f, or to a point where −tol_f ≤ f ≤ 0: false position with the Illinois correction
+// (a few evaluations for a smooth f, each a geodesic problem), and every third step a
+// bisection, so that the bracket at least halves every three steps whatever f does.
+template <class F>
+Interval narrow(F&& f, double neg, double f_neg, double pos, double f_pos, double tol_f) {
+  int last = 0;  // the end moved last: −1 neg, +1 pos
+  for (int step = 0; std::abs(pos - neg) > kBisection_m; ++step) {
+    double m = step % 3 == 2 ? 0.5 * (neg + pos) : neg - f_neg * (pos - neg) / (f_pos - f_neg);
+    if (!(m > std::min(neg, pos) && m < std::max(neg, pos))) m = 0.5 * (neg + pos);
+    const double fm = f(m);
+    if (fm <= 0.0) {
+      neg = m;
+      f_neg = fm;
+      if (last == -1) f_pos *= 0.5;
+      last = -1;
+      if (fm >= -tol_f) return {m, m};
+    } else {
+      pos = m;
+      f_pos = fm;
+      if (last == 1) f_neg *= 0.5;
+      last = 1;
+    }
+  }
+  return {neg, pos};
+}
+
 // The stretch of the path [0, length_m] (m along it) within `radius_m` of `centre`. On
 // the path (at most 16.7° of arc, the circle at most 80°) the distance decreases to one
 // minimum and then increases, so the stretch is one interval around the minimum.
 std::optional<Interval> circle_span(LatLon centre, double radius_m, const GeodesicLine& path, double length_m) {
   const double reach_m = radius_m + kBoundaryTolerance_m;
-  const double d0 = distance_from(centre, path, 0.0);
-  if (d0 - length_m > reach_m) return std::nullopt;
   double slope = 0.0;
+  const double d0 = distance_from(centre, path, 0.0, &slope);
+  if (d0 - length_m > reach_m) return std::nullopt;
   double s_min = 0.0;
-  distance_from(centre, path, 0.0, &slope);
   if (slope < 0.0) {
+    const double slope0 = slope;
     distance_from(centre, path, length_m, &slope);
     if (slope <= 0.0) {
       s_min = length_m;
     } else {
-      double lo = 0.0, hi = length_m;  // slope < 0 at lo, > 0 at hi
-      while (hi - lo > kBisection_m) {
-        const double m = 0.5 * (lo + hi);
-        distance_from(centre, path, m, &slope);
-        (slope < 0.0 ? lo : hi) = m;
-      }
-      s_min = 0.5 * (lo + hi);
+      // The distance's minimum: where its slope along the path changes sign.
+      const auto slope_at = [&](double s) {
+        double g = 0.0;
+        distance_from(centre, path, s, &g);
+        return g;
+      };
+      const Interval at = narrow(slope_at, 0.0, slope0, length_m, slope, 1e-9);
+      s_min = 0.5 * (at.begin_s + at.end_s);
     }
   }
   const double d_min = distance_from(centre, path, s_min);
   if (d_min > reach_m) return std::nullopt;
   if (d_min >= radius_m) return Interval{s_min, s_min};  // a tangent touch
-  // Bisect for distance = radius between an outside end and an inside one.
-  const auto root = [&](double outside, double inside) {
-    while (std::abs(outside - inside) > kBisection_m) {
-      const double m = 0.5 * (outside + inside);
-      (distance_from(centre, path, m) > radius_m ? outside : inside) = m;
-    }
-    return inside;
+  // The crossings of distance = radius between an outside end and the inside minimum,
+  // each the inside end of its final bracket.
+  const auto beyond = [&](double s) { return distance_from(centre, path, s) - radius_m; };
+  const auto root = [&](double outside, double f_outside) {
+    return narrow(beyond, s_min, d_min - radius_m, outside, f_outside, 1e-5).begin_s;
   };
-  const double begin = d0 <= radius_m ? 0.0 : root(0.0, s_min);
-  const double end = distance_from(centre, path, length_m) <= radius_m ? length_m : root(length_m, s_min);
+  const double begin = d0 <= radius_m ? 0.0 : root(0.0, d0 - radius_m);
+  const double d_end = distance_from(centre, path, length_m);
+  const double end = d_end <= radius_m ? length_m : root(length_m, d_end - radius_m);
   return Interval{begin, end};
 }
 
@@ -274,9 +302,62 @@ std::optional<Interval> vertical_interval(const Motion& motion, VerticalBand ban
   return out;
 }
 
+namespace {
+
+using Unit = std::array<double, 3>;
+
+Unit unit_vector(double lat_deg, double lon_deg) {
+  const double lat = lat_deg * (M_PI / 180.0), lon = lon_deg * (M_PI / 180.0);
+  return {std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)};
+}
+double dot(const Unit& a, const Unit& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Unit cross(const Unit& a, const Unit& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double angle_between(const Unit& a, const Unit& b) { return std::atan2(std::sqrt(dot(cross(a, b), cross(a, b))), dot(a, b)); }
+
+// The sphere's radius for the reach test (m): WGS84's mean radius R1.
+constexpr double kSphereRadius_m = 6371008.8;
+
+}  // namespace
+
+bool within_reach(const Volume& volume, const Motion& motion, double length_m) {
+  // On a sphere of the mean radius, with geodetic latitudes as spherical ones: distances
+  // differ from the ellipsoid's by less than 0.6 % (Karney 2013, §1), and the great circle
+  // from the start strays from the geodesic by less than that of its length, so a path
+  // whose spherical distance from the centre exceeds the extent by 1 % of both, and 200 m,
+  // cannot enter. A few trigonometric calls instead of GeographicLib's iterations: most
+  // candidates of the index are refused here.
+  const Unit start = unit_vector(motion.start.lat_deg, motion.start.lon_deg);
+  const Unit centre = unit_vector(volume.centre().lat_deg, volume.centre().lon_deg);
+  const double lat = motion.start.lat_deg * (M_PI / 180.0), lon = motion.start.lon_deg * (M_PI / 180.0);
+  const double bearing = motion.track_deg * (M_PI / 180.0);
+  const Unit north = {-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon), std::cos(lat)};
+  const Unit east = {-std::sin(lon), std::cos(lon), 0.0};
+  const double arc = std::min(length_m / kSphereRadius_m, M_PI);
+  Unit end;
+  for (int i = 0; i < 3; ++i)
+    end[i] = start[i] * std::cos(arc) + (std::cos(bearing) * north[i] + std::sin(bearing) * east[i]) * std::sin(arc);
+  double nearest = std::min(angle_between(centre, start), angle_between(centre, end));
+  Unit normal = cross(start, end);
+  const double norm = std::sqrt(dot(normal, normal));
+  if (norm > 1e-12 && arc < M_PI) {
+    for (double& x : normal) x /= norm;
+    // The centre's foot on the path's great circle lies on the arc when it is after the
+    // start and before the end.
+    const double off = dot(centre, normal);
+    Unit foot = {centre[0] - off * normal[0], centre[1] - off * normal[1], centre[2] - off * normal[2]};
+    if (dot(cross(start, foot), normal) >= 0.0 && dot(cross(foot, end), normal) >= 0.0)
+      nearest = std::min(nearest, std::abs(std::asin(std::clamp(off, -1.0, 1.0))));
+  }
+  const double slack_m = 0.01 * (volume.extent_m() + length_m) + 200.0;
+  return nearest * kSphereRadius_m <= volume.extent_m() + slack_m;
+}
+
 std::vector<Interval> horizontal_intervals(const Volume& volume, const Motion& motion, double horizon_s) {
   const double speed = ground_speed_mps(motion);
   const double length_m = speed * horizon_s;
+  if (!within_reach(volume, motion, length_m)) return {};
   if (length_m == 0.0) {
     if (volume.contains_horizontally(motion.start)) return {Interval{0.0, horizon_s}};
     return {};

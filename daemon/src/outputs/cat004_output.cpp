@@ -9,6 +9,7 @@ void Cat004Output::alive(const AliveEvent& alive, const SharedLine&) {
   // Before the first record the data clock means nothing: the wall clock stands in.
   message.t = alive.status.last_data_t ? alive.data_clock_t : static_cast<double>(std::time(nullptr));
   message.degraded = alive.status.degraded();
+  message.apw = area_warning_;
   sender_.send_alive(message);
 }
 

@@ -12,7 +12,9 @@ namespace kew::daemon {
 
 class Cat004Output final : public Output {
  public:
-  Cat004Output(boost::asio::io_context& io, const Cat004Config& config) : sender_(io, config) {}
+  /// `area_warning`: volumes are configured, so Alive says the APW function runs (I004/060).
+  Cat004Output(boost::asio::io_context& io, const Cat004Config& config, bool area_warning)
+      : sender_(io, config), area_warning_(area_warning) {}
 
   std::string_view name() const override { return "cat004"; }
   Audience audience() const override { return Audience::Shared; }
@@ -25,6 +27,7 @@ class Cat004Output final : public Output {
 
  private:
   Cat004Sender sender_;
+  bool area_warning_;
 };
 
 }  // namespace kew::daemon

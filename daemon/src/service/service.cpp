@@ -95,7 +95,8 @@ void Service::open_outputs() {
     });
     websockets_ = &fan_out_->add(std::make_unique<WebSocketOutput>(*http_, pipeline_.tracks()));
   }
-  if (config_.cat004.enabled) fan_out_->add(std::make_unique<Cat004Output>(io_, config_.cat004));
+  if (config_.cat004.enabled)
+    fan_out_->add(std::make_unique<Cat004Output>(io_, config_.cat004, !pipeline_.config().volumes.empty()));
   if (!config_.nats.servers.empty())
     nats_ = &fan_out_->add(std::make_unique<NatsOutput>(config_.nats, continuity_.run_id(), pipeline_, speaking_right_));
   open_notifiers();

@@ -106,6 +106,9 @@ double altitude_at(const Motion& motion, double t_s);
 /// altitude is monotone). `motion` and `horizon_s` valid.
 std::optional<Interval> vertical_interval(const Motion& motion, VerticalBand band, double horizon_s);
 
+/// False only when the path of `motion` over `length_m` (m) cannot come within the
+/// area: a conservative test on a sphere, a few trigonometric calls. `motion` valid.
+bool within_reach(const Volume& volume, const Motion& motion, double length_m);
 /// The times in [0, T] when the position is in the area, as sorted disjoint closed
 /// intervals. `motion` and `horizon_s` valid (validate()).
 std::vector<Interval> horizontal_intervals(const Volume& volume, const Motion& motion, double horizon_s);
