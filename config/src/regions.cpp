@@ -1,20 +1,20 @@
 #include "kew/config/regions.hpp"
 
-#include <simdjson.h>
-
 #include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "geojson_features.hpp"
 #include "kew/config/document.hpp"
+#include "name_places.hpp"
 #include "parameter_ranges.hpp"
 
 namespace kew::config {
 
 namespace {
 
-namespace dom = simdjson::dom;
+namespace dom = geojson::dom;
 using geo::GeodeticPosition;
 using ranges::kFoot;
 using ranges::kNauticalMile;
@@ -86,180 +86,67 @@ Region read_region_table(TableReader& r, const PipelineConfig& pipeline) {
 
 // ---- GeoJSON (RFC 7946) ----
 
-// A Feature's properties as a TOML table, so that one TableReader reads both forms with
-// the same types, ranges and messages. Arrays and objects become an empty array (a type
-// error if the key is known, "unknown key" otherwise); null is an absent key.
-toml::table properties_table(dom::object properties) {
-  toml::table table;
-  for (const dom::key_value_pair member : properties) {
-    const dom::element value = member.value;
-    switch (value.type()) {
-      case dom::element_type::INT64:
-        table.insert(member.key, value.get_int64().value_unsafe());
-        break;
-      case dom::element_type::UINT64:
-      case dom::element_type::DOUBLE:
-        table.insert(member.key, value.get_double().value_unsafe());
-        break;
-      case dom::element_type::BOOL:
-        table.insert(member.key, value.get_bool().value_unsafe());
-        break;
-      case dom::element_type::STRING:
-        table.insert(member.key, std::string(value.get_string().value_unsafe()));
-        break;
-      case dom::element_type::NULL_VALUE:
-        break;
-      default:
-        table.insert(member.key, toml::array{});
-        break;
-    }
-  }
-  return table;
-}
-
-bool has_type(dom::object object, std::string_view type) {
-  std::string_view text;
-  return object["type"].get_string().get(text) == simdjson::SUCCESS && text == type;
-}
-
-// A GeoJSON position [lon, lat] or [lon, lat, elevation] (elevation ignored), in range.
-std::optional<GeodeticPosition> lon_lat(dom::element element) {
-  dom::array position;
-  if (element.get_array().get(position) != simdjson::SUCCESS || position.size() < 2 || position.size() > 3)
-    return std::nullopt;
-  double lon = 0.0, lat = 0.0;
-  if (position.at(0).get_double().get(lon) != simdjson::SUCCESS ||
-      position.at(1).get_double().get(lat) != simdjson::SUCCESS)
-    return std::nullopt;
-  if (!(std::abs(lat) <= 90.0 && std::abs(lon) <= 180.0)) return std::nullopt;
-  return GeodeticPosition{lat, lon};
-}
-constexpr std::string_view kLonLat =
-    "[lon, lat] (GeoJSON order: longitude first, in [-180, 180], then latitude, in [-90, 90])";
-
 // The exterior ring of a Polygon's coordinates, without its closing position.
-std::vector<GeodeticPosition> exterior_ring(const TableReader& r, dom::array rings) {
+std::vector<GeodeticPosition> exterior_ring(const TableReader& r, dom::element coordinates) {
+  dom::array rings;
+  if (coordinates.get_array().get(rings) != simdjson::SUCCESS)
+    r.fail(nullptr, "a Polygon's coordinates are an array of rings");
   if (rings.size() == 0) r.fail(nullptr, "a Polygon needs its exterior ring");
   if (rings.size() > 1)
     r.fail(nullptr, fmt::format("a Polygon with holes is not supported ({} interior rings): give only the exterior "
                                 "ring",
                                 rings.size() - 1));
-  dom::array ring;
-  if (rings.at(0).get_array().get(ring) != simdjson::SUCCESS)
-    r.fail(nullptr, "a Polygon's coordinates are an array of rings, each an array of positions");
-  std::vector<GeodeticPosition> polygon;
-  for (const dom::element element : ring) {
-    const auto position = lon_lat(element);
-    if (!position) r.fail(nullptr, fmt::format("Polygon position {} must be {}", polygon.size() + 1, kLonLat));
-    polygon.push_back(*position);
+  geojson::Ring ring = geojson::read_ring(rings.at(0).value_unsafe());
+  switch (ring.fault) {
+    case geojson::RingFault::None: break;
+    case geojson::RingFault::NotArray:
+      r.fail(nullptr, "a Polygon's coordinates are an array of rings, each an array of positions");
+    case geojson::RingFault::BadPosition:
+      r.fail(nullptr, fmt::format("Polygon position {} must be {}", ring.bad_position, geojson::kLonLat));
+    case geojson::RingFault::NotClosed:
+      r.fail(nullptr,
+             "a Polygon's ring is closed: at least 4 positions, the last equal to the first (RFC 7946 §3.1.6)");
   }
-  if (polygon.size() < 4 || polygon.front().lat_deg != polygon.back().lat_deg ||
-      polygon.front().lon_deg != polygon.back().lon_deg)
-    r.fail(nullptr, "a Polygon's ring is closed: at least 4 positions, the last equal to the first (RFC 7946 §3.1.6)");
-  polygon.pop_back();
-  return polygon;
+  return std::move(ring.positions);
 }
 
-Region read_feature(dom::element feature, const std::string& origin, std::size_t index,
+Region read_feature(dom::element element, const std::string& origin, std::size_t index,
                     const PipelineConfig& pipeline) {
-  dom::object object;
-  toml::table table;
-  std::string_view problem;  // found before the reader that reports it exists
-  dom::element properties;
-  dom::object members;
-  if (feature.get_object().get(object) != simdjson::SUCCESS || !has_type(object, "Feature"))
-    problem = "is not a GeoJSON Feature (an object with \"type\": \"Feature\")";
-  else if (object["properties"].get(properties) == simdjson::SUCCESS && !properties.is_null()) {
-    // (No properties: "a region needs a name" below.)
-    if (properties.get_object().get(members) != simdjson::SUCCESS) problem = "properties must be an object";
-    else table = properties_table(members);
-  }
-  TableReader r(table, origin, fmt::format("feature {}", index + 1));
-  if (!problem.empty()) r.fail(nullptr, problem);
+  const geojson::Feature feature = geojson::open_feature(element);
+  TableReader r(feature.properties, origin, fmt::format("feature {}", index + 1));
+  if (!feature.problem.empty()) r.fail(nullptr, feature.problem);
   Region region;
   double radius_nm = NAN;
   read_region_keys(r, region, radius_nm, pipeline);
   r.finish();
-  dom::object geometry;
-  std::string_view type;
-  dom::element coordinates;
-  if (object["geometry"].get_object().get(geometry) != simdjson::SUCCESS ||
-      geometry["type"].get_string().get(type) != simdjson::SUCCESS)
-    r.fail(nullptr, "needs a geometry: a Polygon, or a Point with properties.radius_nm");
-  if (type == "MultiPolygon")
-    r.fail(nullptr, "a MultiPolygon is not supported: give each polygon a Feature of its own, with its own name");
-  if (type != "Polygon" && type != "Point")
-    r.fail(nullptr, fmt::format("geometry type \"{}\" is not a region: a Polygon, or a Point with "
-                                "properties.radius_nm",
-                                type));
-  if (geometry["coordinates"].get(coordinates) != simdjson::SUCCESS)
-    r.fail(nullptr, fmt::format("the {} has no coordinates", type));
-  if (type == "Polygon") {
-    if (!std::isnan(radius_nm)) r.fail(nullptr, "properties.radius_nm is for a Point (a circle), not a Polygon");
-    dom::array rings;
-    if (coordinates.get_array().get(rings) != simdjson::SUCCESS)
-      r.fail(nullptr, "a Polygon's coordinates are an array of rings");
-    region.polygon = exterior_ring(r, rings);
+  const geojson::Geometry geometry = geojson::polygon_or_point(r, feature.object, "region", radius_nm);
+  if (geometry.polygon) {
+    region.polygon = exterior_ring(r, geometry.coordinates);
   } else {
-    if (std::isnan(radius_nm)) r.fail(nullptr, "a Point needs properties.radius_nm (the circle's radius)");
-    const auto center = lon_lat(coordinates);
-    if (!center) r.fail(nullptr, fmt::format("a Point's coordinates must be {}", kLonLat));
-    region.center = *center;
+    region.center = geojson::point_position(r, geometry.coordinates);
     region.radius_m = radius_nm * kNauticalMile;
   }
   check_region(r, nullptr, region);
   return region;
 }
 
-// Where each name was given, to refuse a second use.
-struct Names {
-  std::vector<std::string> names, places;
-  /// The place of an earlier region named `name`, or nullptr.
-  const std::string* taken(const std::string& name) const {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == name) return &places[i];
-    return nullptr;
-  }
-  void add(std::string name, std::string place) {
-    names.push_back(std::move(name));
-    places.push_back(std::move(place));
-  }
-};
+// "[feature 2]": where messages place a Feature (by number only, as they always have).
+std::string feature_place(std::size_t index, const Region&) { return fmt::format("[feature {}]", index + 1); }
 
 }  // namespace
 
 std::vector<Region> parse_regions_geojson(std::string_view text, const std::string& origin,
                                           const PipelineConfig& pipeline) {
-  dom::parser parser;
-  const simdjson::padded_string padded(text);
-  dom::element document;
-  if (const auto error = parser.parse(padded).get(document))
-    throw ConfigError(fmt::format("{}: not valid JSON ({})", origin, simdjson::error_message(error)));
-  dom::object collection;
-  dom::array features;
-  if (document.get_object().get(collection) != simdjson::SUCCESS || !has_type(collection, "FeatureCollection"))
-    throw ConfigError(fmt::format("{}: not a GeoJSON FeatureCollection (an object with \"type\": "
-                                  "\"FeatureCollection\")",
-                                  origin));
-  if (collection["features"].get_array().get(features) != simdjson::SUCCESS)
-    throw ConfigError(fmt::format("{}: a FeatureCollection needs a \"features\" array", origin));
-  std::vector<Region> regions;
-  Names names;
-  for (const dom::element feature : features) {
-    Region region = read_feature(feature, origin, regions.size(), pipeline);
-    const std::string place = fmt::format("[feature {}]", regions.size() + 1);
-    if (const std::string* earlier = names.taken(region.name))
-      throw ConfigError(fmt::format("{}: {} name \"{}\" is already the name of {}", origin, place, region.name, *earlier));
-    names.add(region.name, place);
-    regions.push_back(std::move(region));
-  }
-  return regions;
+  return geojson::read_features<Region>(
+      text, origin,
+      [&](dom::element feature, std::size_t index) { return read_feature(feature, origin, index, pipeline); },
+      feature_place);
 }
 
 std::vector<Region> read_regions(const Document& document, const PipelineConfig& pipeline,
                                  std::string* geojson_path) {
   std::vector<Region> regions;
-  Names names;
+  NamePlaces names;
   document.each_table("region", [&](TableReader& r, std::size_t index) {
     Region region = read_region_table(r, pipeline);
     if (const std::string* earlier = names.taken(region.name))
@@ -267,24 +154,10 @@ std::vector<Region> read_regions(const Document& document, const PipelineConfig&
     names.add(region.name, fmt::format("[region {}]", index + 1));
     regions.push_back(std::move(region));
   });
-  std::string path;
-  document.section("regions", [&](TableReader& r) {
-    r.path_beside_file("geojson", path);
-    if (path.empty()) return;
-    std::vector<Region> from_file;
-    try {
-      from_file = parse_regions_geojson(read_config_file(path), path, pipeline);
-    } catch (const ConfigError& e) {
-      r.fail(r.node("geojson"), e.what());
-    }
-    for (std::size_t i = 0; i < from_file.size(); ++i) {
-      if (const std::string* earlier = names.taken(from_file[i].name))
-        r.fail(r.node("geojson"), fmt::format("{}: [feature {}] name \"{}\" is already the name of {}", path, i + 1,
-                                              from_file[i].name, *earlier));
-      names.add(from_file[i].name, fmt::format("{} [feature {}]", path, i + 1));
-      regions.push_back(std::move(from_file[i]));
-    }
-  });
+  const std::string path = append_geojson_items(
+      document, "regions", names, regions,
+      [&](const std::string& text, const std::string& origin) { return parse_regions_geojson(text, origin, pipeline); },
+      feature_place);
   if (geojson_path) *geojson_path = path;
   return regions;
 }

@@ -1,21 +1,21 @@
 #include "kew/config/volumes.hpp"
 
-#include <simdjson.h>
-
 #include <cmath>
 #include <optional>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "geojson_features.hpp"
 #include "kew/util/units.hpp"
 #include "kew/volume/entry.hpp"
+#include "name_places.hpp"
 
 namespace kew::config {
 
 namespace {
 
-namespace dom = simdjson::dom;
+namespace dom = geojson::dom;
 using volume::LatLon;
 using volume::Ring;
 using volume::VerticalBand;
@@ -203,83 +203,6 @@ class TableShape {
 
 // ---- GeoJSON (RFC 7946) ----
 
-// Appends a JSON value to `out` as TOML (numbers, booleans, strings, arrays, objects), so
-// that one TableReader reads a Feature's properties with the types, ranges and messages
-// of a [[volume]] table. False for a null, which TOML cannot hold.
-bool append_json(dom::element value, toml::array& out) {
-  switch (value.type()) {
-    case dom::element_type::INT64:
-      out.push_back(value.get_int64().value_unsafe());
-      return true;
-    case dom::element_type::UINT64:
-    case dom::element_type::DOUBLE:
-      out.push_back(value.get_double().value_unsafe());
-      return true;
-    case dom::element_type::BOOL:
-      out.push_back(value.get_bool().value_unsafe());
-      return true;
-    case dom::element_type::STRING:
-      out.push_back(std::string(value.get_string().value_unsafe()));
-      return true;
-    case dom::element_type::ARRAY: {
-      const dom::array elements = value.get_array().value_unsafe();
-      toml::array array;
-      for (const dom::element element : elements)
-        if (!append_json(element, array)) return false;
-      out.push_back(std::move(array));
-      return true;
-    }
-    case dom::element_type::OBJECT: {
-      const dom::object members = value.get_object().value_unsafe();
-      toml::table table;
-      for (const dom::key_value_pair member : members) {
-        toml::array one;
-        if (!append_json(member.value, one)) return false;
-        table.insert(member.key, std::move(*one.get(0)));
-      }
-      out.push_back(std::move(table));
-      return true;
-    }
-    case dom::element_type::NULL_VALUE:
-      return false;
-  }
-  return false;
-}
-
-// A Feature's properties as a TOML table; a null property is an absent key. "" or what
-// is wrong with them.
-std::string properties_table(dom::object properties, toml::table& table) {
-  for (const dom::key_value_pair member : properties) {
-    if (member.value.is_null()) continue;
-    toml::array one;
-    if (!append_json(member.value, one))
-      return fmt::format("properties.{} holds a null inside it: leave the entry out", member.key);
-    if (!table.insert(member.key, std::move(*one.get(0))).second)
-      return fmt::format("properties.{} is given twice", member.key);
-  }
-  return "";
-}
-
-bool has_type(dom::object object, std::string_view type) {
-  std::string_view text;
-  return object["type"].get_string().get(text) == simdjson::SUCCESS && text == type;
-}
-
-// A GeoJSON position [lon, lat] or [lon, lat, elevation] (elevation ignored), in range.
-std::optional<LatLon> lon_lat(dom::element element) {
-  dom::array position;
-  if (element.get_array().get(position) != simdjson::SUCCESS || position.size() < 2 || position.size() > 3)
-    return std::nullopt;
-  double lon = 0.0, lat = 0.0;
-  if (position.at(0).get_double().get(lon) != simdjson::SUCCESS ||
-      position.at(1).get_double().get(lat) != simdjson::SUCCESS)
-    return std::nullopt;
-  if (!(std::abs(lat) <= 90.0 && std::abs(lon) <= 180.0)) return std::nullopt;
-  return LatLon{lat, lon};
-}
-constexpr std::string_view kLonLat =
-    "[lon, lat] (GeoJSON order: longitude first, in [-180, 180], then latitude, in [-90, 90])";
-
 // The shape of a Feature: its geometry, a Polygon or a Point with properties.radius_nm.
 class FeatureShape {
  public:
@@ -298,32 +221,16 @@ class FeatureShape {
   }
 
   Shape shape(const TableReader& r) const {
-    dom::object geometry;
-    std::string_view type;
-    dom::element coordinates;
-    if (feature_["geometry"].get_object().get(geometry) != simdjson::SUCCESS ||
-        geometry["type"].get_string().get(type) != simdjson::SUCCESS)
-      r.fail(nullptr, "needs a geometry: a Polygon, or a Point with properties.radius_nm");
-    if (type == "MultiPolygon")
-      r.fail(nullptr, "a MultiPolygon is not supported: give each polygon a Feature of its own, with its own name");
-    if (type != "Polygon" && type != "Point")
-      r.fail(nullptr, fmt::format("geometry type \"{}\" is not a volume: a Polygon, or a Point with "
-                                  "properties.radius_nm",
-                                  type));
-    if (geometry["coordinates"].get(coordinates) != simdjson::SUCCESS)
-      r.fail(nullptr, fmt::format("the {} has no coordinates", type));
+    const geojson::Geometry geometry = geojson::polygon_or_point(r, feature_, "volume", radius_nm_);
     Shape s;
-    if (type == "Polygon") {
-      if (!std::isnan(radius_nm_)) r.fail(nullptr, "properties.radius_nm is for a Point (a circle), not a Polygon");
-      std::vector<Ring> rings = polygon_rings(r, coordinates);
+    if (geometry.polygon) {
+      std::vector<Ring> rings = polygon_rings(r, geometry.coordinates);
       s.outer = std::move(rings.front());
       s.holes.assign(std::make_move_iterator(rings.begin() + 1), std::make_move_iterator(rings.end()));
     } else {
-      if (std::isnan(radius_nm_)) r.fail(nullptr, "a Point needs properties.radius_nm (the circle's radius)");
-      const auto centre = lon_lat(coordinates);
-      if (!centre) r.fail(nullptr, fmt::format("a Point's coordinates must be {}", kLonLat));
+      const geo::GeodeticPosition centre = geojson::point_position(r, geometry.coordinates);
       s.kind = Shape::Kind::Circle;
-      s.centre = *centre;
+      s.centre = LatLon{centre.lat_deg, centre.lon_deg};
       s.radius_nm = radius_nm_;
     }
     return s;
@@ -339,21 +246,19 @@ class FeatureShape {
     std::vector<Ring> out;
     for (const dom::element element : rings) {
       const std::string which = out.empty() ? "exterior ring" : fmt::format("hole {}", out.size());
-      dom::array ring;
-      if (element.get_array().get(ring) != simdjson::SUCCESS) r.fail(nullptr, kRings);
-      Ring positions;
-      for (const dom::element position : ring) {
-        const auto p = lon_lat(position);
-        if (!p) r.fail(nullptr, fmt::format("Polygon {}: position {} must be {}", which, positions.size() + 1, kLonLat));
-        positions.push_back(*p);
+      const geojson::Ring ring = geojson::read_ring(element);
+      switch (ring.fault) {
+        case geojson::RingFault::None: break;
+        case geojson::RingFault::NotArray: r.fail(nullptr, kRings);
+        case geojson::RingFault::BadPosition:
+          r.fail(nullptr,
+                 fmt::format("Polygon {}: position {} must be {}", which, ring.bad_position, geojson::kLonLat));
+        case geojson::RingFault::NotClosed:
+          r.fail(nullptr, fmt::format("Polygon {} is not closed: at least 4 positions, the last equal to the first "
+                                      "(RFC 7946 §3.1.6)",
+                                      which));
       }
-      if (positions.size() < 4 || positions.front().lat_deg != positions.back().lat_deg ||
-          positions.front().lon_deg != positions.back().lon_deg)
-        r.fail(nullptr, fmt::format("Polygon {} is not closed: at least 4 positions, the last equal to the first "
-                                    "(RFC 7946 §3.1.6)",
-                                    which));
-      positions.pop_back();
-      out.push_back(std::move(positions));
+      out.push_back(ring_of(ring.positions));
     }
     return out;
   }
@@ -370,79 +275,33 @@ std::string feature_label(std::size_t index, const toml::table& properties) {
   return fmt::format("feature {}", index + 1);
 }
 
-WatchedVolume read_feature(dom::element feature, const std::string& origin, std::size_t index,
+WatchedVolume read_feature(dom::element element, const std::string& origin, std::size_t index,
                            const eligibility::AerodromeTable* aerodromes) {
-  dom::object object;
-  toml::table table;
-  std::string problem;  // found before the reader that reports it exists
-  dom::element properties;
-  dom::object members;
-  if (feature.get_object().get(object) != simdjson::SUCCESS || !has_type(object, "Feature"))
-    problem = "is not a GeoJSON Feature (an object with \"type\": \"Feature\")";
-  else if (object["properties"].get(properties) == simdjson::SUCCESS && !properties.is_null()) {
-    // (No properties: "a volume needs a name".)
-    if (properties.get_object().get(members) != simdjson::SUCCESS) problem = "properties must be an object";
-    else problem = properties_table(members, table);
-  }
-  TableReader r(table, origin, feature_label(index, table));
-  if (!problem.empty()) r.fail(nullptr, problem);
-  FeatureShape shape(object);
+  const geojson::Feature feature = geojson::open_feature(element);
+  TableReader r(feature.properties, origin, feature_label(index, feature.properties));
+  if (!feature.problem.empty()) r.fail(nullptr, feature.problem);
+  FeatureShape shape(feature.object);
   return read_volume(r, shape, aerodromes);
 }
 
-// Where each name was given, to refuse a second use.
-struct Names {
-  std::vector<std::string> names, places;
-  /// The place of an earlier volume named `name`, or nullptr.
-  const std::string* taken(const std::string& name) const {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == name) return &places[i];
-    return nullptr;
-  }
-  void add(std::string name, std::string place) {
-    names.push_back(std::move(name));
-    places.push_back(std::move(place));
-  }
-};
-
-std::string feature_place(std::size_t index, const std::string& name) {
-  return fmt::format("[feature {} \"{}\"]", index + 1, name);
+std::string feature_place(std::size_t index, const WatchedVolume& v) {
+  return fmt::format("[feature {} \"{}\"]", index + 1, v.name);
 }
 
 }  // namespace
 
 std::vector<WatchedVolume> parse_volumes_geojson(std::string_view text, const std::string& origin,
                                                  const eligibility::AerodromeTable* aerodromes) {
-  dom::parser parser;
-  const simdjson::padded_string padded(text);
-  dom::element document;
-  if (const auto error = parser.parse(padded).get(document))
-    throw ConfigError(fmt::format("{}: not valid JSON ({})", origin, simdjson::error_message(error)));
-  dom::object collection;
-  dom::array features;
-  if (document.get_object().get(collection) != simdjson::SUCCESS || !has_type(collection, "FeatureCollection"))
-    throw ConfigError(fmt::format("{}: not a GeoJSON FeatureCollection (an object with \"type\": "
-                                  "\"FeatureCollection\")",
-                                  origin));
-  if (collection["features"].get_array().get(features) != simdjson::SUCCESS)
-    throw ConfigError(fmt::format("{}: a FeatureCollection needs a \"features\" array", origin));
-  std::vector<WatchedVolume> volumes;
-  Names names;
-  for (const dom::element feature : features) {
-    WatchedVolume v = read_feature(feature, origin, volumes.size(), aerodromes);
-    const std::string place = feature_place(volumes.size(), v.name);
-    if (const std::string* earlier = names.taken(v.name))
-      throw ConfigError(fmt::format("{}: {} name \"{}\" is already the name of {}", origin, place, v.name, *earlier));
-    names.add(v.name, place);
-    volumes.push_back(std::move(v));
-  }
-  return volumes;
+  return geojson::read_features<WatchedVolume>(
+      text, origin,
+      [&](dom::element feature, std::size_t index) { return read_feature(feature, origin, index, aerodromes); },
+      feature_place);
 }
 
 std::vector<WatchedVolume> read_volumes(const Document& document, const eligibility::AerodromeTable* aerodromes,
                                         std::string* geojson_path) {
   std::vector<WatchedVolume> volumes;
-  Names names;
+  NamePlaces names;
   document.each_table("volume", [&](TableReader& r, std::size_t index) {
     TableShape shape;
     WatchedVolume v = read_volume(r, shape, aerodromes);
@@ -451,25 +310,12 @@ std::vector<WatchedVolume> read_volumes(const Document& document, const eligibil
     names.add(v.name, fmt::format("[volume {}]", index + 1));
     volumes.push_back(std::move(v));
   });
-  std::string path;
-  document.section("volumes", [&](TableReader& r) {
-    r.path_beside_file("geojson", path);
-    if (path.empty()) return;
-    std::vector<WatchedVolume> from_file;
-    try {
-      from_file = parse_volumes_geojson(read_config_file(path), path, aerodromes);
-    } catch (const ConfigError& e) {
-      r.fail(r.node("geojson"), e.what());
-    }
-    for (std::size_t i = 0; i < from_file.size(); ++i) {
-      const std::string place = feature_place(i, from_file[i].name);
-      if (const std::string* earlier = names.taken(from_file[i].name))
-        r.fail(r.node("geojson"),
-               fmt::format("{}: {} name \"{}\" is already the name of {}", path, place, from_file[i].name, *earlier));
-      names.add(from_file[i].name, fmt::format("{} {}", path, place));
-      volumes.push_back(std::move(from_file[i]));
-    }
-  });
+  const std::string path = append_geojson_items(
+      document, "volumes", names, volumes,
+      [&](const std::string& text, const std::string& origin) {
+        return parse_volumes_geojson(text, origin, aerodromes);
+      },
+      feature_place);
   if (geojson_path) *geojson_path = path;
   return volumes;
 }

@@ -169,56 +169,30 @@ bool read_alert_log(const std::string& path, Column& column, std::string& error)
 
 // --- the table ----------------------------------------------------------------------
 
-struct Row {
-  std::string label;
-  std::vector<std::string> cells;
-};
-
 std::vector<Row> figure_rows(const std::vector<Column>& columns) {
   std::vector<Row> rows;
   const auto add = [&](std::string label, auto cell) {
     Row row{std::move(label), {}};
-    for (const Column& c : columns) row.cells.push_back(cell(c, c.evaluation.figures));
+    for (const Column& c : columns) row.cells.push_back(cell(c));
     rows.push_back(std::move(row));
   };
-  const auto count = [](std::size_t n) { return std::to_string(n); };
   const auto optional_count = [](const std::optional<std::uint64_t>& n) {
     return n ? std::to_string(*n) : std::string("-");
   };
-  add("look-ahead T (s)",
-      [](const Column& c, const EvaluationFigures&) { return fixed(c.parameters.lookahead_s, 0); });
-  add("confirm", [](const Column& c, const EvaluationFigures&) { return std::to_string(c.parameters.confirm); });
-  add("records run", [&](const Column& c, const EvaluationFigures&) { return optional_count(c.records); });
-  add("  refused by pipeline",
-      [&](const Column& c, const EvaluationFigures&) { return optional_count(c.pipeline_rejected); });
-  add("flight hours", [](const Column&, const EvaluationFigures& f) { return fixed(f.flight_hours, 2); });
-  add("alerts", [&](const Column&, const EvaluationFigures& f) { return count(f.alerts); });
-  add("alerts / 100 flight h",
-      [](const Column&, const EvaluationFigures& f) { return number_or_na(f.alerts_per_100_flight_hours, 1, false); });
-  add("hit", [&](const Column&, const EvaluationFigures& f) { return count(f.hits); });
-  add("close call", [&](const Column&, const EvaluationFigures& f) { return count(f.close_calls); });
-  add("nuisance", [&](const Column&, const EvaluationFigures& f) { return count(f.nuisances); });
-  add("ineligible", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible); });
-  add("  one aircraft", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_one_aircraft); });
-  add("  not airborne", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_not_airborne); });
-  add("  no truth", [&](const Column&, const EvaluationFigures& f) { return count(f.ineligible_no_truth); });
-  add("undesirable", [](const Column&, const EvaluationFigures& f) {
-    return f.undesirable_share ? fixed(100.0 * *f.undesirable_share, 1) + " %" : std::string("n/a");
-  });
-  add("loss events", [&](const Column&, const EvaluationFigures& f) { return count(f.loss_events); });
-  add("detected", [&](const Column&, const EvaluationFigures& f) { return count(f.detected); });
-  add("missed", [&](const Column&, const EvaluationFigures& f) { return count(f.missed); });
-  add("unwarnable", [&](const Column&, const EvaluationFigures& f) { return count(f.unwarnable); });
-  const auto warning = [](double kew::replay::WarningTimes::*field) {
-    return [field](const Column&, const EvaluationFigures& f) {
-      return f.warning ? fixed((*f.warning).*field, 1) : std::string("n/a");
-    };
-  };
-  add("warning min (s)", warning(&kew::replay::WarningTimes::min));
-  add("warning p10 (s)", warning(&kew::replay::WarningTimes::p10));
-  add("warning p50 (s)", warning(&kew::replay::WarningTimes::p50));
-  add("warning p90 (s)", warning(&kew::replay::WarningTimes::p90));
-  add("warning max (s)", warning(&kew::replay::WarningTimes::max));
+  add("look-ahead T (s)", [](const Column& c) { return fixed(c.parameters.lookahead_s, 0); });
+  add("confirm", [](const Column& c) { return std::to_string(c.parameters.confirm); });
+  add("records run", [&](const Column& c) { return optional_count(c.records); });
+  add("  refused by pipeline", [&](const Column& c) { return optional_count(c.pipeline_rejected); });
+  std::vector<const EvaluationFigures*> figures;
+  for (const Column& c : columns) figures.push_back(&c.evaluation.figures);
+  const ScoreColumns scores(figures.begin(), figures.end());
+  add_row(rows, "flight hours", figures, [](const EvaluationFigures& f) { return fixed(f.flight_hours, 2); });
+  add_row(rows, "alerts", figures, [](const EvaluationFigures& f) { return std::to_string(f.alerts); });
+  add_row(rows, "alerts / 100 flight h", figures,
+          [](const EvaluationFigures& f) { return number_or_na(f.alerts_per_100_flight_hours, 1, false); });
+  add_class_rows(rows, scores);
+  add_row(rows, "loss events", figures, [](const EvaluationFigures& f) { return std::to_string(f.loss_events); });
+  add_outcome_rows(rows, scores);
   return rows;
 }
 
@@ -236,23 +210,9 @@ void print_table(const Options& options, const Truth& truth, const std::vector<C
                      fixed(standard.vertical_loss_ft(), 0), fixed(standard.vertical_ft, 0));
   out += fmt::format("  {:<14}{}\n\n", "loss events", truth.loss_events().size());
 
-  const std::vector<Row> rows = figure_rows(columns);
-  std::size_t label_width = 0;
-  for (const Row& r : rows) label_width = std::max(label_width, r.label.size());
-  std::vector<std::size_t> widths;
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    std::size_t w = columns[c].name.size();
-    for (const Row& r : rows) w = std::max(w, r.cells[c].size());
-    widths.push_back(w);
-  }
-  out += fmt::format("{:<{}}", "", label_width);
-  for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", columns[c].name, widths[c]);
-  out += '\n';
-  for (const Row& r : rows) {
-    out += fmt::format("{:<{}}", r.label, label_width);
-    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", r.cells[c], widths[c]);
-    out += '\n';
-  }
+  std::vector<std::string> names;
+  for (const Column& c : columns) names.push_back(c.name);
+  out += table_text(names, figure_rows(columns));
   std::fwrite(out.data(), 1, out.size(), stdout);
 }
 
@@ -264,11 +224,9 @@ void print_list(const Truth& truth, const std::vector<Column>& columns) {
     for (std::size_t i = 0; i < c.alerts.size(); ++i) {
       const AlertSpan& a = c.alerts[i];
       const kew::replay::ScoredAlert& s = c.evaluation.alerts[i];
-      out += fmt::format("[{}] alert {} {} opened {} {} {} x {} max {}", c.name, a.id, class_name(s),
-                         utc(a.opened_t, true),
-                         a.ended_t ? "ended " + utc(*a.ended_t, true) : std::string("active at end"),
-                         party(a.a_source, a.a_id, a.a_callsign), party(a.b_source, a.b_id, a.b_callsign),
-                         kew::to_string(a.max_severity));
+      out += fmt::format("[{}] alert {} {} opened {} {} {} x {} max {}", c.name, a.id, class_name(s.cls, s.reason),
+                         utc(a.opened_t, true), ended_text(a), party(a.a_source, a.a_id, a.a_callsign),
+                         party(a.b_source, a.b_id, a.b_callsign), kew::to_string(a.max_severity));
       if (s.loss_s) out += " loss " + utc(static_cast<double>(*s.loss_s), false);
       out += '\n';
     }
@@ -282,7 +240,7 @@ void print_list(const Truth& truth, const std::vector<Column>& columns) {
                          track_party(truth, l.track_b),
                          fixed(l.min_horizontal_m / kew::replay::truth_rules::kNauticalMile_m, 2),
                          fixed(l.vertical_at_min_ft, 0), s.eligible_for_s);
-      if (s.alert) out += fmt::format(" warning {} s alert {}", fixed(*s.warning_s, 3), c.alerts[*s.alert].id);
+      out += event_warning_text(s, c.alerts);
       out += '\n';
     }
     out += area_list(truth, c.name, c.area);
@@ -340,16 +298,9 @@ void print_explanations(const Truth& truth, const std::vector<Column>& columns, 
 std::string json_alert(const AlertSpan& a, const kew::replay::ScoredAlert& s) {
   std::string out;
   JsonObject o(out);
-  o.text("id", a.id).text("class", kew::replay::kAlertClassNames.name(s.cls));
-  if (s.reason == kew::replay::IneligibleReason::None)
-    o.raw("reason", "null");
-  else
-    o.text("reason", kew::replay::kIneligibleReasonNames.name(s.reason));
-  o.number("t_open", a.opened_t, 3).text("opened", utc(a.opened_t, true));
-  if (a.ended_t)
-    o.number("t_end", *a.ended_t, 3).text("ended", utc(*a.ended_t, true));
-  else
-    o.raw("t_end", "null").raw("ended", "null");
+  o.text("id", a.id);
+  json_class(o, s.cls, s.reason);
+  json_span_times(o, a);
   o.raw("a", json_party(a.a_source, a.a_id, a.a_callsign)).raw("b", json_party(a.b_source, a.b_id, a.b_callsign));
   o.text("max_severity", kew::to_string(a.max_severity));
   o.raw("loss_t", s.loss_s ? std::to_string(*s.loss_s) : "null");
@@ -368,9 +319,7 @@ std::string json_loss(const Truth& truth, const Column& c, const kew::replay::Lo
   o.text("outcome", kew::replay::kLossOutcomeNames.name(s.outcome));
   o.raw("a", json_party(ta.source, ta.id, ta.callsign)).raw("b", json_party(tb.source, tb.id, tb.callsign));
   o.number("min_h_m", l.min_horizontal_m, 1).number("v_at_min_ft", l.vertical_at_min_ft, 0);
-  o.raw("eligible_for_s", std::to_string(s.eligible_for_s));
-  o.raw("warning_s", s.warning_s ? fixed(*s.warning_s, 3) : "null");
-  o.raw("alert", s.alert ? json_string(c.alerts[*s.alert].id) : "null");
+  json_event_score(o, s, c.alerts);
   o.close();
   return out;
 }
@@ -389,31 +338,9 @@ std::string json_column(const Truth& truth, const Column& c, bool list, bool exp
   o.count_or_null("records", c.records).count_or_null("pipeline_rejected", c.pipeline_rejected);
   o.number("flight_hours", f.flight_hours, 3).count("alerts", f.alerts);
   o.number_or_na("alerts_per_100_flight_hours", f.alerts_per_100_flight_hours, 3);
-  o.count("hit", f.hits).count("close_call", f.close_calls).count("nuisance", f.nuisances);
-  o.count("ineligible", f.ineligible);
-  std::string reasons;
-  JsonObject(reasons)
-      .count("one_aircraft", f.ineligible_one_aircraft)
-      .count("not_airborne", f.ineligible_not_airborne)
-      .count("no_truth", f.ineligible_no_truth)
-      .close();
-  o.raw("ineligible_reasons", reasons);
-  o.number_or_na("undesirable_share", f.undesirable_share, 4);
-  o.count("loss_events", f.loss_events).count("detected", f.detected).count("missed", f.missed);
-  o.count("unwarnable", f.unwarnable);
-  if (f.warning) {
-    std::string warning;
-    JsonObject(warning)
-        .number("min", f.warning->min, 3)
-        .number("p10", f.warning->p10, 3)
-        .number("p50", f.warning->p50, 3)
-        .number("p90", f.warning->p90, 3)
-        .number("max", f.warning->max, 3)
-        .close();
-    o.raw("warning_s", warning);
-  } else {
-    o.raw("warning_s", "\"n/a\"");
-  }
+  json_classes(o, f);
+  o.count("loss_events", f.loss_events);
+  json_outcomes(o, f);
   if (!c.explanations.empty() || (explain && !c.from_log)) {
     std::string list_json = "[";
     for (std::size_t i = 0; i < c.explanations.size(); ++i) {

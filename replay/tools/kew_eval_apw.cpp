@@ -3,7 +3,6 @@
 #include "kew_eval_apw.hpp"
 
 #include <algorithm>
-#include <set>
 
 #include "kew/util/units.hpp"
 #include "kew_eval_format.hpp"
@@ -51,31 +50,9 @@ std::string figures_json(const AreaFigures& f) {
   std::string out;
   JsonObject o(out);
   o.count("volumes", f.volumes).count("alerts", f.alerts);
-  o.count("hit", f.hits).count("close_call", f.close_calls).count("nuisance", f.nuisances);
-  o.count("ineligible", f.ineligible);
-  std::string reasons;
-  JsonObject(reasons)
-      .count("one_aircraft", f.ineligible_one_aircraft)
-      .count("not_airborne", f.ineligible_not_airborne)
-      .count("no_truth", f.ineligible_no_truth)
-      .close();
-  o.raw("ineligible_reasons", reasons);
-  o.number_or_na("undesirable_share", f.undesirable_share, 4);
-  o.count("entries", f.entries).count("detected", f.detected).count("missed", f.missed);
-  o.count("unwarnable", f.unwarnable);
-  if (f.warning) {
-    std::string warning;
-    JsonObject(warning)
-        .number("min", f.warning->min, 3)
-        .number("p10", f.warning->p10, 3)
-        .number("p50", f.warning->p50, 3)
-        .number("p90", f.warning->p90, 3)
-        .number("max", f.warning->max, 3)
-        .close();
-    o.raw("warning_s", warning);
-  } else {
-    o.raw("warning_s", "\"n/a\"");
-  }
+  json_classes(o, f);
+  o.count("entries", f.entries);
+  json_outcomes(o, f);
   o.close();
   return out;
 }
@@ -83,15 +60,15 @@ std::string figures_json(const AreaFigures& f) {
 }  // namespace
 
 std::string area_table(const std::vector<std::pair<std::string, const AreaRun*>>& columns) {
-  struct Row {
-    std::string label;
-    std::vector<std::string> cells;
-  };
   std::string out;
   for (const auto& [kind, kind_name] : volume::kVolumeKindNames.entries()) {
-    bool shown = false;
-    for (const auto& column : columns) shown = shown || figures_of(column.second, kind);
-    if (!shown) continue;
+    std::vector<std::string> names;
+    std::vector<const AreaFigures*> figures;
+    for (const auto& column : columns) {
+      names.push_back(column.first);
+      figures.push_back(figures_of(column.second, kind));
+    }
+    if (std::none_of(figures.begin(), figures.end(), [](const AreaFigures* f) { return f != nullptr; })) continue;
     // The volumes of this kind, as the first column that has APW knows them.
     std::vector<std::string> volumes;
     for (const auto& column : columns) {
@@ -104,58 +81,13 @@ std::string area_table(const std::vector<std::pair<std::string, const AreaRun*>>
     for (const std::string& v : volumes) out += fmt::format("  {:<14}{}\n", "volume", v);
     out += '\n';
 
+    const ScoreColumns scores(figures.begin(), figures.end());
     std::vector<Row> rows;
-    const auto add = [&](std::string label, auto cell) {
-      Row row{std::move(label), {}};
-      for (const auto& column : columns) {
-        const AreaFigures* f = figures_of(column.second, kind);
-        row.cells.push_back(f ? cell(*f) : std::string("-"));
-      }
-      rows.push_back(std::move(row));
-    };
-    const auto count = [](std::size_t AreaFigures::*field) {
-      return [field](const AreaFigures& f) { return std::to_string(f.*field); };
-    };
-    add("alerts", count(&AreaFigures::alerts));
-    add("hit", count(&AreaFigures::hits));
-    add("close call", count(&AreaFigures::close_calls));
-    add("nuisance", count(&AreaFigures::nuisances));
-    add("ineligible", count(&AreaFigures::ineligible));
-    add("  one aircraft", count(&AreaFigures::ineligible_one_aircraft));
-    add("  not airborne", count(&AreaFigures::ineligible_not_airborne));
-    add("  no truth", count(&AreaFigures::ineligible_no_truth));
-    add("undesirable", [](const AreaFigures& f) {
-      return f.undesirable_share ? fixed(100.0 * *f.undesirable_share, 1) + " %" : std::string("n/a");
-    });
-    add("entries", count(&AreaFigures::entries));
-    add("detected", count(&AreaFigures::detected));
-    add("missed", count(&AreaFigures::missed));
-    add("unwarnable", count(&AreaFigures::unwarnable));
-    const auto warning = [](double WarningTimes::*field) {
-      return [field](const AreaFigures& f) { return f.warning ? fixed((*f.warning).*field, 1) : std::string("n/a"); };
-    };
-    add("warning min (s)", warning(&WarningTimes::min));
-    add("warning p10 (s)", warning(&WarningTimes::p10));
-    add("warning p50 (s)", warning(&WarningTimes::p50));
-    add("warning p90 (s)", warning(&WarningTimes::p90));
-    add("warning max (s)", warning(&WarningTimes::max));
-
-    std::size_t label_width = 0;
-    for (const Row& r : rows) label_width = std::max(label_width, r.label.size());
-    std::vector<std::size_t> widths;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      std::size_t w = columns[c].first.size();
-      for (const Row& r : rows) w = std::max(w, r.cells[c].size());
-      widths.push_back(w);
-    }
-    out += fmt::format("{:<{}}", "", label_width);
-    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", columns[c].first, widths[c]);
-    out += '\n';
-    for (const Row& r : rows) {
-      out += fmt::format("{:<{}}", r.label, label_width);
-      for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", r.cells[c], widths[c]);
-      out += '\n';
-    }
+    add_row(rows, "alerts", figures, [](const AreaFigures& f) { return std::to_string(f.alerts); });
+    add_class_rows(rows, scores);
+    add_row(rows, "entries", figures, [](const AreaFigures& f) { return std::to_string(f.entries); });
+    add_outcome_rows(rows, scores);
+    out += table_text(names, rows);
   }
   return out;
 }
@@ -166,10 +98,9 @@ std::string area_list(const Truth& truth, const std::string& name, const AreaRun
   for (std::size_t i = 0; i < run.alerts.size(); ++i) {
     const AlertSpan& a = run.alerts[i];
     const ScoredAreaAlert& s = run.evaluation.alerts[i];
-    out += fmt::format("[{}] apw alert {} {} opened {} {} {} in {} max {}", name, a.id,
-                       class_name(ScoredAlert{s.cls, s.reason, std::nullopt}), utc(a.opened_t, true),
-                       a.ended_t ? "ended " + utc(*a.ended_t, true) : std::string("active at end"),
-                       party(a.a_source, a.a_id, a.a_callsign), alert_volume(a), kew::to_string(a.max_severity));
+    out += fmt::format("[{}] apw alert {} {} opened {} {} {} in {} max {}", name, a.id, class_name(s.cls, s.reason),
+                       utc(a.opened_t, true), ended_text(a), party(a.a_source, a.a_id, a.a_callsign), alert_volume(a),
+                       kew::to_string(a.max_severity));
     if (s.entry_s) out += " entry " + utc(static_cast<double>(*s.entry_s), false);
     out += '\n';
   }
@@ -181,7 +112,7 @@ std::string area_list(const Truth& truth, const std::string& name, const AreaRun
                        utc(static_cast<double>(e.start_s), false), utc(static_cast<double>(e.end_s), false),
                        kLossOutcomeNames.name(s.outcome), track_party(truth, e.track), entry_volume(*run.truth, e),
                        e.inside_seconds, s.eligible_for_s);
-    if (s.alert) out += fmt::format(" warning {} s alert {}", fixed(*s.warning_s, 3), run.alerts[*s.alert].id);
+    out += event_warning_text(s, run.alerts);
     out += '\n';
   }
   return out;
@@ -218,17 +149,10 @@ std::string area_json(const Truth& truth, const AreaRun& run, bool list) {
       const ScoredAreaAlert& s = run.evaluation.alerts[i];
       std::string one;
       JsonObject a_json(one);
-      a_json.text("id", a.id).text("class", kAlertClassNames.name(s.cls));
-      if (s.reason == IneligibleReason::None)
-        a_json.raw("reason", "null");
-      else
-        a_json.text("reason", kIneligibleReasonNames.name(s.reason));
+      a_json.text("id", a.id);
+      json_class(a_json, s.cls, s.reason);
       a_json.text("volume", a.volume).text("volume_kind", a.volume_kind);
-      a_json.number("t_open", a.opened_t, 3).text("opened", utc(a.opened_t, true));
-      if (a.ended_t)
-        a_json.number("t_end", *a.ended_t, 3).text("ended", utc(*a.ended_t, true));
-      else
-        a_json.raw("t_end", "null").raw("ended", "null");
+      json_span_times(a_json, a);
       a_json.raw("a", json_party(a.a_source, a.a_id, a.a_callsign));
       a_json.text("max_severity", kew::to_string(a.max_severity));
       a_json.raw("entry_t", s.entry_s ? std::to_string(*s.entry_s) : "null");
@@ -242,18 +166,16 @@ std::string area_json(const Truth& truth, const AreaRun& run, bool list) {
       const ScoredAreaEntry& s = run.evaluation.entries[k];
       const TruthTrack& t = truth.track(e.track);
       std::string one;
-      JsonObject(one)
-          .text("volume", run.truth->volumes()[e.volume].name)
+      JsonObject e_json(one);
+      e_json.text("volume", run.truth->volumes()[e.volume].name)
           .raw("start_t", std::to_string(e.start_s))
           .text("start", utc(static_cast<double>(e.start_s), false))
           .raw("end_t", std::to_string(e.end_s))
           .raw("inside_seconds", std::to_string(e.inside_seconds))
           .text("outcome", kLossOutcomeNames.name(s.outcome))
-          .raw("a", json_party(t.source, t.id, t.callsign))
-          .raw("eligible_for_s", std::to_string(s.eligible_for_s))
-          .raw("warning_s", s.warning_s ? fixed(*s.warning_s, 3) : "null")
-          .raw("alert", s.alert ? json_string(run.alerts[*s.alert].id) : "null")
-          .close();
+          .raw("a", json_party(t.source, t.id, t.callsign));
+      json_event_score(e_json, s, run.alerts);
+      e_json.close();
       entries += (k ? "," : "") + one;
     }
     o.raw("entry_list", entries + "]");

@@ -1,7 +1,8 @@
 #pragma once
 // kew-eval's text and JSON formatting (replay/tools/kew_eval.cpp, kew_eval_apw.cpp): fixed
 // decimals, UTC times, parties, class names, and JSON objects written member by member in
-// call order, so that the same input gives the same bytes.
+// call order, so that the same input gives the same bytes; and the figures that pair
+// alerts and area proximity warnings share (kew_eval_format.cpp), written once for both.
 
 #include <chrono>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -60,11 +62,16 @@ inline std::string track_party(const Truth& truth, kew::replay::TruthTrackId t) 
   return party(track.source, track.id, track.callsign);
 }
 
-inline std::string class_name(const kew::replay::ScoredAlert& s) {
-  std::string out(kew::replay::kAlertClassNames.name(s.cls));
-  if (s.reason != kew::replay::IneligibleReason::None)
-    out += "/" + std::string(kew::replay::kIneligibleReasonNames.name(s.reason));
+inline std::string class_name(kew::replay::AlertClass cls, kew::replay::IneligibleReason reason) {
+  std::string out(kew::replay::kAlertClassNames.name(cls));
+  if (reason != kew::replay::IneligibleReason::None)
+    out += "/" + std::string(kew::replay::kIneligibleReasonNames.name(reason));
   return out;
+}
+
+/// "ended <UTC>", or "active at end".
+inline std::string ended_text(const kew::replay::AlertSpan& a) {
+  return a.ended_t ? "ended " + utc(*a.ended_t, true) : std::string("active at end");
 }
 
 inline std::string json_string(std::string_view text) {
@@ -115,5 +122,46 @@ inline std::string json_party(const std::string& source, const std::string& id, 
   JsonObject(out).text("src", source).text("id", id).text("cs", callsign).close();
   return out;
 }
+
+/// "class", and "reason" (null unless ineligible).
+void json_class(JsonObject& o, kew::replay::AlertClass cls, kew::replay::IneligibleReason reason);
+/// "t_open", "opened", "t_end" and "ended" (null while active at the end).
+void json_span_times(JsonObject& o, const kew::replay::AlertSpan& a);
+/// An event's "eligible_for_s", "warning_s" and "alert" (`alerts`: those it was scored
+/// against).
+void json_event_score(JsonObject& o, const kew::replay::ScoredEvent& s,
+                      const std::vector<kew::replay::AlertSpan>& alerts);
+/// A list line's " warning <s> s alert <id>" of a detected or covered event; "" otherwise.
+std::string event_warning_text(const kew::replay::ScoredEvent& s, const std::vector<kew::replay::AlertSpan>& alerts);
+
+/// From "hit" to "undesirable_share": the alert classes.
+void json_classes(JsonObject& o, const kew::replay::ScoreFigures& f);
+/// From "detected" to "warning_s": the events' outcomes and warning times.
+void json_outcomes(JsonObject& o, const kew::replay::ScoreFigures& f);
+
+/// A row of a table: its label, then a cell per column.
+struct Row {
+  std::string label;
+  std::vector<std::string> cells;
+};
+/// The figures of each column of a table; null where a column has none (its cells read
+/// "-").
+using ScoreColumns = std::vector<const kew::replay::ScoreFigures*>;
+
+/// A row of `cell(figures)` for each column of `columns` (null: "-").
+template <class Figures, class Cell>
+void add_row(std::vector<Row>& rows, std::string label, const std::vector<const Figures*>& columns, Cell cell) {
+  Row row{std::move(label), {}};
+  for (const Figures* f : columns) row.cells.push_back(f ? cell(*f) : std::string("-"));
+  rows.push_back(std::move(row));
+}
+/// From "hit" to "undesirable": the alert classes.
+void add_class_rows(std::vector<Row>& rows, const ScoreColumns& columns);
+/// From "detected" to "warning max (s)": the events' outcomes and warning times.
+void add_outcome_rows(std::vector<Row>& rows, const ScoreColumns& columns);
+
+/// The header line of the column names, then the rows: labels left-aligned, cells
+/// right-aligned, each column as wide as its widest cell or name.
+std::string table_text(const std::vector<std::string>& names, const std::vector<Row>& rows);
 
 }  // namespace kew::replay::tools

@@ -10,20 +10,13 @@ runs it with Debian's python3 (tests/CMakeLists.txt). By hand, from tests/e2e:
 To refresh the README's screenshot (docs/img/kew-map.png) as well: KEW_SCREENSHOT_TO_DOCS=1.
 """
 
-import json
 import os
-import shutil
-import sys
-import time
-import tomllib
 import unittest
-import urllib.request
 
-from kewd_harness import Kewd, Subscriber, count_lines, generate, replay_to, temporary_directory, wait_until
+from kewd_harness import Kewd, Subscriber, count_lines, generate, replay_to, wait_until
+from web_map_harness import SOURCE_DIR, BrowserCase, start_browser
 
-SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 WEB_ROOT = os.path.join(SOURCE_DIR, "web")
-BUILD_DIR = os.environ.get("KEW_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
 SEVERITY_RANK = {"none": 0, "caution": 1, "warning": 2, "loss": 3}
 
 # The default live tick (1 s; /ws sends one message per service tick) and a long track
@@ -49,77 +42,12 @@ listen = "127.0.0.1:0"
 web_root = "{web_root}"
 """
 
-NOT_CHECKED = "the live map was NOT checked"  # ctest reports the test as skipped on this text
-
-
-
-
-def browser_missing():
-    """Why the browser cannot run, or None."""
-    try:
-        import selenium  # noqa: F401
-    except ImportError:
-        return "python3-selenium is not installed (ctest runs Debian's python3)"
-    for program in ("chromium", "chromedriver"):
-        if shutil.which(program) is None:
-            return f"{program} is not installed (Debian chromium, chromium-driver)"
-    return None
-
-
-def start_browser():
-    from selenium import webdriver
-    from selenium.webdriver.chrome.options import Options
-    from selenium.webdriver.chrome.service import Service
-    options = Options()
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                "--window-size=1600,1000", "--no-first-run", "--disable-extensions",
-                "--proxy-server=direct://", "--proxy-bypass-list=*"):
-        options.add_argument(arg)
-    options.binary_location = shutil.which("chromium")
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
-
-
-class BrowserCase(unittest.TestCase):
-    """A test of the page in Chromium: skipped, saying so, without a browser; a working
-    directory, self.kewd and self.driver closed at the end."""
-
-    def setUp(self):
-        missing = browser_missing()
-        if missing:
-            print(f"\n*** {missing}: {NOT_CHECKED} ***\n", file=sys.stderr)
-            self.skipTest(f"{missing}: {NOT_CHECKED}")
-        self._dir = temporary_directory()
-        self.workdir = self._dir.name
-        self.kewd = None
-        self.driver = None
-
-    def tearDown(self):
-        if self.driver:
-            self.driver.quit()
-        if self.kewd:
-            self.kewd.kill()
-        while Subscriber.opened:
-            Subscriber.opened.pop().close()
-        self._dir.cleanup()
-
-    def js(self, script, *args):
-        return self.driver.execute_script(script, *args)
-
 
 class WebMap(BrowserCase):
 
     def start_kewd(self):
         self.kewd = Kewd(CONFIG.format(workdir=self.workdir, web_root=WEB_ROOT), self.workdir)
-        with open(self.kewd.config_path, "rb") as f:
-            listen = tomllib.load(f)["http"]["listen"]  # the harness chose the free port
-        self.base = "http://" + listen
         wait_until(lambda: self.get_or_none("/api/status"), 20, "kewd's HTTP server")
-
-    def get(self, path):
-        with urllib.request.urlopen(self.base + path, timeout=10) as reply:
-            self.assertEqual(reply.status, 200, path)
-            return json.loads(reply.read())
 
     def get_or_none(self, path):
         try:
@@ -144,7 +72,7 @@ class WebMap(BrowserCase):
 
         # The page opens before any data: it connects its WebSocket and loads the base map.
         self.driver = start_browser()
-        self.driver.get(self.base + "/")
+        self.driver.get(self.url("/"))
         wait_until(lambda: self.js("return document.getElementById('connection-state').dataset.state") == "live",
                    20, "the page's WebSocket (#connection-state live)")
         wait_until(lambda: self.js("return document.getElementById('map').dataset.basemap") == "loaded", 20,
@@ -240,16 +168,8 @@ class WebMap(BrowserCase):
         self.assertEqual(errors, [], "the browser's console")
 
     def save_screenshot(self):
-        os.makedirs(BUILD_DIR, exist_ok=True)
-        path = os.path.join(BUILD_DIR, "kew-map.png")
-        self.assertTrue(self.driver.save_screenshot(path))
-        print(f"screenshot: {path}", file=sys.stderr)
-        if os.environ.get("KEW_SCREENSHOT_TO_DOCS") == "1":
-            docs = os.path.join(SOURCE_DIR, "docs", "img", "kew-map.png")
-            os.makedirs(os.path.dirname(docs), exist_ok=True)
-            shutil.copyfile(path, docs)
-            print(f"screenshot: {docs}", file=sys.stderr)
-
+        docs = os.environ.get("KEW_SCREENSHOT_TO_DOCS") == "1"
+        self.screenshot("kew-map.png", os.path.join(SOURCE_DIR, "docs", "img", "kew-map.png") if docs else None)
 
 if __name__ == "__main__":
     unittest.main()

@@ -18,17 +18,12 @@ picture is taken before the checks, so a page that fails them is pictured too.
 import gzip
 import json
 import os
-import shutil
-import sys
 import unittest
-import urllib.request
 
 from kewd_harness import Kewd, wait_until
-from test_web_map import BrowserCase, start_browser
+from web_map_harness import SOURCE_DIR, BrowserCase
 
-SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 WEB_ROOT = os.environ.get("KEW_WEB_ROOT", os.path.join(SOURCE_DIR, "web"))
-BUILD_DIR = os.environ.get("KEW_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
 RECORDING = os.path.join(SOURCE_DIR, "tests", "data", "text", "readsb_1hr.json.gz")
 MOMENT = 1693303969  # 2023-08-29 10:12:49Z: the demo's picture (deploy/demo.sh)
 WINDOW = (1280, 800)  # the demo's picture's size
@@ -78,10 +73,6 @@ def overlapping(labels, tolerance=0.5):
 
 
 class WebMapDense(BrowserCase):
-    def get(self, path):
-        with urllib.request.urlopen(f"http://127.0.0.1:{self.kewd.http_port}{path}", timeout=10) as reply:
-            return json.loads(reply.read())
-
     def start_at_the_moment(self):
         cut = os.path.join(self.workdir, "readsb-to-101249.json")
         with gzip.open(RECORDING, "rt") as src, open(cut, "w") as dst:
@@ -97,11 +88,7 @@ class WebMapDense(BrowserCase):
         return wait_until(the_moment, 30, "kewd at 10:12:49Z with its four alerts")["alerts"]
 
     def open_page(self, alerts):
-        self.driver = start_browser()
-        self.driver.set_window_size(*WINDOW)
-        inner = self.js("return [window.innerWidth, window.innerHeight];")  # the viewport, without the window's frame
-        self.driver.set_window_size(2 * WINDOW[0] - inner[0], 2 * WINDOW[1] - inner[1])
-        self.driver.get(f"http://127.0.0.1:{self.kewd.http_port}/")
+        self.open_map(WINDOW)
         tracks = self.get("/api/tracks")["tracks"]
         wait_until(lambda: self.js("return document.getElementById('map').dataset.basemap") == "loaded", 20,
                    "the offline base map")
@@ -111,22 +98,8 @@ class WebMapDense(BrowserCase):
                    "every alert drawn")
         self.settle()
 
-    def settle(self):
-        """Waits for the map to stop moving and two animation frames (the labels' layout)."""
-        wait_until(lambda: self.js("return !document.querySelector('.leaflet-zoom-anim');"), 10, "the zoom to end")
-        self.driver.set_script_timeout(10)
-        self.driver.execute_async_script(
-            "const done = arguments[0]; setTimeout(() => requestAnimationFrame(() => requestAnimationFrame(done)), 400);")
-
     def save_screenshot(self):
-        os.makedirs(BUILD_DIR, exist_ok=True)
-        path = os.path.join(BUILD_DIR, "map-dense.png")
-        self.assertTrue(self.driver.save_screenshot(path))
-        print(f"screenshot: {path}", file=sys.stderr)
-        target = os.environ.get("KEW_DENSE_SCREENSHOT")
-        if target:
-            shutil.copyfile(path, target)
-            print(f"screenshot: {target}", file=sys.stderr)
+        self.screenshot("map-dense.png", os.environ.get("KEW_DENSE_SCREENSHOT"))
 
     def visible(self, selector):
         return self.js("const el = document.querySelector(arguments[0]); if (!el) return false;"

@@ -20,21 +20,16 @@ docs/img/map-volumes.png.
 import json
 import math
 import os
-import shutil
 import socket
-import sys
 import threading
 import time
 import unittest
-import urllib.request
 
 from kewd_harness import Kewd, wait_until
-from test_web_map import BrowserCase, start_browser
+from web_map_harness import SOURCE_DIR, BrowserCase
 from test_web_map_dense import VISIBLE_LABELS, overlapping
 
-SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 WEB_ROOT = os.environ.get("KEW_WEB_ROOT", os.path.join(SOURCE_DIR, "web"))
-BUILD_DIR = os.environ.get("KEW_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
 WINDOW = (1280, 800)
 
 CONFIG = """
@@ -119,21 +114,10 @@ class Feed(threading.Thread):
 
 
 class WebMapVolumes(BrowserCase):
-    def get(self, path):
-        with urllib.request.urlopen(f"http://127.0.0.1:{self.kewd.http_port}{path}", timeout=10) as reply:
-            self.assertEqual(reply.status, 200, path)
-            return json.loads(reply.read())
-
     def tearDown(self):
         if getattr(self, "feed", None):
             self.feed.stop()
         super().tearDown()
-
-    def settle(self):
-        wait_until(lambda: self.js("return !document.querySelector('.leaflet-zoom-anim');"), 10, "the zoom to end")
-        self.driver.set_script_timeout(10)
-        self.driver.execute_async_script(
-            "const done = arguments[0]; setTimeout(() => requestAnimationFrame(() => requestAnimationFrame(done)), 400);")
 
     def label(self, name):
         """The text of the volume's name label when it is shown, else None."""
@@ -154,14 +138,8 @@ class WebMapVolumes(BrowserCase):
             ident)
 
     def save_screenshot(self):
-        os.makedirs(BUILD_DIR, exist_ok=True)
-        path = os.path.join(BUILD_DIR, "map-volumes.png")
-        self.assertTrue(self.driver.save_screenshot(path))
-        print(f"screenshot: {path}", file=sys.stderr)
-        if os.environ.get("KEW_SCREENSHOT_TO_DOCS") == "1":
-            docs = os.path.join(SOURCE_DIR, "docs", "img", "map-volumes.png")
-            shutil.copyfile(path, docs)
-            print(f"screenshot: {docs}", file=sys.stderr)
+        docs = os.environ.get("KEW_SCREENSHOT_TO_DOCS") == "1"
+        self.screenshot("map-volumes.png", os.path.join(SOURCE_DIR, "docs", "img", "map-volumes.png") if docs else None)
 
     def test_volumes_are_drawn_and_an_area_alert_is_listed_and_shown(self):
         self.kewd = Kewd(CONFIG.format(web_root=WEB_ROOT), self.workdir)
@@ -171,11 +149,7 @@ class WebMapVolumes(BrowserCase):
         self.assertIsNone(volumes["features"][1]["geometry"])
         self.assertEqual(volumes["features"][1]["properties"]["follow"], "CHX*")
 
-        self.driver = start_browser()
-        self.driver.set_window_size(*WINDOW)
-        inner = self.js("return [window.innerWidth, window.innerHeight];")
-        self.driver.set_window_size(2 * WINDOW[0] - inner[0], 2 * WINDOW[1] - inner[1])
-        self.driver.get(f"http://127.0.0.1:{self.kewd.http_port}/")
+        self.open_map(WINDOW)
         wait_until(lambda: self.js("return document.getElementById('connection-state').dataset.state") == "live",
                    20, "the page's WebSocket (#connection-state live)")
         wait_until(lambda: self.js("return document.getElementById('map').dataset.basemap") == "loaded", 20,

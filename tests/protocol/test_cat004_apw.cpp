@@ -14,80 +14,30 @@
 #include <string>
 #include <vector>
 
-#include "kew/protocol/encoders/cat004.hpp"
-#include "kew/protocol/encoders/cat004_reader.hpp"
+#include "cat004_test_support.hpp"
 
 namespace kew::protocol {
 namespace {
 
-std::vector<std::byte> bytes(std::initializer_list<unsigned> values) {
-  std::vector<std::byte> out;
-  for (unsigned v : values) out.push_back(static_cast<std::byte>(v));
-  return out;
-}
-
-std::string hex(const std::vector<std::byte>& data) {
-  std::string text;
-  constexpr char kDigits[] = "0123456789abcdef";
-  for (std::byte b : data) {
-    const auto v = static_cast<unsigned>(b);
-    if (!text.empty()) text.push_back(' ');
-    text.push_back(kDigits[v >> 4]);
-    text.push_back(kDigits[v & 0xF]);
-  }
-  return text;
-}
-
-// Time of day 51200.25 s = 0x640020 / 128.
-constexpr double kT = 1714400000.25;
+using namespace cat004_test;
 
 AlertEvent apw_warning() {
-  AlertEvent e;
-  e.id = "7d01e2";
-  e.number = 0x1234;
+  AlertEvent e = alert_about_a("7d01e2");
   e.kind = AlertKind::Apw;
-  e.state = AlertState::New;
-  e.severity = Severity::Warning;
-  e.t = kT;
-  e.opened_t = kT - 10.0;
-  e.a.id = "4CA123";
-  e.a.source = "sbs";
-  e.a.callsign = "BAW123";
-  e.a.track_number = 12;
-  e.t_los_s = 41.0;  // time to entry into the volume
-  e.volume = "EDR205A";
+  e.volume = "EDR205A";  // t_los_s: the time to the entry into the volume
   e.volume_kind = "restricted";
   return e;
 }
 
-Cat004Options options() {
-  Cat004Options o;
-  o.sac = 25;
-  o.sic = 100;
-  return o;
-}
-
-std::vector<Cat004Record> read_all(const std::vector<std::byte>& datagram, Cat004Reader& reader) {
-  std::vector<Cat004Record> records;
-  reader.read(datagram, [&](const Cat004Record& r) { records.push_back(r); });
-  return records;
-}
-
 Cat004Record encode_and_read(const AlertEvent& e) {
-  Cat004Encoder encoder(options());
-  EXPECT_TRUE(encoder.add_alert(e));
   Cat004Reader reader;
-  const auto records = read_all(encoder.take_datagrams().at(0), reader);
+  const auto records = read_all(encoded(e), reader);
   EXPECT_EQ(reader.rejections().total(), 0u);
   EXPECT_EQ(records.size(), 1u);
   return records.empty() ? Cat004Record{} : records[0];
 }
 
 TEST(Cat004Apw, RecordIsByteExact) {
-  Cat004Encoder encoder(options());
-  ASSERT_TRUE(encoder.add_alert(apw_warning()));
-  const auto datagrams = encoder.take_datagrams();
-  ASSERT_EQ(datagrams.size(), 1u);
   const auto expected = bytes({
       0x04, 0x00, 0x29,                    // CAT 4, LEN 41
       0xDD, 0xF1, 0x80,                    // FSPEC: 010 000 020 040 045 | 030 170 120 070 | 100
@@ -109,7 +59,7 @@ TEST(Cat004Apw, RecordIsByteExact) {
       // 000101 000100 010010 110010 | 110000 110101 000001 100000
       0x14, 0x44, 0xB2, 0xC3, 0x50, 0x60,
   });
-  EXPECT_EQ(hex(datagrams[0]), hex(expected));
+  EXPECT_EQ(hex(encoded(apw_warning())), hex(expected));
 }
 
 // End Of Conflict serves every safety net: an APW alert ends with it, with the one track
@@ -118,20 +68,16 @@ TEST(Cat004Apw, EndOfConflictCarriesTrackNumberOneOnly) {
   AlertEvent e = apw_warning();
   e.state = AlertState::End;
   e.end_reason = AlertEndReason::Cleared;
-  Cat004Encoder encoder(options());
-  ASSERT_TRUE(encoder.add_alert(e));
-  const auto datagrams = encoder.take_datagrams();
-  ASSERT_EQ(datagrams.size(), 1u);
-  EXPECT_EQ(hex(datagrams[0]), hex(bytes({
-                                   0x04, 0x00, 0x10,  // CAT 4, LEN 16
-                                   0xDD, 0x80,        // 010 000 020 040 045 | 030
-                                   0x19, 0x64,        // 010
-                                   0x11,              // 000 End Of Conflict (17)
-                                   0x64, 0x00, 0x20,  // 020
-                                   0x12, 0x34,        // 040
-                                   0x00,              // 045 STAT 0: ended
-                                   0x00, 0x0C,        // 030
-                               })));
+  EXPECT_EQ(hex(encoded(e)), hex(bytes({
+                                 0x04, 0x00, 0x10,  // CAT 4, LEN 16
+                                 0xDD, 0x80,        // 010 000 020 040 045 | 030
+                                 0x19, 0x64,        // 010
+                                 0x11,              // 000 End Of Conflict (17)
+                                 0x64, 0x00, 0x20,  // 020
+                                 0x12, 0x34,        // 040
+                                 0x00,              // 045 STAT 0: ended
+                                 0x00, 0x0C,        // 030
+                             })));
 }
 
 TEST(Cat004Apw, ReaderReadsBackWhatWasEncoded) {

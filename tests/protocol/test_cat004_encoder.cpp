@@ -10,51 +10,20 @@
 #include <string>
 #include <vector>
 
-#include "kew/protocol/encoders/cat004.hpp"
-#include "kew/protocol/encoders/cat004_reader.hpp"
+#include "cat004_test_support.hpp"
 
 namespace kew::protocol {
 namespace {
 
-std::vector<std::byte> bytes(std::initializer_list<unsigned> values) {
-  std::vector<std::byte> out;
-  for (unsigned v : values) out.push_back(static_cast<std::byte>(v));
-  return out;
-}
-
-std::string hex(const std::vector<std::byte>& data) {
-  std::string text;
-  constexpr char kDigits[] = "0123456789abcdef";
-  for (std::byte b : data) {
-    const auto v = static_cast<unsigned>(b);
-    if (!text.empty()) text.push_back(' ');
-    text.push_back(kDigits[v >> 4]);
-    text.push_back(kDigits[v & 0xF]);
-  }
-  return text;
-}
-
-// 2024-04-29 14:13:20.25 UTC: time of day 51200.25 s = 6553632/128 = 0x640020.
-constexpr double kT = 1714400000.25;
+using namespace cat004_test;
 
 AlertEvent warning_alert() {
-  AlertEvent e;
-  e.id = "9f3c2a";
-  e.number = 0x1234;
+  AlertEvent e = alert_about_a("9f3c2a");
   e.seq = 7;
-  e.state = AlertState::New;
-  e.severity = Severity::Warning;
-  e.t = kT;
-  e.opened_t = kT - 10.0;
-  e.a.id = "4CA123";
-  e.a.source = "sbs";
-  e.a.callsign = "BAW123";
-  e.a.track_number = 12;
   e.b.id = "1042";
   e.b.source = "cat062/25.100";
   e.b.callsign = "EZY45AB";
   e.b.track_number = 513;
-  e.t_los_s = 41.0;
   e.t_cpa_s = 63.5;
   e.cpa_h_m = 1234.5;
   e.cpa_v_ft = 300.0;
@@ -63,24 +32,7 @@ AlertEvent warning_alert() {
   return e;
 }
 
-Cat004Options options() {
-  Cat004Options o;
-  o.sac = 25;
-  o.sic = 100;
-  return o;
-}
-
-std::vector<Cat004Record> read_all(const std::vector<std::byte>& datagram, Cat004Reader& reader) {
-  std::vector<Cat004Record> records;
-  reader.read(datagram, [&](const Cat004Record& r) { records.push_back(r); });
-  return records;
-}
-
 TEST(Cat004Encoder, StcaRecordIsByteExact) {
-  Cat004Encoder encoder(options());
-  ASSERT_TRUE(encoder.add_alert(warning_alert()));
-  const auto datagrams = encoder.take_datagrams();
-  ASSERT_EQ(datagrams.size(), 1u);
   const auto expected = bytes({
       0x04, 0x00, 0x38,                    // CAT 4, LEN 56
       0xDD, 0xF1, 0x60,                    // FSPEC: 010 000 020 040 045 | 030 170 120 070 | 035 171
@@ -106,28 +58,24 @@ TEST(Cat004Encoder, StcaRecordIsByteExact) {
       0x80,                                // 171 FSPEC: AI
       'E', 'Z', 'Y', '4', '5', 'A', 'B',   //   AI
   });
-  EXPECT_EQ(hex(datagrams[0]), hex(expected));
+  EXPECT_EQ(hex(encoded(warning_alert())), hex(expected));
 }
 
 TEST(Cat004Encoder, EndOfConflictCarriesOnlyTheIdentifiers) {
   AlertEvent e = warning_alert();
   e.state = AlertState::End;
   e.end_reason = AlertEndReason::Cleared;
-  Cat004Encoder encoder(options());
-  ASSERT_TRUE(encoder.add_alert(e));
-  const auto datagrams = encoder.take_datagrams();
-  ASSERT_EQ(datagrams.size(), 1u);
-  EXPECT_EQ(hex(datagrams[0]), hex(bytes({
-                                   0x04, 0x00, 0x13,  // CAT 4, LEN 19
-                                   0xDD, 0x81, 0x40,  // 010 000 020 040 045 | 030 | 035
-                                   0x19, 0x64,        // 010
-                                   0x11,              // 000 End Of Conflict (17)
-                                   0x64, 0x00, 0x20,  // 020
-                                   0x12, 0x34,        // 040
-                                   0x00,              // 045 STAT 0: ended
-                                   0x00, 0x0C,        // 030
-                                   0x02, 0x01,        // 035
-                               })));
+  EXPECT_EQ(hex(encoded(e)), hex(bytes({
+                                 0x04, 0x00, 0x13,  // CAT 4, LEN 19
+                                 0xDD, 0x81, 0x40,  // 010 000 020 040 045 | 030 | 035
+                                 0x19, 0x64,        // 010
+                                 0x11,              // 000 End Of Conflict (17)
+                                 0x64, 0x00, 0x20,  // 020
+                                 0x12, 0x34,        // 040
+                                 0x00,              // 045 STAT 0: ended
+                                 0x00, 0x0C,        // 030
+                                 0x02, 0x01,        // 035
+                             })));
 }
 
 TEST(Cat004Encoder, AliveRecordCarriesFunctionAndSystemStatus) {

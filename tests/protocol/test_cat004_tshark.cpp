@@ -16,6 +16,7 @@
 #include <iterator>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kew/protocol/encoders/cat004.hpp"
@@ -47,9 +48,10 @@ std::vector<Cat004Record> read_records(const std::vector<Datagram>& datagrams, C
 
 constexpr double kT = 1714400000.25;  // time of day 51200.25 s
 
-AlertEvent stca(AlertState state, Severity severity, std::uint16_t number) {
+// Alert `number` about aircraft a (BAW123, track 3130), opened at kT, 4 s a number later.
+AlertEvent alert_about_a(std::string id, AlertState state, Severity severity, std::uint16_t number) {
   AlertEvent e;
-  e.id = "a1";
+  e.id = std::move(id);
   e.number = number;
   e.state = state;
   e.severity = severity;
@@ -58,6 +60,11 @@ AlertEvent stca(AlertState state, Severity severity, std::uint16_t number) {
   e.a.id = "4CA123";
   e.a.callsign = "BAW123";
   e.a.track_number = 3130;
+  return e;
+}
+
+AlertEvent stca(AlertState state, Severity severity, std::uint16_t number) {
+  AlertEvent e = alert_about_a("a1", state, severity, number);
   e.b.id = "3C6586";
   e.b.callsign = "DLH4AB";
   e.b.track_number = 2417;
@@ -187,17 +194,8 @@ TEST(Cat004Tshark, ConflictClassificationCarriesTheFilterOfEachHypothesis) {
 }
 
 AlertEvent apw(AlertState state, Severity severity, std::uint16_t number) {
-  AlertEvent e;
-  e.id = "v1";
-  e.number = number;
+  AlertEvent e = alert_about_a("v1", state, severity, number);
   e.kind = AlertKind::Apw;
-  e.state = state;
-  e.severity = severity;
-  e.t = kT + 4.0 * number;
-  e.opened_t = kT;
-  e.a.id = "4CA123";
-  e.a.callsign = "BAW123";
-  e.a.track_number = 3130;
   e.t_los_s = severity == Severity::Loss ? 0.0 : 41.0;
   e.volume = "EDR205A";
   e.volume_kind = "restricted";

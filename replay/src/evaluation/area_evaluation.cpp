@@ -1,5 +1,7 @@
 #include "kew/replay/area_evaluation.hpp"
 
+#include "evaluation/scoring.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -53,21 +55,6 @@ ScoredAreaAlert score(const Truth& truth, const AreaTruth& areas, const AlertSpa
   return scored;
 }
 
-void tally(AreaFigures& f, const ScoredAreaAlert& s) {
-  ++f.alerts;
-  switch (s.cls) {
-    case AlertClass::Hit: ++f.hits; break;
-    case AlertClass::CloseCall: ++f.close_calls; break;
-    case AlertClass::Nuisance: ++f.nuisances; break;
-    case AlertClass::Ineligible:
-      ++f.ineligible;
-      if (s.reason == IneligibleReason::OneAircraft) ++f.ineligible_one_aircraft;
-      if (s.reason == IneligibleReason::NotAirborne) ++f.ineligible_not_airborne;
-      if (s.reason == IneligibleReason::NoTruth) ++f.ineligible_no_truth;
-      break;
-  }
-}
-
 }  // namespace
 
 std::vector<AlertSpan> alerts_of_kind(std::span<const AlertSpan> alerts, AlertKind kind) {
@@ -87,56 +74,25 @@ AreaEvaluation evaluate_areas(const Truth& truth, const AreaTruth& areas, std::s
   for (std::size_t i = 0; i < alerts.size(); ++i) {
     out.alerts.push_back(score(truth, areas, alerts[i]));
     const ScoredAreaAlert& s = out.alerts.back();
-    tally(out.by_kind[s.kind], s);
+    scoring::count_alert(out.by_kind[s.kind], s.cls, s.reason);
     if (!s.volume) continue;
     if (const auto track = truth.find_track(alerts[i].a_source, alerts[i].a_id))
       by_volume[volume_aircraft_key(*s.volume, truth.aircraft_of(*track))].push_back(i);
   }
 
   std::map<volume::VolumeKind, std::vector<double>> warnings;
-  const std::vector<AreaEntry>& entries = areas.entries();
-  out.entries.resize(entries.size());
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    const AreaEntry& entry = entries[k];
-    ScoredAreaEntry& scored = out.entries[k];
+  out.entries.reserve(areas.entries().size());
+  for (const AreaEntry& entry : areas.entries()) {
     const volume::VolumeKind kind = areas.volumes()[entry.volume].kind;
     AreaFigures& f = out.by_kind[kind];
     ++f.entries;
-    const auto start = static_cast<double>(entry.start_s);
-    // The earliest alert of the aircraft and volume that was open, or had ended only
-    // just, when the aircraft entered.
-    if (const auto it = by_volume.find(volume_aircraft_key(entry.volume, entry.aircraft)); it != by_volume.end()) {
-      for (const std::size_t i : it->second) {
-        const AlertSpan& alert = alerts[i];
-        if (alert.opened_t > start + kOpenTolerance_s) continue;
-        if (alert.ended_t && *alert.ended_t < start - kEndedBefore_s) continue;
-        if (!scored.alert || alert.opened_t < alerts[*scored.alert].opened_t) scored.alert = i;
-      }
-    }
-    if (scored.alert) scored.warning_s = start - alerts[*scored.alert].opened_t;
-    scored.eligible_for_s = entry.start_s - entry.eligible_since_s;
-    if (static_cast<double>(scored.eligible_for_s) <= confirm * areas.update_period_s(entry)) {
-      scored.outcome = LossOutcome::Unwarnable;
-      ++f.unwarnable;
-    } else if (scored.alert) {
-      scored.outcome = LossOutcome::Detected;
-      ++f.detected;
-      warnings[kind].push_back(*scored.warning_s);
-    } else {
-      scored.outcome = LossOutcome::Missed;
-      ++f.missed;
-    }
+    const auto alerts_of = by_volume.find(volume_aircraft_key(entry.volume, entry.aircraft));
+    out.entries.push_back(scoring::score_event(alerts, alerts_of == by_volume.end() ? nullptr : &alerts_of->second,
+                                               entry.start_s, entry.eligible_since_s,
+                                               confirm * areas.update_period_s(entry), f, warnings[kind]));
   }
 
-  for (auto& [kind, f] : out.by_kind) {
-    if (f.alerts > 0)
-      f.undesirable_share = static_cast<double>(f.nuisances + f.ineligible) / static_cast<double>(f.alerts);
-    std::vector<double>& w = warnings[kind];
-    if (w.empty()) continue;
-    std::sort(w.begin(), w.end());
-    f.warning = WarningTimes{w.front(), nearest_rank_percentile(w, 10.0), nearest_rank_percentile(w, 50.0),
-                             nearest_rank_percentile(w, 90.0), w.back()};
-  }
+  for (auto& [kind, f] : out.by_kind) scoring::finish(f, std::move(warnings[kind]));
   return out;
 }
 

@@ -11,6 +11,8 @@
 
 #include "kew/util/wildcard.hpp"
 #include "kew/volume/volume_index.hpp"
+#include "evaluation/scoring.hpp"
+#include "evaluation/truth_support.hpp"
 
 namespace kew::replay {
 
@@ -23,24 +25,6 @@ constexpr std::int64_t kChunk_s = 64;
 
 std::uint64_t key_of(std::uint32_t volume, std::uint32_t second) {
   return (static_cast<std::uint64_t>(volume) << 32) | second;
-}
-
-// Appends second `s` to ranges of increasing seconds; true when a new range was started.
-bool append_second(std::vector<SecondRange>& ranges, std::int64_t s) {
-  if (!ranges.empty() && ranges.back().last + 1 == s) {
-    ranges.back().last = s;
-    return false;
-  }
-  ranges.push_back({s, s});
-  return true;
-}
-
-// The first range of sorted, disjoint `ranges` meeting [from, to], if any.
-const SecondRange* first_meeting(const std::vector<SecondRange>& ranges, std::int64_t from, std::int64_t to) {
-  const auto it = std::lower_bound(ranges.begin(), ranges.end(), from,
-                                   [](const SecondRange& r, std::int64_t s) { return r.last < s; });
-  if (it == ranges.end() || it->first > to) return nullptr;
-  return &*it;
 }
 
 // Distance (m) from `p` to the segment [a, b] of a plane.
@@ -275,15 +259,8 @@ void AreaTruth::build_entries() {
     c.insert(c.end(), trace.close.begin(), trace.close.end());
   }
   for (auto& [key, ranges] : close) {
-    std::sort(ranges.begin(), ranges.end(),
-              [](const SecondRange& x, const SecondRange& y) { return x.first < y.first; });
     Trace merged;
-    for (const SecondRange& r : ranges) {
-      if (!merged.close.empty() && r.first <= merged.close.back().last + 1)
-        merged.close.back().last = std::max(merged.close.back().last, r.last);
-      else
-        merged.close.push_back(r);
-    }
+    merged.close = union_of(std::move(ranges));
     std::vector<std::pair<SecondRange, TruthTrackId>>& in = inside[key];
     std::sort(in.begin(), in.end(), [](const auto& x, const auto& y) {
       return x.first.first != y.first.first ? x.first.first < y.first.first : x.second < y.second;
@@ -332,20 +309,14 @@ std::optional<std::uint32_t> AreaTruth::find_volume(std::string_view name) const
 }
 
 const AreaTruth::Trace* AreaTruth::aircraft_trace(std::uint32_t v, AircraftId a) const {
-  const std::uint64_t key = key_of(v, a);
-  const auto it = std::lower_bound(aircraft_traces_.begin(), aircraft_traces_.end(), key,
-                                   [](const auto& entry, std::uint64_t k) { return entry.first < k; });
-  if (it == aircraft_traces_.end() || it->first != key) return nullptr;
-  return &it->second;
+  return find_trace(aircraft_traces_, key_of(v, a));
 }
 
 std::optional<std::int64_t> AreaTruth::first_inside_second(std::uint32_t v, AircraftId a, std::int64_t from,
                                                            std::int64_t to) const {
   const Trace* trace = aircraft_trace(v, a);
   if (!trace) return std::nullopt;
-  const SecondRange* r = first_meeting(trace->inside, from, to);
-  if (!r) return std::nullopt;
-  return std::max(r->first, from);
+  return first_second_in(trace->inside, from, to);
 }
 
 bool AreaTruth::any_close_second(std::uint32_t v, AircraftId a, std::int64_t from, std::int64_t to) const {
@@ -354,28 +325,14 @@ bool AreaTruth::any_close_second(std::uint32_t v, AircraftId a, std::int64_t fro
 }
 
 std::optional<TruthTrackId> AreaTruth::nearest_centre(std::uint32_t v, double t, double within_s) const {
-  if (volumes_[v].area || !std::isfinite(t) || !(within_s >= 0.0)) return std::nullopt;
-  const auto from = static_cast<std::int64_t>(std::ceil(t - within_s));
-  const auto to = static_cast<std::int64_t>(std::floor(t + within_s));
-  std::vector<std::int64_t> seconds;
-  for (std::int64_t s = from; s <= to; ++s) seconds.push_back(s);
-  std::stable_sort(seconds.begin(), seconds.end(), [t](std::int64_t x, std::int64_t y) {
-    return std::abs(static_cast<double>(x) - t) < std::abs(static_cast<double>(y) - t);
-  });
-  for (const std::int64_t s : seconds)
+  if (volumes_[v].area) return std::nullopt;
+  for (const std::int64_t s : seconds_nearest_first(t, within_s))
     if (const auto c = centre_at(v, s)) return c->first;
   return std::nullopt;
 }
 
 double AreaTruth::update_period_s(const AreaEntry& entry) const {
-  double period = 0.0;
-  const double own = truth_.track(entry.track).median_interval_s;
-  if (std::isfinite(own)) period = own;
-  if (entry.centre) {
-    const double theirs = truth_.track(*entry.centre).median_interval_s;
-    if (std::isfinite(theirs)) period = std::max(period, theirs);
-  }
-  return period;
+  return scoring::update_period_s(truth_.track(entry.track), entry.centre ? &truth_.track(*entry.centre) : nullptr);
 }
 
 }  // namespace kew::replay

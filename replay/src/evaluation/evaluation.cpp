@@ -1,5 +1,7 @@
 #include "kew/replay/evaluation.hpp"
 
+#include "evaluation/scoring.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,14 +15,6 @@ using namespace scoring_rules;
 std::uint64_t aircraft_pair_key(AircraftId a, AircraftId b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
-// The larger of two median intervals, ignoring unknown ones (0 when both are).
-double update_period_s(const TruthTrack& a, const TruthTrack& b) {
-  double period = 0.0;
-  if (std::isfinite(a.median_interval_s)) period = std::max(period, a.median_interval_s);
-  if (std::isfinite(b.median_interval_s)) period = std::max(period, b.median_interval_s);
-  return period;
 }
 
 }  // namespace
@@ -70,6 +64,14 @@ double nearest_rank_percentile(std::span<const double> sorted, double p) {
   return sorted[index];
 }
 
+std::optional<WarningTimes> warning_times(std::vector<double> warnings) {
+  if (warnings.empty()) return std::nullopt;
+  std::sort(warnings.begin(), warnings.end());
+  return WarningTimes{warnings.front(), nearest_rank_percentile(warnings, 10.0),
+                      nearest_rank_percentile(warnings, 50.0), nearest_rank_percentile(warnings, 90.0),
+                      warnings.back()};
+}
+
 Evaluation evaluate(const Truth& truth, std::span<const AlertSpan> alerts, const ScoringParameters& parameters) {
   Evaluation out;
   EvaluationFigures& f = out.figures;
@@ -111,66 +113,25 @@ Evaluation evaluate(const Truth& truth, std::span<const AlertSpan> alerts, const
         scored.cls = AlertClass::Nuisance;
       }
     }
-    switch (scored.cls) {
-      case AlertClass::Hit: ++f.hits; break;
-      case AlertClass::CloseCall: ++f.close_calls; break;
-      case AlertClass::Nuisance: ++f.nuisances; break;
-      case AlertClass::Ineligible:
-        ++f.ineligible;
-        if (scored.reason == IneligibleReason::OneAircraft) ++f.ineligible_one_aircraft;
-        if (scored.reason == IneligibleReason::NotAirborne) ++f.ineligible_not_airborne;
-        if (scored.reason == IneligibleReason::NoTruth) ++f.ineligible_no_truth;
-        break;
-    }
+    scoring::count_alert(f, scored.cls, scored.reason);
   }
 
   std::vector<double> warnings;
   const std::vector<LossEvent>& events = truth.loss_events();
-  out.losses.resize(events.size());
-  for (std::size_t k = 0; k < events.size(); ++k) {
-    const LossEvent& event = events[k];
-    ScoredLoss& scored = out.losses[k];
-    const auto start = static_cast<double>(event.start_s);
-    // The earliest alert of the pair that was open, or had ended only just, when the
-    // loss began: the warning the controller had.
-    if (const auto it = by_pair.find(aircraft_pair_key(event.a, event.b)); it != by_pair.end()) {
-      for (const std::size_t i : it->second) {
-        const AlertSpan& alert = alerts[i];
-        if (alert.opened_t > start + kOpenTolerance_s) continue;
-        if (alert.ended_t && *alert.ended_t < start - kEndedBefore_s) continue;
-        if (!scored.alert || alert.opened_t < alerts[*scored.alert].opened_t) scored.alert = i;
-      }
-    }
-    if (scored.alert) scored.warning_s = start - alerts[*scored.alert].opened_t;
+  out.losses.reserve(events.size());
+  for (const LossEvent& event : events) {
+    const auto pair = by_pair.find(aircraft_pair_key(event.a, event.b));
     const std::int64_t eligible = std::max(truth.airborne_since(event.track_a, event.start_s).value_or(event.start_s),
                                            truth.airborne_since(event.track_b, event.start_s).value_or(event.start_s));
-    scored.eligible_for_s = event.start_s - eligible;
-    const double period = update_period_s(truth.track(event.track_a), truth.track(event.track_b));
-    if (static_cast<double>(scored.eligible_for_s) <= parameters.confirm * period) {
-      scored.outcome = LossOutcome::Unwarnable;
-      ++f.unwarnable;
-    } else if (scored.alert) {
-      scored.outcome = LossOutcome::Detected;
-      ++f.detected;
-      warnings.push_back(*scored.warning_s);
-    } else {
-      scored.outcome = LossOutcome::Missed;
-      ++f.missed;
-    }
+    const double period = scoring::update_period_s(truth.track(event.track_a), &truth.track(event.track_b));
+    out.losses.push_back(scoring::score_event(alerts, pair == by_pair.end() ? nullptr : &pair->second, event.start_s,
+                                              eligible, parameters.confirm * period, f, warnings));
   }
 
-  f.alerts = alerts.size();
   f.flight_hours = truth.figures().flight_hours();
   if (f.flight_hours > 0.0) f.alerts_per_100_flight_hours = 100.0 * static_cast<double>(f.alerts) / f.flight_hours;
-  if (f.alerts > 0)
-    f.undesirable_share = static_cast<double>(f.nuisances + f.ineligible) / static_cast<double>(f.alerts);
   f.loss_events = events.size();
-  if (!warnings.empty()) {
-    std::sort(warnings.begin(), warnings.end());
-    f.warning = WarningTimes{warnings.front(), nearest_rank_percentile(warnings, 10.0),
-                             nearest_rank_percentile(warnings, 50.0), nearest_rank_percentile(warnings, 90.0),
-                             warnings.back()};
-  }
+  scoring::finish(f, std::move(warnings));
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <GeographicLib/Constants.hpp>
 
 #include "kew/eligibility/eligibility.hpp"
+#include "evaluation/truth_support.hpp"
 
 namespace kew::replay {
 
@@ -35,39 +36,6 @@ double longitude_difference(double lon1, double lon2) {
   if (d > 180.0) d -= 360.0;
   if (d < -180.0) d += 360.0;
   return d;
-}
-
-// Appends second `s` to ranges of increasing seconds, extending the last range when
-// `s` follows it. Returns true when a new range was started.
-bool append_second(std::vector<SecondRange>& ranges, std::int64_t s) {
-  if (!ranges.empty() && ranges.back().last + 1 == s) {
-    ranges.back().last = s;
-    return false;
-  }
-  ranges.push_back({s, s});
-  return true;
-}
-
-// Sorts ranges and joins those that overlap or touch.
-std::vector<SecondRange> union_of(std::vector<SecondRange> ranges) {
-  std::sort(ranges.begin(), ranges.end(),
-            [](const SecondRange& x, const SecondRange& y) { return x.first < y.first; });
-  std::vector<SecondRange> out;
-  for (const SecondRange& r : ranges) {
-    if (!out.empty() && r.first <= out.back().last + 1)
-      out.back().last = std::max(out.back().last, r.last);
-    else
-      out.push_back(r);
-  }
-  return out;
-}
-
-// The first range of sorted, disjoint `ranges` meeting [from, to], if any.
-const SecondRange* first_meeting(const std::vector<SecondRange>& ranges, std::int64_t from, std::int64_t to) {
-  const auto it = std::lower_bound(ranges.begin(), ranges.end(), from,
-                                   [](const SecondRange& r, std::int64_t s) { return r.last < s; });
-  if (it == ranges.end() || it->first > to) return nullptr;
-  return &*it;
 }
 
 // Union–find over tracks. The root of a set is its lowest track, so the result does
@@ -469,15 +437,7 @@ std::optional<TruthSample> Truth::sample(TruthTrackId track, std::int64_t second
 
 std::optional<std::pair<std::int64_t, TruthSample>> Truth::nearest_sample(TruthTrackId track, double t,
                                                                           double within_s) const {
-  if (!std::isfinite(t) || !(within_s >= 0.0)) return std::nullopt;
-  const auto from = static_cast<std::int64_t>(std::ceil(t - within_s));
-  const auto to = static_cast<std::int64_t>(std::floor(t + within_s));
-  std::vector<std::int64_t> seconds;
-  for (std::int64_t s = from; s <= to; ++s) seconds.push_back(s);
-  std::stable_sort(seconds.begin(), seconds.end(), [t](std::int64_t x, std::int64_t y) {
-    return std::abs(static_cast<double>(x) - t) < std::abs(static_cast<double>(y) - t);
-  });
-  for (const std::int64_t s : seconds)
+  for (const std::int64_t s : seconds_nearest_first(t, within_s))
     if (const auto found = sample(track, s)) return std::pair{s, *found};
   return std::nullopt;
 }
@@ -495,11 +455,7 @@ std::optional<std::int64_t> Truth::airborne_since(TruthTrackId track, std::int64
 }
 
 const Truth::PairTrace* Truth::aircraft_trace(AircraftId a, AircraftId b) const {
-  const std::uint64_t key = pair_key(a, b);
-  const auto it = std::lower_bound(aircraft_traces_.begin(), aircraft_traces_.end(), key,
-                                   [](const auto& entry, std::uint64_t k) { return entry.first < k; });
-  if (it == aircraft_traces_.end() || it->first != key) return nullptr;
-  return &it->second;
+  return find_trace(aircraft_traces_, pair_key(a, b));
 }
 
 std::optional<std::int64_t> Truth::first_loss_second(AircraftId a, AircraftId b, std::int64_t from,
@@ -507,9 +463,7 @@ std::optional<std::int64_t> Truth::first_loss_second(AircraftId a, AircraftId b,
   if (a == b) return std::nullopt;
   const PairTrace* trace = aircraft_trace(a, b);
   if (!trace) return std::nullopt;
-  const SecondRange* r = first_meeting(trace->loss, from, to);
-  if (!r) return std::nullopt;
-  return std::max(r->first, from);
+  return first_second_in(trace->loss, from, to);
 }
 
 bool Truth::any_close_second(AircraftId a, AircraftId b, std::int64_t from, std::int64_t to) const {

@@ -41,29 +41,13 @@ struct ScoredAreaAlert {
   std::optional<std::int64_t> entry_s;
 };
 
-struct ScoredAreaEntry {
-  LossOutcome outcome = LossOutcome::Missed;
-  /// Index into the alerts of the earliest alert that detects the entry (also given for
-  /// an unwarnable entry that an alert covered).
-  std::optional<std::size_t> alert;
-  /// Entry start − that alert's opening (s; ≥ −kOpenTolerance_s).
-  std::optional<double> warning_s;
-  /// Entry start − AreaEntry::eligible_since_s (s, ≥ 0).
-  std::int64_t eligible_for_s = 0;
-};
+/// An entry, scored as a loss is (eligible_for_s: since AreaEntry::eligible_since_s).
+using ScoredAreaEntry = ScoredEvent;
 
 /// The figures of one kind of volume.
-struct AreaFigures {
+struct AreaFigures : ScoreFigures {
   std::size_t volumes = 0;  ///< of this kind in the truth
-  std::size_t alerts = 0;
-  std::size_t hits = 0, close_calls = 0, nuisances = 0, ineligible = 0;
-  std::size_t ineligible_one_aircraft = 0, ineligible_not_airborne = 0, ineligible_no_truth = 0;
-  /// (nuisances + ineligible) / alerts; empty (n/a) without alerts.
-  std::optional<double> undesirable_share;
-  std::size_t entries = 0, detected = 0, missed = 0, unwarnable = 0;
-  /// Nearest-rank percentiles of the detected entries' warning times; empty (n/a) when
-  /// none was detected.
-  std::optional<WarningTimes> warning;
+  std::size_t entries = 0;
 };
 
 struct AreaEvaluation {

@@ -108,34 +108,44 @@ struct ScoredAlert {
   std::optional<std::int64_t> loss_s;
 };
 
-struct ScoredLoss {
+/// An event of the truth that alerts were to warn of: a loss of separation of a pair, or
+/// an aircraft's entry into a volume (area_evaluation.hpp), scored alike.
+struct ScoredEvent {
   LossOutcome outcome = LossOutcome::Missed;
-  /// Index into the alerts of the earliest alert that detects the loss (also given for
-  /// an unwarnable loss that an alert covered).
+  /// Index into the alerts of the earliest alert that detects the event (also given for
+  /// an unwarnable event that an alert covered).
   std::optional<std::size_t> alert;
-  /// Loss start − that alert's opening (s; ≥ −kOpenTolerance_s).
+  /// Event start − that alert's opening (s; ≥ −kOpenTolerance_s).
   std::optional<double> warning_s;
-  /// Loss start − the later of the two tracks becoming eligible (s, ≥ 0).
+  /// Event start − its becoming eligible (s, ≥ 0): for a loss, the later of its two
+  /// tracks'.
   std::int64_t eligible_for_s = 0;
 };
+using ScoredLoss = ScoredEvent;
 
 /// Nearest-rank percentiles of the warning times of detected losses (s).
 struct WarningTimes {
   double min = 0.0, p10 = 0.0, p50 = 0.0, p90 = 0.0, max = 0.0;
 };
 
-struct EvaluationFigures {
+/// The figures of scored alerts and of the events they were to warn of, pair alerts
+/// (EvaluationFigures) and area proximity warnings (AreaFigures) alike.
+struct ScoreFigures {
   std::size_t alerts = 0;
   std::size_t hits = 0, close_calls = 0, nuisances = 0, ineligible = 0;
   std::size_t ineligible_one_aircraft = 0, ineligible_not_airborne = 0, ineligible_no_truth = 0;
+  /// (nuisances + ineligible) / alerts, in [0, 1]; empty (n/a) without alerts.
+  std::optional<double> undesirable_share;
+  std::size_t detected = 0, missed = 0, unwarnable = 0;
+  /// Empty (n/a) when no event was detected.
+  std::optional<WarningTimes> warning;
+};
+
+struct EvaluationFigures : ScoreFigures {
   double flight_hours = 0.0;
   /// Empty (n/a) without flight hours.
   std::optional<double> alerts_per_100_flight_hours;
-  /// (nuisances + ineligible) / alerts, in [0, 1]; empty (n/a) without alerts.
-  std::optional<double> undesirable_share;
-  std::size_t loss_events = 0, detected = 0, missed = 0, unwarnable = 0;
-  /// Empty (n/a) when no loss was detected.
-  std::optional<WarningTimes> warning;
+  std::size_t loss_events = 0;
 };
 
 struct Evaluation {
@@ -153,5 +163,9 @@ Evaluation evaluate(const Truth& truth, std::span<const AlertSpan> alerts, const
 /// Nearest-rank percentile (p in [0, 100]) of `sorted` (ascending, non-empty): the
 /// smallest value with at least p % of the values at or below it; p = 0 gives the minimum.
 double nearest_rank_percentile(std::span<const double> sorted, double p);
+
+/// The minimum, nearest-rank 10th, 50th and 90th percentiles and maximum of `warnings`
+/// (s, any order); empty without any.
+std::optional<WarningTimes> warning_times(std::vector<double> warnings);
 
 }  // namespace kew::replay
