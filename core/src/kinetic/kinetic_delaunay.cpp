@@ -210,10 +210,14 @@ double KineticDelaunay::approach_offset(FaceIndex f, int i) const {
 }
 
 void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::uint16_t retries) {
+  solve_edge(f, i, from_offset, retries, edge_certificate(f, i));
+}
+
+void KineticDelaunay::solve_edge(FaceIndex f, int i, double from_offset, std::uint16_t retries,
+                                 const Polynomial& certificate) {
   const FaceIndex g = dt_.tds().face(f).neighbor[static_cast<unsigned>(i)];
   double end = now_ + config_.horizon_s;
   if (config_.reduce_redundant_events) end = std::min({end, earliest_failure(f), earliest_failure(g)});
-  const Polynomial certificate = edge_certificate(f, i);
   watch_degenerate(f, i, certificate.is_zero());
   // Two ends about to pass through each other: every certificate around them vanishes
   // at the meeting instant, which no flip sequence can follow exactly. Merge them into
@@ -335,13 +339,7 @@ void KineticDelaunay::schedule_dirty_faces() {
       if (dirty_mark_[g] == dirty_round_ && g < f) continue;
       if (schedule_[f].kind[static_cast<unsigned>(i)] != EventKind::None) clear_edge(f, i, true);
       solve_edge(f, i, 0.0, 0);
-      if (edge_listener_) {
-        const auto& face = tds.face(f);
-        const PointId a = face.vertex[static_cast<unsigned>((i + 1) % 3)];
-        const PointId b = face.vertex[static_cast<unsigned>((i + 2) % 3)];
-        if (a != triangulation::kInfiniteVertex && b != triangulation::kInfiniteVertex && a != b)
-          edge_listener_->edge_solved(a, b);
-      }
+      tell_edge_listener(f, i);
     }
   }
 }
@@ -511,6 +509,7 @@ void KineticDelaunay::remove(PointId id, double t) {
   ++stats_.removals;
   cancel_drift(id);
   detach_point(id);
+  schedule_dirty_faces();
   live_[id] = false;
   --live_points_;
   dt_.destroy_vertex(id);
@@ -537,7 +536,7 @@ UpdateKind KineticDelaunay::update(PointId id, double t, Point2 p, Vector2 v) {
     if (twins_.is_twin(id)) {
       schedule_twin_release(id);
     } else {
-      reschedule_star(id);
+      revalidate_star(id);
       for (const PointId w : twins_.twins_of(id)) schedule_twin_release(w);
     }
     schedule_dirty_faces();
@@ -601,6 +600,54 @@ void KineticDelaunay::reschedule_star(PointId vertex) {
   }
 }
 
+bool KineticDelaunay::renewal_still_holds(FaceIndex f, int i, const Polynomial& certificate) const {
+  const FaceSchedule& s = schedule_[f];
+  if (s.kind[static_cast<unsigned>(i)] != EventKind::Renewal || certificate.is_zero()) return false;
+  const double reach = s.time[static_cast<unsigned>(i)] - now_;
+  return reach >= 0.0 && certainly_negative(certificate, reach) && !(approach_offset(f, i) < reach);
+}
+
+void KineticDelaunay::revalidate_star(PointId vertex) {
+  const auto& tds = dt_.tds();
+  tds.incident_faces(vertex, scratch_faces_);
+  if (dt_.is_flat() || scratch_faces_.empty()) {
+    reschedule_star(vertex);
+    return;
+  }
+  // Each face of the star is examined on its link edge (opposite the vertex) and on the
+  // spoke opposite ccw(k): around the vertex, that visits every spoke once. First every
+  // edge is kept or cleared, then the cleared ones are solved, so that §8.3 windows see
+  // only the failures of this velocity, as reschedule_star's would.
+  scratch_edges_.clear();
+  for (const FaceIndex f : scratch_faces_) {
+    const int k = tds.face(f).index_of(vertex);
+    for (const int i : {k, ccw(k)}) {
+      Polynomial certificate = edge_certificate(f, i);
+      if (renewal_still_holds(f, i, certificate)) {
+        ++stats_.certificates_kept;
+        watch_degenerate(f, i, false);
+        tell_edge_listener(f, i);
+        continue;
+      }
+      clear_edge(f, i, true);
+      scratch_edges_.push_back({f, i, certificate});
+    }
+  }
+  for (const StarEdge& e : scratch_edges_) {
+    solve_edge(e.face, e.edge, 0.0, 0, e.certificate);
+    tell_edge_listener(e.face, e.edge);
+  }
+}
+
+void KineticDelaunay::tell_edge_listener(FaceIndex f, int i) {
+  if (!edge_listener_) return;
+  const auto& face = dt_.tds().face(f);
+  const PointId a = face.vertex[static_cast<unsigned>(ccw(i))];
+  const PointId b = face.vertex[static_cast<unsigned>(cw(i))];
+  if (a != triangulation::kInfiniteVertex && b != triangulation::kInfiniteVertex && a != b)
+    edge_listener_->edge_solved(a, b);
+}
+
 PointId KineticDelaunay::attached_neighbour(PointId id) const {
   const PointId vertex = host_of(id);
   if (vertex != id) return vertex;
@@ -639,7 +686,6 @@ void KineticDelaunay::detach_point(PointId id) {
   if (!detach_vertex(id)) ++stats_.repairs;
   // Twins of a removed vertex take its place: the first is attached, the rest re-twin.
   for (const PointId w : orphans) attach_point(w);
-  schedule_dirty_faces();
 }
 
 void KineticDelaunay::make_twin(PointId id, PointId host) {
@@ -792,6 +838,7 @@ void add_statistics(KineticStatistics& total, const KineticStatistics& part) {
   const std::size_t largest = std::max(total.queue_max, part.queue_max);
   total.certificates_solved += part.certificates_solved;
   total.certificates_deferred += part.certificates_deferred;
+  total.certificates_kept += part.certificates_kept;
   total.events_computed += part.events_computed;
   total.events_executed += part.events_executed;
   total.events_discarded += part.events_discarded;

@@ -428,6 +428,36 @@ TEST(KineticDelaunayProperty, TracksComeAndGoAtAnyTime) {
   h.finish();
 }
 
+TEST(KineticDelaunayProperty, VelocityOnlyUpdatesKeepingRenewalsStayExact) {
+  // Most velocity-only updates keep some renewals of their star (design §2.3): after
+  // every radar period the whole triangulation is compared with CGAL's, with and
+  // without lazy windows and §8.3, at two thresholds.
+  std::uint64_t seed = 500;
+  std::uint64_t kept = 0;
+  for (const double horizon : {4.0, 0.5})
+    for (const double lazy : {0.0, 1.5})
+      for (const bool reduce : {true, false}) {
+        KineticConfig config;
+        config.horizon_s = horizon;
+        config.lazy_window_s = lazy;
+        config.reduce_redundant_events = reduce;
+        config.tolerance = 100.0;
+        SCOPED_TRACE(describe(config));
+        Harness h(config, seed++);
+        std::uniform_real_distribution<double> coordinate(0.0, 150'000.0);
+        for (int k = 0; k < 300; ++k)
+          h.add({coordinate(h.rng()), coordinate(h.rng())}, random_velocity(h.rng(), 100, 260), 0.0);
+        for (int period = 0; period < 25; ++period) {
+          h.radar_period(4.0 * period, 4.0, 20.0, wander);
+          h.check_at(4.0 * (period + 1));
+        }
+        kept += h.engine().statistics().certificates_kept;
+        EXPECT_GT(h.engine().statistics().velocity_updates, 1000u);
+        h.finish();
+      }
+  EXPECT_GT(kept, 10'000u);
+}
+
 TEST(KineticDelaunayProperty, ManyEventsAcrossTheSuiteWithNoUnrepairedViolation) {
   // Long free flight of a dense cloud to bring the suite past 10^6 executed events.
   KineticConfig config;

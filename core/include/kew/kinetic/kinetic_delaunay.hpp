@@ -69,6 +69,9 @@ struct KineticConfig {
 struct KineticStatistics {
   std::uint64_t certificates_solved = 0;  ///< Sturm solves run
   std::uint64_t certificates_deferred = 0;  ///< proved valid over the lazy window, not solved further
+  /// Certificates of a velocity-only update's star proved valid, on the new velocity, up
+  /// to the renewal already scheduled for them, which is kept instead of solving again.
+  std::uint64_t certificates_kept = 0;
   std::uint64_t events_computed = 0;      ///< failures found and scheduled
   std::uint64_t events_executed = 0;      ///< failures that flipped an edge
   std::uint64_t events_discarded = 0;     ///< scheduled failures descheduled before their time
@@ -241,6 +244,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// Returns true when it changed the triangulation.
   bool flip_degenerate_edges();
   void solve_edge(triangulation::FaceIndex f, int i, double from_offset, std::uint16_t retries);
+  /// solve_edge with the edge's certificate at now already computed.
+  void solve_edge(triangulation::FaceIndex f, int i, double from_offset, std::uint16_t retries,
+                  const Polynomial& certificate);
   /// Certificate of edge i of f in time local to now: positive exactly while violated;
   /// the zero polynomial when it constrains nothing or is only rounding noise.
   Polynomial edge_certificate(triangulation::FaceIndex f, int i) const;
@@ -250,7 +256,16 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   void schedule_edge(double time, triangulation::FaceIndex f, int i, EventKind kind, std::uint16_t retries);
   /// False for an entry descheduled since it was queued (its record holds another seq).
   bool is_live(const Entry& e) const;
+  /// Clears every certificate around vertex and marks its faces dirty.
   void reschedule_star(PointId vertex);
+  /// After vertex's velocity changed at now: an edge of its star whose renewal is still
+  /// to come keeps it when renewal_still_holds; the others are cleared and solved again
+  /// (design §2.3). Exact: up to that renewal no failure can happen on the new motion.
+  void revalidate_star(PointId vertex);
+  /// The new certificate of edge i of f is certainly negative (valid) until the renewal
+  /// scheduled for the edge, and its ends come no closer than twin_release_distance_m.
+  bool renewal_still_holds(triangulation::FaceIndex f, int i, const Polynomial& certificate) const;
+  void tell_edge_listener(triangulation::FaceIndex f, int i);
   /// Removes id and attaches it again on trajectory `to` (at now).
   void reinsert(PointId id, const triangulation::Trajectory& to);
   /// advance() for the points' own operations, which sample the queue for queue_mean.
@@ -265,6 +280,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// An attached point next to id in the triangulation (its host for a twin), or
   /// kNoPoint: a start for locating id again after it moves a little.
   PointId attached_neighbour(PointId id) const;
+  /// Detaches id; the faces it leaves are dirty, not yet scheduled. A reinsertion
+  /// attaches the point again at the same instant first: the hole's faces it destroys
+  /// are then never solved, which halves a reinsertion's certificates.
   void detach_point(PointId id);
   /// Detaches a triangulation vertex. Returns false when that took a full rebuild
   /// (counted in stats_.rebuilds), whose evictions are adopted.
@@ -307,6 +325,12 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   EdgeListener* edge_listener_ = nullptr;
   mutable std::vector<PointId> scratch_neighbors_;
   std::vector<triangulation::FaceIndex> scratch_faces_;
+  struct StarEdge {
+    triangulation::FaceIndex face;
+    int edge;
+    Polynomial certificate;
+  };
+  std::vector<StarEdge> scratch_edges_;
 };
 
 }  // namespace kew::kinetic
