@@ -33,6 +33,7 @@ Every finding is printed as FILE:LINE: "what was found": what to do.
   check_docs.py --self-test   first prove that each rule fires, on a scratch tree
 """
 
+import json
 import os
 import re
 import subprocess
@@ -161,6 +162,38 @@ def history_findings(name, text):
     return sorted(findings, key=lambda f: int(f[len(name) + 1:].split(":", 1)[0]))
 
 
+THESIS_FIGURES = "docs/data/thesis-effects.json"
+THESIS_MARK = re.compile(r"<!-- thesis:([a-z_]+) -->")
+
+
+def thesis_figure_findings(root, files):
+    """A line marked <!-- thesis:KEY --> prints, in bold, the setting's ratio KEY of
+    docs/data/thesis-effects.json (kew_thesis_bench's output) to its printed digits."""
+    path = os.path.join(root, THESIS_FIGURES)
+    if not os.path.exists(path):
+        return []
+    with open(path, encoding="utf-8") as f:
+        ratios = json.load(f)["setting"]["ratios"]
+    findings = []
+    for name in files:
+        if not name.endswith(".md"):
+            continue
+        with open(os.path.join(root, name), encoding="utf-8") as f:
+            for number, line in enumerate(f, 1):
+                for key in THESIS_MARK.findall(line):
+                    printed = re.search(r"\*\*(\d+\.\d+)\*\*", line)
+                    if key not in ratios:
+                        findings.append(f"{name}:{number}: thesis ratio {key}: not in {THESIS_FIGURES}")
+                    elif not printed:
+                        findings.append(f"{name}:{number}: thesis ratio {key}: no bold figure on the line")
+                    else:
+                        digits = len(printed.group(1).split(".")[1])
+                        if abs(float(printed.group(1)) - ratios[key]) > 0.5 * 10 ** -digits + 1e-12:
+                            findings.append(f"{name}:{number}: thesis ratio {key}: the text says {printed.group(1)}, "
+                                            f"{THESIS_FIGURES} {ratios[key]:.{digits}f}")
+    return findings
+
+
 def check(root):
     findings = []
     readme = os.path.join(root, "README.md")
@@ -189,6 +222,7 @@ def check(root):
                 if anchor not in anchor_cache[destination]:
                     findings.append(f"{name}:{number}: link to {target}: no heading #{anchor} in "
                                     f"{os.path.relpath(destination, root)}")
+    findings += thesis_figure_findings(root, files)
     for name in files:
         if not is_document(name):
             continue
@@ -285,7 +319,12 @@ def self_test():
         write("docs/a.md", "# A\n\n## The stream (TCP, 4747)\n\n## The stream (TCP, 4747)\n[self](#the-stream-tcp-4747-1)\n")
         write("src/x.cpp", "// Hilbert order (design §8.3)\n")
         assert check(root) == [], check(root)
+        write(THESIS_FIGURES, '{"setting": {"ratios": {"queue_failures": 0.0817}}}')
+        write("docs/t.md", "| queue | **0.082** <!-- thesis:queue_failures --> |\n")
+        assert check(root) == [], check(root)
         cases = {
+            "docs/t.md": ("| queue | **0.081** <!-- thesis:queue_failures --> |\n", "the text says 0.081"),
+            "docs/u.md": ("| queue | **0.082** <!-- thesis:no_such_ratio --> |\n", "not in docs/data"),
             "README.md": ("# kew\n" + "line\n" * 600, "more than 500"),
             "docs/b.md": ("[x](missing.md)\n", "no such file"),
             "docs/c.md": ("[x](a.md#no-such-heading)\n", "no heading #no-such-heading"),
@@ -330,7 +369,7 @@ def main():
     if findings:
         print(f"{len(findings)} findings")
         return 1
-    print("documents: README within 500 lines, every link resolves, no history wording, no commit hash in prose")
+    print("documents: README within 500 lines, every link resolves, no history wording, no commit hash in prose, the thesis figures as their JSON")
     return 0
 
 

@@ -89,16 +89,18 @@ struct PipelineConfig {
   /// the pairs alone are judged.
   std::vector<volume::WatchedVolume> volumes;
 
-  /// kew's kinetic defaults: absolute τ = 300 m (above the one-step prediction residual
-  /// of 90–96 % of recorded reports, docs/performance.md, measured position noise), models kept
-  /// through updates while they stay within τ for 4 s (design §2.3), H = 300 s, §8.3 on,
-  /// certificates proved valid for 10 s (two to three radar periods) not solved further.
+  /// kew's kinetic defaults, each chosen from the curves of design §8.6: absolute
+  /// τ = 300 m (above the one-step prediction residual of 90–96 % of recorded reports; the
+  /// cost is flat from 100 to 600 m and rises beyond on dense traffic), models kept through
+  /// updates while they stay within τ for 4 s (design §2.3), H = 30 s (three lazy windows:
+  /// the same cost as 300 s or ∞ with a shorter queue), §8.3 on, certificates proved valid
+  /// for 10 s (two to three radar periods) not solved further.
   static kinetic::KineticConfig default_kinetic() {
     kinetic::KineticConfig k;
     k.lazy_window_s = 10.0;
     k.tolerance = 300.0;
     k.keep_model_s = 4.0;
-    k.horizon_s = 300.0;
+    k.horizon_s = 30.0;
     return k;
   }
 };
