@@ -131,14 +131,17 @@ std::string number_text(double x) {
 /// appear once even when both sweeps hold them.
 std::vector<Setting> settings_of(const std::string& sweep) {
   std::vector<Setting> out;
+  const KineticConfig defaults = kew::PipelineConfig::default_kinetic();
   const auto add = [&](const std::string& name, const KineticConfig& k) {
     for (const Setting& s : out)
       if (s.kinetic.tolerance == k.tolerance && s.kinetic.keep_model_s == k.keep_model_s &&
           s.kinetic.horizon_s == k.horizon_s && s.kinetic.lazy_window_s == k.lazy_window_s)
         return;
-    out.push_back({name, k});
+    // kew's defaults under one name, whichever sweep reaches them first.
+    const bool is_default = k.tolerance == defaults.tolerance && k.keep_model_s == defaults.keep_model_s &&
+                            k.horizon_s == defaults.horizon_s && k.lazy_window_s == defaults.lazy_window_s;
+    out.push_back({is_default ? "defaults" : name, k});
   };
-  const KineticConfig defaults = kew::PipelineConfig::default_kinetic();
   if (sweep != "horizon") {
     // τ = 0 keeps only reports exactly on the model (repeated reports).
     for (const double tau : {0.0, 25.0, 50.0, 100.0, 150.0, 300.0, 600.0, 1000.0, 2000.0}) {
@@ -319,6 +322,7 @@ void put_result(JsonText& json, const Result& r) {
       {"renewals", s.renewals},
       {"certificates_solved", s.certificates_solved},
       {"certificates_deferred", s.certificates_deferred},
+      {"certificates_kept", s.certificates_kept},
       {"events_computed", s.events_computed},
       {"events_executed", s.events_executed},
       {"events_discarded", s.events_discarded},

@@ -9,7 +9,7 @@
 // each varying one knob from a common baseline (H = P, τ = 50 m, §8.3 on; no lazy
 // certificates, no kept models: the thesis' method alone), and beside it kew's kept
 // models and the thesis' remove-and-insert reinsertion. Times are the median of
-// --repeats runs. docs/performance-thesis.md explains the figures; plot_thesis.py draws
+// --repeats runs. docs/performance-kinetic.md explains the figures; plot_thesis.py draws
 // them from the JSON.
 //
 // Usage: kew_thesis_bench [--aircraft N] [--period S] [--duration S] [--noise M]
@@ -20,7 +20,10 @@
 // queue and discarded ratios): deterministic, for the check of the documented figures.
 // --only runs one configuration of the setting once, for a profiler (profile_thesis.py).
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <iostream>
 #include <map>
@@ -262,6 +265,7 @@ void put_run(JsonText& j, const RunResult& r) {
   j.key("kept_updates").value(r.kept.calls);
   j.key("drift_reinsertions").value(s.drift_reinsertions);
   j.key("certificates_solved").value(s.certificates_solved);
+  j.key("certificates_kept").value(s.certificates_kept);
   j.key("events_computed").value(s.events_computed);
   j.key("events_executed").value(s.events_executed);
   j.key("events_discarded").value(s.events_discarded);

@@ -22,11 +22,10 @@ import re
 import subprocess
 import sys
 import tempfile
-import time
 
 PHASES = [
     ("certificate polynomials", r"incircle_polynomial|orientation_polynomial|dot_polynomial|lifted_determinant|"
-                                r"unless_rounding_noise|edge_certificate|Polynomial::"),
+                                r"unless_rounding_noise|edge_certificate"),
     ("root isolation (Sturm, bounds)", r"Sturm|sign_changes|first_positive_crossing|locate_first_root|"
                                        r"negated_remainder|normalise|root_bound|certified_sign|certainly_negative|"
                                        r"evaluate|refine|bisect|newton"),
@@ -34,8 +33,9 @@ PHASES = [
     ("queue work", r"EventQueue|schedule_edge|clear_edge|is_live"),
     ("scheduling", r"schedule_dirty_faces|reschedule_star|solve_edge|watch_degenerate|earliest_failure|"
                    r"face_created|face_destroyed|grow_to"),
-    ("triangulation (remove, locate, insert)", r"triangulation::|orient2d|incircle|geometry::|attach|detach|"
-                                               r"locate|reinsert|attached_neighbour|TwinRegistry"),
+    ("triangulation (remove, locate, insert)", r"triangulation::(Tds::|DelaunayTriangulation::(?!position|trajectory))|orient2d|"
+                                               r"geometry::incircle|attach|detach|locate|reinsert|"
+                                               r"attached_neighbour|TwinRegistry"),
     ("event execution", r"KineticDelaunay::advance|KineticDelaunay::execute|flip_degenerate"),
 ]
 ADVANCE_RUNS = [

@@ -280,9 +280,9 @@ class KineticDelaunay final : private triangulation::FaceObserver {
   /// An attached point next to id in the triangulation (its host for a twin), or
   /// kNoPoint: a start for locating id again after it moves a little.
   PointId attached_neighbour(PointId id) const;
-  /// Detaches id; the faces it leaves are dirty, not yet scheduled. A reinsertion
-  /// attaches the point again at the same instant first: the hole's faces it destroys
-  /// are then never solved, which halves a reinsertion's certificates.
+  /// Detaches id, its faces dirty but not scheduled (callers schedule before time moves):
+  /// a reinsertion attaches again at once, so the hole's faces it destroys are not solved
+  /// (unless id hosted twins, whose attaching schedules them), half its certificates.
   void detach_point(PointId id);
   /// Detaches a triangulation vertex. Returns false when that took a full rebuild
   /// (counted in stats_.rebuilds), whose evictions are adopted.
