@@ -24,6 +24,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +36,9 @@
 #include "kew/pipeline/pipeline.hpp"
 #include "kew/replay/recording_reader.hpp"
 
+#ifndef KEW_GOLDEN_DIR
+#define KEW_GOLDEN_DIR "tests/golden"
+#endif
 #ifndef KEW_SHARED_RECORDINGS_DIR
 #define KEW_SHARED_RECORDINGS_DIR "../shared/data/recordings"
 #endif
@@ -44,16 +49,14 @@ using kew::bench::JsonText;
 using kew::bench::Stopwatch;
 using kew::kinetic::KineticConfig;
 
-// tests/golden/run_golden.py's BARCELONA_RADAR: without it UPC's CAT048 plots (polar,
-// relative to the radar) have no position.
-constexpr const char* kBarcelonaRadar = R"(
-[[radar]]
-sac = 20
-sic = 129
-lat = 41.300702333
-lon = 2.102058194
-height_m = 27.0
-)";
+// UPC's radar table, the file run_golden.py reads too: without it UPC's CAT048 plots
+// (polar, relative to the radar) have no position.
+std::string barcelona_radar() {
+  std::ifstream file(KEW_GOLDEN_DIR "/upc-bcn-radar.toml");
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
 
 // Three kinds of surveillance from tests/eval/alert_quality.py's CASES: a radar's plots
 // at ~4 s, system tracks (CAT062), ADS-B.
@@ -385,7 +388,7 @@ int main(int argc, char** argv) {
     // defaults) or UPC's radar table.
     kew::config::SharedConfig config;
     try {
-      config = kew::config::read_shared_config(kew::config::Document::parse(c.radar ? kBarcelonaRadar : "", c.label));
+      config = kew::config::read_shared_config(kew::config::Document::parse(c.radar ? barcelona_radar() : "", c.label));
     } catch (const kew::config::ConfigError& e) {
       std::fprintf(stderr, "kew_kinetic_defaults_bench: %s\n", e.what());
       return 2;

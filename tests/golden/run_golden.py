@@ -64,14 +64,8 @@ VARIANTS = {
 STABLE_STATS = ("records", "rejected", "tracks_max", "updates", "alerts_new", "audit_violations_unrepaired")
 
 # Real recordings a decoder supports, with the configuration or flag they need.
-BARCELONA_RADAR = """
-[[radar]]
-sac = 20
-sic = 129
-lat = 41.300702333
-lon = 2.102058194
-height_m = 27.0
-"""
+with open(os.path.join(HERE, "upc-bcn-radar.toml"), encoding="utf-8") as radar_file:
+    BARCELONA_RADAR = "\n" + radar_file.read()
 SHARED_CASES = [
     ("jade-cat062-ff/final_frame_062_30min.ff", ""),
     ("upc-bcn-cat048/230502-est-080001_BCN_60MN_08_09.ast", BARCELONA_RADAR),
