@@ -6,11 +6,15 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "../notify/notifier.hpp"
+#include "kew/daemon/config.hpp"
 #include "output.hpp"
 
 namespace kew::daemon {
+
+class SpeakingRight;
 
 class NotifyOutput final : public Output {
  public:
@@ -32,5 +36,12 @@ class NotifyOutput final : public Output {
  private:
   std::unique_ptr<Notifier> notifier_;
 };
+
+/// One output per [[notify]] endpoint of `config`, each with its outbox in
+/// `state_directory` ("": none, what is owed kept in memory). With hot standby (`right`
+/// set), the delivery progress is the pair's, in its NATS key-value bucket, and a notifier
+/// delivers only while this instance may speak.
+std::vector<std::unique_ptr<NotifyOutput>> open_notify_outputs(const Config& config, const std::string& state_directory,
+                                                               const std::shared_ptr<SpeakingRight>& right);
 
 }  // namespace kew::daemon

@@ -1,5 +1,9 @@
 #include "reload.hpp"
 
+#include <systemd/sd-daemon.h>
+
+#include <exception>
+
 #include <spdlog/spdlog.h>
 
 namespace kew::daemon {
@@ -24,6 +28,21 @@ void apply_in_flight(const std::string& path, const Config& fresh, const std::op
                  fresh.http.max_connections, fresh.http.silent_per_address, fresh.http.request_timeout_s);
   }
   spdlog::info("SIGHUP: inputs, outputs and pipeline settings apply at the next restart");
+}
+
+void reload_configuration(const std::string& path, const std::optional<LogLevel>& log_level_override,
+                          Config& current, SubscriberServer& subscribers, http::HttpServer* http) {
+  if (path.empty()) {
+    spdlog::info("SIGHUP: no configuration file to reload");
+    return;
+  }
+  sd_notify(0, "RELOADING=1");
+  try {
+    apply_in_flight(path, load_config(path), log_level_override, current, subscribers, http);
+  } catch (const std::exception& e) {
+    spdlog::error("SIGHUP: {} (configuration kept)", e.what());
+  }
+  sd_notify(0, "READY=1");
 }
 
 }  // namespace kew::daemon

@@ -19,4 +19,10 @@ namespace kew::daemon {
 void apply_in_flight(const std::string& path, const Config& fresh, const std::optional<LogLevel>& log_level_override,
                      Config& current, SubscriberServer& subscribers, http::HttpServer* http);
 
+/// SIGHUP: reads `path` again and applies what can change (apply_in_flight), telling
+/// systemd it reloads meanwhile. A file that does not load changes nothing and is logged;
+/// an empty `path` (built-in defaults) has nothing to read.
+void reload_configuration(const std::string& path, const std::optional<LogLevel>& log_level_override,
+                          Config& current, SubscriberServer& subscribers, http::HttpServer* http);
+
 }  // namespace kew::daemon

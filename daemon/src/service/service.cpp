@@ -14,7 +14,6 @@
 #include "../outputs/modbus_output.hpp"
 #include "../outputs/nats_output.hpp"
 #include "../outputs/notify_output.hpp"
-#include "../nats/notify_progress_store.hpp"
 #include "../outputs/subscriber_output.hpp"
 #include "../outputs/websocket_output.hpp"
 #include "../standby/pair_member.hpp"
@@ -45,7 +44,7 @@ Service::Service(Config config, ServiceOptions options)
       // A replay's numbering starts at 1 each time and is kept nowhere (design §5.6).
       continuity_(options_.replay ? std::string() : state_directory(config_.service)),
       status_(pipeline_, config_.pipeline.tracks.track_timeout_s),
-      silence_(config_.inputs.size()),
+      clock_(config_.inputs.size(), {options_.replay, options_.replay_speed}),
       views_(pipeline_, {[this] { return last_alert_seq_; },
                          [this] { return status_.alive(std::chrono::steady_clock::now(), conditions()); },
                          [this] { return data_clock_now(); }}) {
@@ -80,7 +79,7 @@ void Service::open_outputs() {
   SubscriberServer::Source source;
   source.snapshot = [this] { return pipeline_.alerts().snapshot(); };
   source.seq = [this] { return last_alert_seq_; };
-  source.stats = [this] { return protocol::stats_json(pipeline_, service_statistics()); };
+  source.stats = [this] { return protocol::stats_json(pipeline_, gather_statistics(reported())); };
   source.start = [this] { return start_line_; };
   subscribers_ = open_listener("[service] alert_listen", listen, [&] {
     return std::make_unique<SubscriberServer>(io_, resolve_listen(io_, listen), subscriber_limits(config_.service),
@@ -99,7 +98,10 @@ void Service::open_outputs() {
     fan_out_->add(std::make_unique<Cat004Output>(io_, config_.cat004, !pipeline_.config().volumes.empty()));
   if (!config_.nats.servers.empty())
     nats_ = &fan_out_->add(std::make_unique<NatsOutput>(config_.nats, continuity_.run_id(), pipeline_, speaking_right_));
-  open_notifiers();
+  // Outboxes live with the numbering, which their seqs follow (design §5.10).
+  const std::string directory = continuity_.state_path().empty() ? std::string() : state_directory(config_.service);
+  for (auto& notify : open_notify_outputs(config_, directory, speaking_right_))
+    notifiers_.push_back(&fan_out_->add(std::move(notify)));
   if (config_.modbus.enabled) {
     ModbusConfig modbus = config_.modbus;
     modbus.listen = listen_address(modbus.listen, options_.listen_any);
@@ -114,22 +116,6 @@ void Service::open_outputs() {
   }
 }
 
-void Service::open_notifiers() {
-  // Outboxes live with the numbering, which their seqs follow (design §5.10).
-  const std::string directory = continuity_.state_path().empty() ? std::string() : state_directory(config_.service);
-  for (const NotifyConfig& notify : config_.notify) {
-    std::unique_ptr<ProgressStore> store;
-    std::function<bool()> may_speak;
-    if (speaking_right_) {
-      store = std::make_unique<NatsProgressStore>(config_.nats, notify.name);
-      may_speak = [right = speaking_right_] { return right->may_speak(); };
-    }
-    const std::string outbox = directory.empty() ? std::string() : directory + "/notify-" + notify.name + ".outbox";
-    notifiers_.push_back(&fan_out_->add(std::make_unique<NotifyOutput>(
-        std::make_unique<Notifier>(notify, outbox, std::move(store), std::move(may_speak)))));
-  }
-}
-
 void Service::open_inputs() {
   for (std::size_t i = 0; i < config_.inputs.size(); ++i) {
     InputConfig input = config_.inputs[i];
@@ -140,7 +126,7 @@ void Service::open_inputs() {
     }));
     if (options_.replay) inputs_.back()->set_end_handler([this] { asio::post(io_, [this] { end_replay(); }); });
     inputs_.back()->set_source_handler(
-        [this, i](SourceState state) { silence_.source(i, state, std::chrono::steady_clock::now()); });
+        [this, i](SourceState state) { clock_.source(i, state, std::chrono::steady_clock::now()); });
   }
   intake_ = std::make_unique<RecordIntake>(io_, pipeline_, config_.service, options_.replay, inputs_.size());
 }
@@ -239,19 +225,7 @@ void Service::begin_run() {
                             },
                             [this](const AlertEvent& event) { on_alert(event); },
                             {}};
-    if (pair_feed_checkpointable(config_.inputs))
-      hooks.usable = [config = config_.pipeline](const std::string& state, std::string& why) {
-        // Restored into a pipeline of this configuration apart from the service's, which
-        // must stay fresh until the checkpoint is known to fit.
-        try {
-          Pipeline trial(config);
-          trial.restore(state);
-          return true;
-        } catch (const std::exception& e) {
-          why = e.what();
-          return false;
-        }
-      };
+    if (pair_feed_checkpointable(config_.inputs)) hooks.usable = checkpoint_fits(config_.pipeline);
     pair_ = std::make_unique<PairMember>(io_, config_.nats, pair_feed_stream(config_.inputs), numbering.last_seq,
                                          numbering.next_number, speaking_right_, pipeline_, *fan_out_,
                                          std::move(hooks));
@@ -296,7 +270,7 @@ ServiceStatus::Conditions Service::conditions() const {
   const bool notify_failing =
       std::any_of(notifiers_.begin(), notifiers_.end(), [](const NotifyOutput* n) { return n->failing(); });
   return {alert_log_ && alert_log_->failing(), fan_out_->hot_standby() && !fan_out_->active(),
-          pair_ && pair_->syncing(), silence_.unreachable(), notify_failing};
+          pair_ && pair_->syncing(), clock_.unreachable(), notify_failing};
 }
 
 void Service::on_alert(const AlertEvent& event) {
@@ -322,31 +296,19 @@ std::vector<std::string> Service::acknowledge(std::string_view by, std::string_v
   return ids;
 }
 
-std::optional<double> Service::silent_s() const {
-  const auto now = std::chrono::steady_clock::now();
-  return silence_.silent_s(status_.seconds_since_applied(now), now);
-}
-
 double Service::data_clock_now() const {
-  // Live mode: the data clock runs on with the wall clock between records, so that
-  // tracks of a silent feed time out and kinetic events happen on time; a source that is
-  // unreachable or delivering a backlog is not silent (design §4.1). A replay's runs
-  // at its speed while the file is read, and stops at its end: the last state stays on
-  // show; as fast as possible, only records move it (as in kew-replay).
-  const double last = pipeline_.statistics().last_data_time;
-  if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return last;
-  return last + silent_s().value_or(0.0) * (options_.replay ? options_.replay_speed : 1.0);
+  const auto now = std::chrono::steady_clock::now();
+  return clock_.at(pipeline_.statistics().last_data_time, status_.seconds_since_applied(now), now);
 }
 
 void Service::tick() {
   intake_->flush_record_file();
   if (websockets_) websockets_->flush(pipeline_.now(), last_alert_seq_);
-  // While records are accepted, their own times drive the clock; only a feed silent (or
-  // wholly refused) for a whole tick moves it on, so its tracks time out.
-  // A replay's clock stands still at its end, or when only its records move it.
-  if (options_.replay && (replay_ended_ || options_.replay_speed <= 0.0)) return;
-  const std::optional<double> silent = silent_s();
-  if (silent && *silent >= config_.service.tick_interval_s) pipeline_.advance_to(data_clock_now());
+  // Only a feed silent for a whole tick moves the clock on, so that its tracks time out.
+  const auto now = std::chrono::steady_clock::now();
+  const std::optional<double> due = clock_.tick(pipeline_.statistics().last_data_time,
+                                                status_.seconds_since_applied(now), now, config_.service.tick_interval_s);
+  if (due) pipeline_.advance_to(*due);
 }
 
 void Service::alive() {
@@ -364,28 +326,13 @@ void Service::wait_for_signal() {
   signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
     if (ec) return;
     if (signal == SIGHUP) {
-      reload();
+      reload_configuration(options_.config_path, options_.log_level_override, config_, *subscribers_, http_.get());
       wait_for_signal();
       return;
     }
     spdlog::info("kewd: {} received, shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
     shutdown();
   });
-}
-
-void Service::reload() {
-  if (options_.config_path.empty()) {
-    spdlog::info("SIGHUP: no configuration file to reload");
-    return;
-  }
-  sd_notify(0, "RELOADING=1");
-  try {
-    apply_in_flight(options_.config_path, load_config(options_.config_path), options_.log_level_override, config_,
-                    *subscribers_, http_.get());
-  } catch (const std::exception& e) {
-    spdlog::error("SIGHUP: {} (configuration kept)", e.what());
-  }
-  sd_notify(0, "READY=1");
 }
 
 void Service::shutdown() {
@@ -412,8 +359,8 @@ void Service::shutdown() {
 }
 
 void Service::end_replay() {
-  if (replay_ended_ || stopping_) return;
-  replay_ended_ = true;
+  if (clock_.replay_ended() || stopping_) return;
+  clock_.end_of_replay();
   pipeline_.end_of_input();
   const auto& input = inputs_.front()->config();
   spdlog::info("replay of {} ended: {} records, {} alerts opened, {} active; {}", input.address,
@@ -422,49 +369,9 @@ void Service::end_replay() {
   if (options_.exit_at_end) shutdown();
 }
 
-protocol::ServiceStatistics Service::service_statistics() const {
-  protocol::ServiceStatistics service;
-  service.seq = last_alert_seq_;
-  service.uptime_s = status_.uptime_s(std::chrono::steady_clock::now());
-  for (const auto& input : inputs_) service.inputs.push_back(input->statistics());
-  fan_out_->report(service);
-  if (pair_ && service.nats) pair_->report(*service.nats);
-  intake_->report(service);
-  service.resident_bytes = http::resident_bytes();
-  return service;
-}
-
-std::string Service::metrics_text() const {
-  http::MetricsSources m;
-  m.pipeline = &pipeline_;
-  const protocol::ServiceStatistics service = service_statistics();
-  for (std::size_t i = 0; i < service.inputs.size(); ++i) {
-    const protocol::InputStatistics& in = service.inputs[i];
-    const RecordIntake::InputFigures& figures = intake_->figures(i);
-    http::InputMetrics metrics{in.name, in.reports, in.bytes, in.datagrams_dropped, in.rejected,
-                               figures.last_record_unix_s, std::nullopt};
-    metrics.rejected.merge(figures.pipeline_refused);
-    if (inputs_[i]->config().transport == Transport::Http)
-      metrics.polls = http::InputMetrics::Polls{in.polls, in.polls_unchanged, in.poll_failures};
-    m.inputs.push_back(std::move(metrics));
-  }
-  m.subscribers = subscribers_->sessions();
-  m.subscriber_queued_bytes = subscribers_->queued_bytes();
-  m.subscriber_figures = service.subscribers;
-  if (http_) {
-    m.http = &http_->statistics();
-    m.http_connections = http_->connections();
-    m.websockets = http_->websockets();
-    m.websocket_queued_bytes = http_->queued_bytes();
-  }
-  m.alert_log_queued_bytes = service.alert_log_queued_bytes;
-  m.alert_log_errors = service.alert_log_errors;
-  m.health = status_.health(std::chrono::steady_clock::now(), conditions());
-  m.nats = service.nats;
-  m.notify = service.notify;
-  m.latency = &intake_->latency();
-  m.start_time_unix_s = status_.started_unix_s();
-  return http::metrics_text(m);
+ReportedParts Service::reported() const {
+  return {pipeline_, status_, conditions(), last_alert_seq_, inputs_, *intake_, *fan_out_, *subscribers_, pair_.get(),
+          http_.get()};
 }
 
 http::HttpSource Service::http_source() {
@@ -476,7 +383,7 @@ http::HttpSource Service::http_source() {
   source.aerodromes = config_.pipeline.eligibility.aerodromes;
   source.volumes = std::make_shared<const std::vector<volume::WatchedVolume>>(pipeline_.config().volumes);
   source.snapshot = [this] { return views_.snapshot(); };
-  source.metrics = [this] { return metrics_text(); };
+  source.metrics = [this] { return gather_metrics(reported()); };
   source.acknowledge = [this](const protocol::AckRequest& request, std::string_view client) {
     return acknowledge("web", client, request.all ? std::nullopt : std::optional<std::string_view>(request.id));
   };

@@ -20,10 +20,11 @@
 #include "../outputs/fan_out.hpp"
 #include "../standby/pair_origin.hpp"
 #include "continuity.hpp"
-#include "feed_silence.hpp"
+#include "data_clock.hpp"
 #include "housekeeping.hpp"
 #include "live_views.hpp"
 #include "record_intake.hpp"
+#include "self_report.hpp"
 #include "service_status.hpp"
 #include "subscribers.hpp"
 #include "kew/daemon/config.hpp"
@@ -66,7 +67,6 @@ class Service {
 
  private:
   void open_outputs();
-  void open_notifiers();
   void open_inputs();
   /// A record decoded by inputs_[input].
   void on_report(const TrackReport& report, std::size_t input);
@@ -93,19 +93,15 @@ class Service {
                                        std::optional<std::string_view> id = std::nullopt);
   /// The HTTP server's view of the service (design §5.8).
   http::HttpSource http_source();
-  protocol::ServiceStatistics service_statistics() const;
-  std::string metrics_text() const;
+  /// The parts ?STATS and /metrics report on (self_report.hpp).
+  ReportedParts reported() const;
   void wait_for_signal();
-  void reload();
   void shutdown();
   /// The replayed file ended: applies what the time guard holds, as kew-replay does at
   /// its end, and keeps serving (or shuts down with exit_at_end).
   void end_replay();
-  /// The data clock as the live tick would set it now: the last record's time plus the
-  /// feed's silence (FeedSilence), scaled by a replay's speed.
+  /// The data clock now (DataClock::at).
   double data_clock_now() const;
-  /// Wall seconds the live tick counts the feed as silent (FeedSilence::silent_s).
-  std::optional<double> silent_s() const;
 
   boost::asio::io_context io_;
   boost::asio::signal_set signals_;
@@ -131,11 +127,10 @@ class Service {
   std::string start_line_;  // this run's START object, for each new subscriber
 
   ServiceStatus status_;
-  FeedSilence silence_;
+  DataClock clock_;
   LiveViews views_;
   std::uint64_t last_alert_seq_ = 0;
   bool stopping_ = false;
-  bool replay_ended_ = false;
 };
 
 }  // namespace kew::daemon

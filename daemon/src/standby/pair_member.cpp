@@ -18,6 +18,19 @@ bool pair_feed_checkpointable(const std::vector<InputConfig>& inputs) {
   return format == protocol::Format::Ndjson || format == protocol::Format::ReadsbJson;
 }
 
+std::function<bool(const std::string& state, std::string& why)> checkpoint_fits(PipelineConfig config) {
+  return [config = std::move(config)](const std::string& state, std::string& why) {
+    try {
+      Pipeline trial(config);
+      trial.restore(state);
+      return true;
+    } catch (const std::exception& e) {
+      why = e.what();
+      return false;
+    }
+  };
+}
+
 PairMember::PairMember(boost::asio::io_context& io, const NatsConfig& config, const std::string& feed_stream,
                        std::uint64_t last_seq, std::uint16_t next_number, std::shared_ptr<SpeakingRight> right,
                        Pipeline& pipeline, FanOut& fan_out, Hooks hooks)

@@ -38,6 +38,10 @@ std::string pair_feed_stream(const std::vector<InputConfig>& inputs);
 /// format decodes each line alone (ndjson, readsb), so that nothing of the decoder's
 /// state before the checkpoint matters after it.
 bool pair_feed_checkpointable(const std::vector<InputConfig>& inputs);
+/// PairMember::Hooks::usable for a service whose pipeline has `config`: a checkpoint's
+/// state restored into a pipeline of its own (the service's must stay fresh until the
+/// checkpoint is known to fit); `why` says what did not fit.
+std::function<bool(const std::string& state, std::string& why)> checkpoint_fits(PipelineConfig config);
 
 class PairMember {
  public:
