@@ -46,7 +46,8 @@ echo "test_deb: built $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
 contents=$(dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|')
 for path in /usr/bin/kewd /usr/bin/kew-watch /usr/bin/kew-replay /usr/bin/kew-gen /usr/bin/kew-eval \
             /usr/bin/kew-decode /lib/systemd/system/kewd.service /etc/kew/kew.toml \
-            /usr/share/man/man8/kewd.8.gz /usr/share/man/man5/kew.toml.5.gz /usr/share/man/man1/kew-replay.1.gz \
+            /usr/share/man/man8/kewd.8.gz /usr/share/man/man5/kew.toml.5.gz /usr/share/man/man5/kewd.toml.5.gz \
+            /usr/share/man/man1/kew-replay.1.gz \
             /usr/share/man/man1/kew-gen.1.gz /usr/share/man/man1/kew-watch.1.gz /usr/share/man/man1/kew-decode.1.gz \
             /usr/share/man/man1/kew-eval.1.gz /usr/share/kew/web/index.html /usr/share/kew/aerodromes.csv \
             /usr/share/kew/prometheus/kew-rules.yml \
