@@ -42,11 +42,22 @@ export CCACHE_BASEDIR=$here
 export CCACHE_NOHASHDIR=true
 
 # The one build tree of both commands, configured alike, so that the test command after
-# the run command (or the other way round) builds nothing again. Warnings are errors in
-# both: the compilers bootstrap installs (Debian 12's g++ 12 and clang 14) are the ones
-# CI builds with, and a build by hand keeps the default (KEW_WERROR=OFF).
+# the run command (or the other way round) builds nothing again. It compiles as the Debian
+# package does (build type None with dpkg-buildflags: -O2, hardening, assertions on), so
+# that the suite tests the code the package ships and the package's build finds every
+# object it shares with this one in ccache. Warnings are errors: the compilers bootstrap
+# installs (Debian 12's g++ 12 and clang 14) are the ones CI builds with, and a build by
+# hand keeps the default (KEW_WERROR=OFF).
+package_flags() {  # NAME: dpkg-buildflags' value, as debian/rules gets it
+  (cd "$here" && DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get "$1")
+}
 configure_and_build() {
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKEW_WERROR=ON >/dev/null
+  local cppflags
+  cppflags=$(package_flags CPPFLAGS)
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=None -DKEW_WERROR=ON \
+    -DCMAKE_C_FLAGS="$(package_flags CFLAGS) $cppflags" -DCMAKE_CXX_FLAGS="$(package_flags CXXFLAGS) $cppflags" \
+    -DCMAKE_EXE_LINKER_FLAGS="$(package_flags LDFLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(package_flags LDFLAGS)" \
+    >/dev/null
   cmake --build "$build" -j "$jobs"
 }
 
@@ -117,7 +128,10 @@ case "$mode" in
     configure_and_build
     start_sanitize_build
     # Tests that take hours are not registered here (KEW_LONG_TESTS, docs/testing.md).
-    ctest --test-dir "$build" --output-on-failure -j "$jobs"
+    # Twice as many tests at a time as cores: a test that keeps a core busy takes one of the
+    # cores' slots (build/cpus.json, tests/CMakeLists.txt), and the end-to-end tests that
+    # mostly wait (leases, outages, timers) fill the others.
+    ctest --test-dir "$build" --output-on-failure -j "$((2 * jobs))" --resource-spec-file "$build/cpus.json"
     package
     sanitize_and_fuzz
     ;;

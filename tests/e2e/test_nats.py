@@ -276,11 +276,16 @@ class NatsFaults(NatsCase):
         nats_publish(self.nats.port, "kew.feed.tma", [b"".join(lines[i:i + 20]) for i in range(0, half, 20)])
         kewd.wait_records(half)
         # nats-server 2.9 refuses to delete a consumer while it writes an acknowledgement
-        # to its files ("unlinkat ...: directory not empty"): the operator deletes it once
-        # kewd has acknowledged what it read.
+        # to its files ("unlinkat ...: directory not empty", JetStream error 10051): the
+        # operator deletes it once kewd has acknowledged what it read, and tries again
+        # while the server still answers that.
         wait_until(lambda: consumer_done(self.nats.port, "kewd_e2e"), 10, "the first half acknowledged")
         # An operator deletes the consumer while kewd runs (nats consumer rm KEW_FEED kewd_e2e).
-        reply = json.loads(nats_request(self.nats.port, "$JS.API.CONSUMER.DELETE.KEW_FEED.kewd_e2e"))
+        def delete_consumer():
+            reply = json.loads(nats_request(self.nats.port, "$JS.API.CONSUMER.DELETE.KEW_FEED.kewd_e2e"))
+            busy = reply.get("error", {}).get("err_code") == 10051
+            return None if busy else reply
+        reply = wait_until(delete_consumer, 10, "the server's files of the consumer written")
         self.assertTrue(reply.get("success"), reply)
         nats_publish(self.nats.port, "kew.feed.tma", [b"".join(lines[i:i + 20]) for i in range(half, len(lines), 20)])
         kewd.wait_records(len(lines))

@@ -82,8 +82,10 @@ class Harness {
       a.velocity = steer(a, rng_);
       const Point2 measured = noise_m > 0 ? Point2{a.position.x + noise(rng_), a.position.y + noise(rng_)} : a.position;
       a.reported = measured;
+      // A report dated before the engine's now (a check ran past the period's start) is
+      // applied at now: the engine takes times t ≥ now() only.
       a.reported_time = std::max(t, engine_.now());
-      engine_.update(a.id, t, measured, a.velocity);
+      engine_.update(a.id, a.reported_time, measured, a.velocity);
     }
   }
 
@@ -91,6 +93,7 @@ class Harness {
   /// maintenance alone left a valid triangulation (is_valid() and an exact audit that
   /// finds nothing), then (in general position) the edge set against CGAL.
   void check_at(double t, bool compare_with_oracle = true) {
+    t = std::max(t, engine_.now());  // a check dated before the period's last report: at it
     engine_.advance(t);
     // The probe's search relies on it (design §2.1, §2.3): no model lags its latest
     // report by more than τ (velocity-only updates, kept models and their deadlines).
