@@ -64,9 +64,9 @@ configure_and_build() {
 # The second build, with clang, ASan + UBSan and libFuzzer: the decoder and encoder unit
 # tests under the sanitizers, then a short smoke run of every fuzz target (tests/fuzz).
 # Only the targets needed are built; benchmarks are off. The build runs at the lowest CPU
-# priority beside the test suite (whose end-to-end tests leave the cores idle much of the
-# time), so that it takes only what the tests leave. KEW_FUZZ_SECONDS sets the run per
-# target (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
+# priority from the start, beside the main build and the test suite (whose end-to-end
+# tests leave the cores idle much of the time), so that it takes only what they leave.
+# KEW_FUZZ_SECONDS sets the run per target (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
 sanitize_build="$build-sanitize"
 sanitize_build() {
   CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -125,8 +125,8 @@ run_demo() {
 install_dependencies
 case "$mode" in
   test)
-    configure_and_build
     start_sanitize_build
+    configure_and_build
     # Tests that take hours are not registered here (KEW_LONG_TESTS, docs/testing.md).
     # Twice as many tests at a time as cores: a test that keeps a core busy takes one of the
     # cores' slots (build/cpus.json, tests/CMakeLists.txt), and the end-to-end tests that

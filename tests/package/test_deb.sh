@@ -33,7 +33,8 @@ echo "test_deb: dpkg-buildpackage in $work/kew (no git: revision $revision expec
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/kew-ccache}
 export CCACHE_BASEDIR=$work/kew
 export CCACHE_NOHASHDIR=true
-(cd "$work/kew" && KEW_WERROR=ON DEB_BUILD_OPTIONS="parallel=$(nproc)" \
+# Without the -dbgsym package (noautodbgsym): what is tested is the package installed.
+(cd "$work/kew" && KEW_WERROR=ON DEB_BUILD_OPTIONS="parallel=$(nproc) noautodbgsym" \
    dpkg-buildpackage -b -us -uc >"$work/build.log" 2>&1) || { tail -40 "$work/build.log"; fail "dpkg-buildpackage"; }
 ! command -v ccache >/dev/null || grep -q "ccache .*-c .*\.cpp" "$work/build.log" ||
   fail "the package was not compiled through ccache (see $work/build.log)"
