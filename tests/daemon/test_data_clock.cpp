@@ -5,16 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "data_clock.hpp"
+#include "steady_at.hpp"
 
 namespace kew::daemon {
 namespace {
 
-using Clock = DataClock::Clock;
-const Clock::time_point t0{};
-
-Clock::time_point at(double s) {
-  return t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-}
+using test::at;
 
 constexpr double kLast = 1'000.0;  // the last record's data time
 constexpr double kTick = 1.0;

@@ -5,16 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "feed_silence.hpp"
+#include "steady_at.hpp"
 
 namespace kew::daemon {
 namespace {
 
-using Clock = FeedSilence::Clock;
-const Clock::time_point t0{};
-
-Clock::time_point at(double s) {
-  return t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-}
+using test::at;
 
 TEST(FeedSilence, SourcesThatNeverTellCountSilenceFromTheLastRecord) {
   const FeedSilence silence(2);  // UDP, TCP, files, plain NATS subscriptions
