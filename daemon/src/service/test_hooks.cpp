@@ -1,5 +1,6 @@
 #include "test_hooks.hpp"
 
+#if KEW_TEST_HOOKS
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -7,8 +8,11 @@
 #include <thread>
 
 #include <spdlog/spdlog.h>
+#endif
 
 namespace kew::daemon::test_hooks {
+
+#if KEW_TEST_HOOKS
 namespace {
 
 std::string stall_file() {
@@ -30,5 +34,9 @@ void maybe_stall_pipeline() {
   while (std::filesystem::exists(stall)) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   spdlog::warn("test hook: the pipeline runs again");
 }
+#else
+void announce() {}
+void maybe_stall_pipeline() {}
+#endif
 
 }  // namespace kew::daemon::test_hooks
