@@ -55,7 +55,7 @@ configure_and_build() {
   local cppflags
   cppflags=$(package_flags CPPFLAGS)
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=None -DKEW_WERROR=ON \
-    -DCMAKE_C_FLAGS="$(package_flags CFLAGS) $cppflags" -DCMAKE_CXX_FLAGS="$(package_flags CXXFLAGS) $cppflags" \
+    -DCMAKE_CXX_FLAGS="$(package_flags CXXFLAGS) $cppflags" \
     -DCMAKE_EXE_LINKER_FLAGS="$(package_flags LDFLAGS)" -DCMAKE_SHARED_LINKER_FLAGS="$(package_flags LDFLAGS)" \
     >/dev/null
   cmake --build "$build" -j "$jobs"
@@ -65,7 +65,8 @@ configure_and_build() {
 # tests under the sanitizers, then a short smoke run of every fuzz target (tests/fuzz).
 # Only the targets needed are built, with line tables for the reports' file and line (-g1)
 # rather than full debugging information; benchmarks are off. It runs after the package:
-# beside the main build it only slows that one down (the builds are CPU-bound on two cores).
+# the builds are CPU-bound, and beside the main build or the suite it slowed them by about
+# what it gained (docs/testing.md, "How long it takes").
 # KEW_FUZZ_SECONDS sets the run per target (default 15); KEW_SKIP_SANITIZE=1 skips the stage.
 sanitize_build="$build-sanitize"
 sanitize_and_fuzz() {
@@ -74,7 +75,7 @@ sanitize_and_fuzz() {
     return 0
   fi
   CC=clang-14 CXX=clang++-14 cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DKEW_SANITIZE=ON -DKEW_BUILD_FUZZERS=ON -DKEW_BUILD_BENCHMARKS=OFF -DKEW_WERROR=ON >/dev/null
   # kew_decoder_tests: the tests of kew_protocol (tests/protocol/sources.cmake), without
   # the other libraries' tests (tests/fuzz/CMakeLists.txt).
