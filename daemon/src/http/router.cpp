@@ -1,7 +1,6 @@
 #include "router.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cctype>
 #include <iterator>
 
@@ -11,6 +10,7 @@
 
 #include "kew/config/address.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon::http {
 
@@ -103,7 +103,7 @@ Reply Router::handle(const Request& request, std::string_view client, std::uint1
   }
   if (path == "/api/volumes") {
     if (!volumes_) volumes_.emplace(source_.volumes ? *source_.volumes : std::vector<volume::WatchedVolume>{});
-    const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    const double now = util::unix_now_s();
     return {200, "application/geo+json", volumes_->text(now)};
   }
   if (path == "/metrics") return {200, "text/plain; version=0.0.4; charset=utf-8", source_.metrics()};

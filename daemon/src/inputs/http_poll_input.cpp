@@ -17,6 +17,7 @@
 #include "http_client.hpp"
 #include "repeated_failure.hpp"
 #include "retry_schedule.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -26,9 +27,6 @@ namespace asio = boost::asio;
 using Clock = std::chrono::steady_clock;
 
 double steady_seconds() { return std::chrono::duration<double>(Clock::now().time_since_epoch()).count(); }
-double unix_seconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 class HttpPollInput final : public Input {
  public:
@@ -125,7 +123,7 @@ class HttpPollInput final : public Input {
       request.headers.push_back(*authorization);
     }
     HttpResponse response = client_.perform(request, &abort_);
-    const std::optional<double> retry_after = response.retry_after_s(unix_seconds());
+    const std::optional<double> retry_after = response.retry_after_s(util::unix_now_s());
     switch (response.outcome) {
       case HttpOutcome::Aborted: return std::nullopt;
       case HttpOutcome::TooLarge:

@@ -22,6 +22,7 @@
 #include "kew/config/utc_day.hpp"
 #include "kew/replay/pacer.hpp"
 #include "kew/replay/recording_reader.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -430,8 +431,7 @@ void Input::feed(protocol::Decoder& decoder, const void* data, std::size_t n) {
   // A socket's bytes are live: ASTERIX times of day are dated by when they arrived,
   // unless the input names its day (asterix_day: a recorded stream played into kewd).
   if (config_.asterix_day.empty()) {
-    decoder.set_receive_time(
-        std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    decoder.set_receive_time(util::unix_now_s());
   }
   decoder.feed(std::span<const std::byte>(static_cast<const std::byte*>(data), n),
                [this](const TrackReport& r) { deliver(r); });

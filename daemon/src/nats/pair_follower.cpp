@@ -10,6 +10,7 @@
 
 #include "checkpoint_store.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
+#include "kew/util/wall_clock.hpp"
 #include "repeated_failure.hpp"
 
 namespace kew::daemon {
@@ -18,10 +19,6 @@ namespace {
 
 constexpr std::int64_t kWaitMs = 200;  // a read waits this long, then looks at stopping_
 constexpr auto kRetryPeriod = std::chrono::milliseconds(500);
-
-double unix_now_s() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 using Subscription = std::unique_ptr<natsSubscription, decltype(&natsSubscription_Destroy)>;
 
@@ -150,7 +147,7 @@ std::optional<PairOrigin> PairFollower::new_origin() {
   origin.last_seq = std::max(last_seq_, published);
   origin.next_number = next_number_;
   origin.created_by = instance_;
-  origin.created_unix_s = unix_now_s();
+  origin.created_unix_s = util::unix_now_s();
   return origin;
 }
 

@@ -14,6 +14,7 @@
 #include "message_template.hpp"
 #include "repeated_failure.hpp"
 #include "retry_schedule.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -54,10 +55,6 @@ std::string origin_of(const std::string& url) {
   std::string origin = url.substr(0, path);
   if (const std::size_t at = origin.find('@'); at != std::string::npos) origin.erase(host + 3, at - host - 2);
   return origin;
-}
-
-double unix_now_s() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 std::chrono::duration<double> seconds(double s) { return std::chrono::duration<double>(std::max(0.0, s)); }
@@ -187,7 +184,7 @@ bool Notifier::deliver(const OutboxEntry& entry, HttpClient& client, RepeatedFai
       spdlog::warn("[notify {}] {}", config_.name, e.what());
     }
   }
-  wait_s = response.retry_after_s(unix_now_s()).value_or(0.0);
+  wait_s = response.retry_after_s(util::unix_now_s()).value_or(0.0);
   return false;
 }
 

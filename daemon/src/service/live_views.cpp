@@ -1,9 +1,9 @@
 #include "live_views.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "kew/protocol/encoders/statistics_json.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -31,7 +31,7 @@ std::string LiveViews::alerts() const {
 }
 
 std::string LiveViews::status() const {
-  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const double wall = util::unix_now_s();
   std::string out;
   protocol::append_status_json(out, sources_.alive(), sources_.seq(), sources_.data_clock(), wall);
   return out;

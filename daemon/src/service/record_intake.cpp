@@ -4,6 +4,7 @@
 
 #include "test_hooks.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -26,7 +27,7 @@ RecordOutcome RecordIntake::take(const TrackReport& report, std::size_t input) {
   // best time kewd has; recordings played into a live input are in the past). A replay
   // has no such ceiling: its clock is the recording's, and the pipeline's time guard
   // still holds a lone record dated ahead of the others, as in kew-replay.
-  const double wall = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const double wall = util::unix_now_s();
   if (!replay_) pipeline_.set_time_ceiling(wall + max_future_s_);
   InputFigures& figures = figures_[input];
   figures.last_record_unix_s = wall;

@@ -23,6 +23,7 @@
 #include "test_hooks.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/version.hpp"
+#include "kew/util/wall_clock.hpp"
 
 namespace kew::daemon {
 
@@ -208,8 +209,7 @@ void Service::on_report(const TrackReport& report, std::size_t input) {
 void Service::begin_run() {
   RunContinuity::Beginning beginning = continuity_.begin(alert_log_ ? alert_log_->path() : std::string());
   start_line_.clear();
-  const auto wall = std::chrono::system_clock::now().time_since_epoch();
-  protocol::append_start_json(start_line_, {continuity_.run_id(), std::chrono::duration<double>(wall).count()},
+  protocol::append_start_json(start_line_, {continuity_.run_id(), util::unix_now_s()},
                               beginning.start_seq);
   if (alert_log_) alert_log_->append(start_line_);
   const Numbering& numbering = beginning.numbering;

@@ -1,12 +1,14 @@
 #include "service_status.hpp"
 
+#include "kew/util/wall_clock.hpp"
+
 namespace kew::daemon {
 
 ServiceStatus::ServiceStatus(const Pipeline& pipeline, double track_timeout_s)
     : pipeline_(pipeline),
       feed_(track_timeout_s),
       started_(Clock::now()),
-      started_unix_s_(std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()),
+      started_unix_s_(util::unix_now_s()),
       last_sample_(started_) {}
 
 void ServiceStatus::sample(Clock::time_point now, std::uint64_t input_losses) {

@@ -4,6 +4,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "kew/util/wall_clock.hpp"
+
 namespace kew::daemon {
 
 std::string pair_feed_stream(const std::vector<InputConfig>& inputs) {
@@ -108,8 +110,7 @@ void PairMember::checkpoint_if_due(std::optional<std::uint64_t> feed_position,
   checkpoint.feed_seq = *feed_position;
   checkpoint.last_seq = pipeline_.alerts().last_seq();
   checkpoint.written_by = instance();
-  checkpoint.written_unix_s =
-      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  checkpoint.written_unix_s = util::unix_now_s();
   checkpoint.pipeline = std::move(*state);
   if (standby_->write_checkpoint(std::move(checkpoint), mark())) last_checkpoint_ = now;
 }
