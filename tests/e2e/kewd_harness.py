@@ -11,6 +11,7 @@ import json
 import os
 import random
 import re
+import shutil
 import signal
 import socket
 import struct
@@ -18,6 +19,7 @@ import subprocess
 import tempfile
 import threading
 import time
+import unittest
 
 KEWD = os.environ.get("KEWD", "kewd")
 KEW_REPLAY = os.environ.get("KEW_REPLAY", "kew-replay")
@@ -262,6 +264,68 @@ def write_pcap(path, datagrams, udp_port=8600):
 
 def temporary_directory():
     return tempfile.TemporaryDirectory(prefix="kew-e2e-")
+
+
+# The live tick never fires during a test (a feed silent for a whole tick would move the
+# clock on and make the stream differ from the offline run, as it should live).
+SERVICE = """
+[service]
+alert_listen = "127.0.0.1:0"
+tick_interval_s = 60
+subscriber_queue = {queue}
+alert_log = "{workdir}/alerts.jsonl"
+"""
+
+TCP_INPUT = """
+[[input]]
+name = "{name}"
+format = "{format}"
+transport = "tcp-server"
+address = "127.0.0.1:0"
+"""
+
+UDP_INPUT = """
+[[input]]
+name = "{name}"
+format = "{format}"
+transport = "udp"
+address = "127.0.0.1:0"
+"""
+
+
+class E2eCase(unittest.TestCase):
+    def setUp(self):
+        self._dir = temporary_directory()
+        self.workdir = self._dir.name
+        self.daemons = []
+
+    def tearDown(self):
+        for d in self.daemons:
+            d.kill()
+        while Subscriber.opened:
+            Subscriber.opened.pop().close()
+        self._dir.cleanup()
+
+    def start(self, config, *args, env=None, preexec_fn=None):
+        daemon = Kewd(config, self.workdir, args, env=env, preexec_fn=preexec_fn)
+        self.daemons.append(daemon)
+        return daemon
+
+    def path(self, name):
+        return os.path.join(self.workdir, name)
+
+
+MODBUS_CLIENT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "daemon",
+                             "modbus_client.py")
+
+
+def pymodbus_python():
+    """Debian's python3 (pymodbus is a Debian package), else the one on PATH if it has it."""
+    for python in ("/usr/bin/python3", shutil.which("python3")):
+        if python and subprocess.run([python, "-c", "import pymodbus"], stderr=subprocess.DEVNULL).returncode == 0:
+            return python
+    return None
+
 
 
 NATS_SERVER = os.environ.get("NATS_SERVER", "nats-server")

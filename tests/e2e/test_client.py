@@ -17,9 +17,8 @@ import threading
 import typing
 import unittest
 
-from kewd_harness import (active_at_end, count_lines, free_port, generate, offline_alerts, replay_to,
+from kewd_harness import (E2eCase, active_at_end, count_lines, free_port, generate, offline_alerts, replay_to,
                           wait_until)
-from test_kewd import E2eCase
 
 CLIENT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "clients", "python")
 sys.path.insert(0, CLIENT_DIR)
@@ -108,7 +107,7 @@ def flatten(obj, prefix=""):
 
 
 class ClientCase(E2eCase):
-    """test_kewd's case (a work directory, kewd processes) with the clients' readers."""
+    """The harness's E2eCase (a work directory, kewd processes) with the clients' readers."""
 
     def setUp(self):
         super().setUp()

@@ -37,8 +37,7 @@ import unittest
 import urllib.request
 
 import modes_encoder
-from kewd_harness import free_port, wait_until
-from test_kewd import E2eCase
+from kewd_harness import E2eCase, free_port, wait_until
 
 DUMP1090 = os.environ.get("DUMP1090_MUTABILITY", "dump1090-mutability")
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")

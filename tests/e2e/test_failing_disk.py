@@ -16,8 +16,7 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import KEW_REPLAY, count_lines, generate
-from test_kewd import E2eCase
+from kewd_harness import KEW_REPLAY, E2eCase, count_lines, generate
 from test_reliability import Connections, feed_with
 
 # Bytes kewd may write to any one file; then every write fails.

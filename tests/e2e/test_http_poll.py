@@ -17,8 +17,7 @@ import threading
 import time
 import urllib.request
 
-from kewd_harness import KEWD, KEW_REPLAY, Subscriber, wait_until
-from test_kewd import E2eCase
+from kewd_harness import KEWD, KEW_REPLAY, E2eCase, Subscriber, wait_until
 
 HISTORY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "text",
                        "aircraft_json_history.json")

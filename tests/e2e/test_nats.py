@@ -19,12 +19,11 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEW_WATCH, NATS_SERVER, NatsServer, Subscriber, active_at_end, count_lines, generate,
+from kewd_harness import (KEW_WATCH, NATS_SERVER, E2eCase, NatsServer, Subscriber, active_at_end, count_lines, generate,
                           nats_next_message, nats_next_reply_subject, nats_publish, nats_request, offline_alerts,
                           replay_to, wait_until)
-from test_kewd import E2eCase
 
-# The live tick never fires during a test (as in test_kewd): the stream equals the offline run.
+# The live tick never fires during a test (as in the harness's SERVICE): the stream equals the offline run.
 SERVICE = """
 [service]
 alert_listen = "127.0.0.1:0"
@@ -67,7 +66,7 @@ def watch(url, *args, timeout=60):
 
 
 class NatsCase(E2eCase):
-    """test_kewd's case (a work directory, kewd processes) with a NATS server and helper
+    """The harness's E2eCase (a work directory, kewd processes) with a NATS server and helper
     processes of its own."""
 
     def setUp(self):

@@ -21,9 +21,9 @@ import time
 import unittest
 import urllib.request
 
-from kewd_harness import (KEWD, NATS_SERVER, STARTUP_TIMEOUT_S, NatsServer, Subscriber, _nats_client, active_at_end,
-                          count_lines, free_port, generate, nats_request, offline_alerts, replay_to, wait_until)
-from test_kewd import E2eCase
+from kewd_harness import (KEWD, NATS_SERVER, STARTUP_TIMEOUT_S, E2eCase, NatsServer, Subscriber, _nats_client,
+                          active_at_end, count_lines, free_port, generate, nats_request, offline_alerts, replay_to,
+                          wait_until)
 from test_hot_standby import pair_member
 from test_nats import SERVICE, UDP_INPUT, check_alert_lifecycles, watch
 

@@ -16,8 +16,7 @@ import time
 import unittest
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
-from kewd_harness import Subscriber, active_at_end, generate, replay_to, wait_until
-from test_kewd import E2eCase
+from kewd_harness import E2eCase, Subscriber, active_at_end, generate, replay_to, wait_until
 
 RANK = {"none": 0, "caution": 1, "warning": 2, "loss": 3}
 EVERY_STATE = ("new", "escalated", "updated", "ended")

@@ -11,8 +11,7 @@ import subprocess
 import sys
 import time
 
-from kewd_harness import KEW_REPLAY, wait_until
-from test_kewd import SERVICE, E2eCase
+from kewd_harness import KEW_REPLAY, SERVICE, E2eCase, wait_until
 
 TEXT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "text")
 HISTORY = os.path.join(TEXT_DATA, "aircraft_json_history.json")

@@ -15,8 +15,8 @@ import unittest
 import urllib.request
 import zlib
 
-from kewd_harness import (Subscriber, count_lines, generate, offline_alerts, replay_to, wait_until)
-from test_kewd import E2eCase, MODBUS_CLIENT, pymodbus_python
+from kewd_harness import (MODBUS_CLIENT, E2eCase, Subscriber, count_lines, generate, offline_alerts, pymodbus_python,
+                          replay_to, wait_until)
 
 KNOT = 1852.0 / 3600.0
 

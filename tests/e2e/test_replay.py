@@ -13,9 +13,8 @@ import time
 import urllib.request
 import unittest
 
-from kewd_harness import (KEWD, KEW_GEN, KEW_REPLAY, Kewd, Subscriber, active_at_end, count_lines, free_port,
+from kewd_harness import (KEWD, KEW_GEN, KEW_REPLAY, E2eCase, Kewd, Subscriber, active_at_end, count_lines, free_port,
                           offline_alerts, wait_until)
-from test_kewd import E2eCase
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
 
