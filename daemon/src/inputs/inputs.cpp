@@ -1,7 +1,7 @@
 #include "inputs.hpp"
 
 #include <chrono>
-#include <ctime>
+#include <cmath>
 #include <optional>
 
 #include <boost/asio/connect.hpp>
@@ -37,8 +37,8 @@ constexpr int kUdpReceiveBuffer = 8 * 1024 * 1024;
 
 // The UTC midnight of today, for ASTERIX time of day in live inputs.
 double today_utc_midnight() {
-  const std::time_t now = std::time(nullptr);
-  return static_cast<double>(now - now % 86400);
+  const double now = util::unix_now_s();
+  return now - std::fmod(now, 86400.0);
 }
 
 protocol::DecoderOptions options_for(const InputConfig& config, protocol::DecoderOptions options) {
