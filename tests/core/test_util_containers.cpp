@@ -1,12 +1,10 @@
 #include <gtest/gtest.h>
 
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include "kew/util/chunked_vector.hpp"
 #include "kew/util/gentle_growth.hpp"
-#include "kew/util/wall_clock.hpp"
 
 namespace {
 
@@ -57,12 +55,3 @@ TEST(GentleGrowth, GrowToFillsOnlyTheNewEntriesAndNeverShrinks) {
 }
 
 }  // namespace
-
-TEST(WallClock, UnixNowIsTheSystemClockInSecondsSince1970) {
-  const std::time_t before = std::time(nullptr);
-  const double now = kew::util::unix_now_s();
-  const std::time_t after = std::time(nullptr);
-  EXPECT_GE(now, static_cast<double>(before));
-  EXPECT_LT(now, static_cast<double>(after) + 1.0);
-  EXPECT_GT(now, 1.7e9);  // after 2023-11-14: not a steady clock's arbitrary epoch
-}

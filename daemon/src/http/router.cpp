@@ -10,7 +10,7 @@
 
 #include "kew/config/address.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon::http {
 

@@ -17,7 +17,7 @@
 #include "http_client.hpp"
 #include "repeated_failure.hpp"
 #include "retry_schedule.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 
@@ -26,7 +26,6 @@ namespace {
 namespace asio = boost::asio;
 using Clock = std::chrono::steady_clock;
 
-double steady_seconds() { return std::chrono::duration<double>(Clock::now().time_since_epoch()).count(); }
 
 class HttpPollInput final : public Input {
  public:
@@ -117,7 +116,7 @@ class HttpPollInput final : public Input {
     if (!last_modified_.empty()) request.headers.push_back("If-Modified-Since: " + last_modified_);
     if (token_) {
       std::string error;
-      const std::optional<std::string> authorization = token_->header(client_, steady_seconds(), error, &abort_);
+      const std::optional<std::string> authorization = token_->header(client_, util::steady_now_s(), error, &abort_);
       if (abort_) return std::nullopt;
       if (!authorization) return failed(schedule, error, std::nullopt);
       request.headers.push_back(*authorization);

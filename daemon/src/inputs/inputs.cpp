@@ -22,7 +22,7 @@
 #include "kew/config/utc_day.hpp"
 #include "kew/replay/pacer.hpp"
 #include "kew/replay/recording_reader.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

@@ -10,7 +10,7 @@
 
 #include "checkpoint_store.hpp"
 #include "kew/protocol/encoders/alert_json_reader.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 #include "repeated_failure.hpp"
 
 namespace kew::daemon {

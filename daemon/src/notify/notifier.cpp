@@ -14,7 +14,7 @@
 #include "message_template.hpp"
 #include "repeated_failure.hpp"
 #include "retry_schedule.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 
@@ -73,23 +73,19 @@ Notifier::Notifier(NotifyConfig config, std::string outbox_path, std::unique_ptr
   for (const std::string* file : {&config_.url_file, &config_.token_file})
     if (!file->empty())
       if (const auto exposure = secret_file_exposure(*file)) spdlog::warn("[notify {}] {}", config_.name, *exposure);
-  if (const std::string loaded = outbox_.load(now_s()); !loaded.empty())
+  if (const std::string loaded = outbox_.load(util::steady_now_s()); !loaded.empty())
     spdlog::info("[notify {}] outbox: {}", config_.name, loaded);
   thread_ = std::thread([this] { run(); });
 }
 
 Notifier::~Notifier() { stop(); }
 
-double Notifier::now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 void Notifier::alert(const AlertEvent& event, const std::string& line) {
   const std::optional<NotifyState> state = filter_.classify(event);
   if (!state) return;
   {
     const std::lock_guard lock(mutex_);
-    if (!outbox_.add(event, *state, line, now_s())) return;
+    if (!outbox_.add(event, *state, line, util::steady_now_s())) return;
   }
   wake_.notify_one();
 }
@@ -114,7 +110,7 @@ NotifierFigures Notifier::figures() const {
   f.queued = outbox_.waiting_events();
   f.outbox_write_errors = outbox_.write_errors();
   const std::optional<double> oldest = outbox_.oldest_queued_s();
-  f.failing = consecutive_failures_ > 0 && oldest && now_s() - *oldest > config_.failing_after_s;
+  f.failing = consecutive_failures_ > 0 && oldest && util::steady_now_s() - *oldest > config_.failing_after_s;
   return f;
 }
 
@@ -194,10 +190,10 @@ void Notifier::run() {
   HttpClient client;
   RepeatedFailure failure(fmt::format("[notify {}] {}", config_.name, origin_of(url_)));
   RepeatedFailure store_failure(fmt::format("[notify {}]", config_.name));
-  double last_sync_s = now_s();
+  double last_sync_s = util::steady_now_s();
   std::unique_lock lock(mutex_);
   while (!stopping_) {
-    const double now = now_s();
+    const double now = util::steady_now_s();
     if (now - last_sync_s >= 1.0) {
       // The disk may be slow: the I/O thread must not wait for it on this lock.
       if (const int fd = outbox_.sync_handle(); fd >= 0) {
@@ -240,12 +236,12 @@ void Notifier::run() {
     const bool delivered = deliver(copy, client, failure, retry_after_s);
     lock.lock();
     if (delivered) {
-      outbox_.delivered(copy.seqs.front(), now_s());
+      outbox_.delivered(copy.seqs.front(), util::steady_now_s());
       ++delivered_;
       if (consecutive_failures_) failure.recovered("delivered again");
       consecutive_failures_ = 0;
       schedule.after_success();
-      pace.sent(now_s());
+      pace.sent(util::steady_now_s());
       lock.unlock();
       save_progress();
       lock.lock();

@@ -57,7 +57,6 @@ class Notifier {
   void stop();
 
  private:
-  static double now_s();
   void run();
   /// Delivers `entry` (a copy); true when the endpoint took it, else `wait_s` is what
   /// the endpoint asked to wait (0: nothing asked).

@@ -1,6 +1,6 @@
 #include "cat004_output.hpp"
 
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "kew/protocol/encoders/statistics_json.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

@@ -4,7 +4,7 @@
 
 #include "test_hooks.hpp"
 #include "kew/protocol/ndjson_writer.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

@@ -23,7 +23,7 @@
 #include "test_hooks.hpp"
 #include "kew/protocol/encoders/statistics_json.hpp"
 #include "kew/protocol/version.hpp"
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

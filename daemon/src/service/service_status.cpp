@@ -1,6 +1,6 @@
 #include "service_status.hpp"
 
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 

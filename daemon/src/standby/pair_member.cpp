@@ -4,7 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "kew/util/wall_clock.hpp"
+#include "kew/util/clocks.hpp"
 
 namespace kew::daemon {
 
